@@ -1,0 +1,119 @@
+"""The ``optplan`` command line. Errors print one line and exit with status 2."""
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+from .errors import OptplanError
+
+EXAMPLES = {
+    "plan": "example: optplan plan arena --start 1.5 37.5 --goal 40.5 10.5 --algo visibility --plot arena.png",
+    "algorithms": "example: optplan algorithms",
+    "demo": "example: optplan demo --out demo.png",
+}
+
+
+def _load_world(spec: str):
+    if spec.lower().endswith(".json"):
+        from .world.circles import CircleWorld
+
+        return CircleWorld.from_json(spec)
+    from .world.loaders import load_map
+
+    return load_map(spec)
+
+
+def _cmd_plan(args) -> int:
+    from .planning import plan
+    from .demo import format_table
+
+    world = _load_world(args.map)
+    refine = None if args.refine == "none" else args.refine
+    res = plan(world, tuple(args.start), tuple(args.goal), algorithm=args.algo, refine=refine, seed=args.seed,
+               pop=args.pop, iters=args.iters, clearance=args.clearance)
+    if args.plot:
+        from .viz.plots import plot_paths
+
+        plot_paths(world, {args.algo: res.path}, args.plot, title=f"{args.algo} on {Path(args.map).name}")
+    if args.json:
+        print(json.dumps(res.to_json_dict()))
+    else:
+        d = res.to_dict()
+        print(format_table([d], [("algorithm", "algorithm", ""), ("length", "length [m]", ".4f"),
+                                 ("turn_angle_deg", "total turn [deg]", ".1f"), ("n_turns", "turns", "d"),
+                                 ("min_clearance", "min clearance [m]", ".3f"), ("runtime_s", "time [s]", ".4f"),
+                                 ("feasible", "feasible", "")]))
+        if res.message:
+            print(res.message)
+        if args.plot:
+            print(f"wrote {args.plot}")
+    return 0
+
+
+def _cmd_algorithms(args) -> int:
+    from .registry import algorithms
+
+    for name in algorithms():
+        print(name)
+    return 0
+
+
+def _cmd_demo(args) -> int:
+    from .demo import run_demo
+
+    run_demo(args.out, seed=args.seed)
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="optplan",
+        description="Mobile-robot path planning as constrained programs.",
+        epilog="example: optplan demo      (see 'optplan COMMAND --help' for each command)",
+    )
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+
+    p = sub.add_parser("plan", help="plan a global path on a map", epilog=EXAMPLES["plan"])
+    p.add_argument("map", help="map file (.map, .yaml, .pgm, .npy, .txt, .csv, circle-world .json) or a shipped map name")
+    p.add_argument("--start", nargs=2, type=float, required=True, metavar=("X", "Y"), help="start in metres")
+    p.add_argument("--goal", nargs=2, type=float, required=True, metavar=("X", "Y"), help="goal in metres")
+    p.add_argument("--algo", default="astar", help="planner name (see 'optplan algorithms'); default astar")
+    p.add_argument("--refine", default="none", choices=["none", "casadi", "qp"], help="refinement stage")
+    p.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
+    p.add_argument("--pop", type=int, default=30, help="population size of metaheuristics")
+    p.add_argument("--iters", type=int, default=500, help="iterations of metaheuristics")
+    p.add_argument("--clearance", type=float, default=0.0, help="required clearance in metres")
+    p.add_argument("--json", action="store_true", help="print exactly one JSON object")
+    p.add_argument("--plot", metavar="FILE.png", help="write a picture of the path")
+    p.set_defaults(func=_cmd_plan)
+
+    a = sub.add_parser("algorithms", help="list every registered planner", epilog=EXAMPLES["algorithms"])
+    a.set_defaults(func=_cmd_algorithms)
+
+    d = sub.add_parser("demo", help="plan on a shipped map, print a table, write a PNG", epilog=EXAMPLES["demo"])
+    d.add_argument("--out", default="optplan_demo.png", help="PNG to write (default optplan_demo.png)")
+    d.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
+    d.set_defaults(func=_cmd_demo)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if not getattr(args, "command", None):
+        parser.print_help()
+        return 2
+    try:
+        return int(args.func(args) or 0)
+    except OptplanError as exc:
+        print(f"optplan: error: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("optplan: interrupted", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":  # pragma: no cover
+    raise SystemExit(main())

@@ -1,0 +1,59 @@
+"""``op.plan``: one entry point for every global planner (graph search and metaheuristics)."""
+from __future__ import annotations
+
+import importlib
+
+import numpy as np
+
+from .errors import OptplanError, ParameterError, UnknownAlgorithmError
+from .registry import GRAPH_METHODS, algorithms
+from .results import PlanResult
+
+REFINE_MODES = (None, "none", "casadi", "qp")
+
+
+def plan(world, start, goal, algorithm: str = "astar", refine: str | None = None, seed: int | None = 0,
+         pop: int = 30, iters: int = 500, clearance: float = 0.0, **params) -> PlanResult:
+    """Plan a global path from ``start`` to ``goal`` (metres) on ``world``.
+
+    Args:
+        world: a GridMap or CircleWorld.
+        start, goal: ``(x, y)`` in metres.
+        algorithm: a name from ``op.algorithms()`` (``astar``, ``visibility``, ``gwo``, ...).
+        refine: ``None``/``"none"``, ``"casadi"`` or ``"qp"``.
+        seed: seed of stochastic planners (ignored by graph search).
+        pop, iters: population size and iterations of metaheuristics.
+        clearance: required distance from obstacles, metres.
+        **params: extra keyword arguments for the chosen planner.
+
+    Returns:
+        A :class:`PlanResult`; ``feasible`` is the verdict of the exact ``validate_path``.
+    """
+    if not isinstance(algorithm, str):
+        raise UnknownAlgorithmError(f"algorithm must be a name string, got {algorithm!r}")
+    name = algorithm.lower()
+    if refine not in REFINE_MODES:
+        raise ParameterError(f"refine must be one of none, casadi, qp; got {refine!r}")
+    if name in GRAPH_METHODS:
+        from .solvers.graph import shortest_path
+
+        result = shortest_path(world, start, goal, method=name, clearance=clearance, **params)
+    else:
+        try:
+            paths = importlib.import_module("optplan.solvers.paths")
+        except ImportError:
+            paths = None
+        if paths is None or name not in paths.algorithm_names():
+            known = ", ".join(algorithms())
+            raise UnknownAlgorithmError(f"unknown path planner {algorithm!r}; known: {known}")
+        result = paths.plan_path(world, start, goal, algorithm=name, seed=seed, pop=pop, iters=iters,
+                                 clearance=clearance, **params)
+    if refine not in (None, "none"):
+        try:
+            refiners = importlib.import_module("optplan.solvers.refine")
+        except ImportError:
+            raise OptplanError(f"refine={refine!r} is not available in this version of optplan; use refine=None") from None
+        result = refiners.refine_result(world, result, method=refine, clearance=clearance, seed=seed)
+    if result.seed is None and name not in GRAPH_METHODS and isinstance(seed, (int, np.integer)):
+        result.seed = int(seed)
+    return result

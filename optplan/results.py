@@ -1,0 +1,112 @@
+"""Result dataclasses shared by every solver.
+
+Each result has ``to_dict()`` returning a JSON-serialisable dict (numpy arrays
+become nested lists, numpy scalars become Python numbers).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field, fields
+from typing import Any
+
+import numpy as np
+
+
+def jsonable(value: Any) -> Any:
+    """Convert numpy containers and scalars (recursively) to plain Python objects."""
+    if isinstance(value, np.ndarray):
+        return jsonable(value.tolist())
+    if isinstance(value, (np.floating, float)):
+        v = float(value)
+        # JSON has no NaN/inf; None is the honest "no value".
+        return v if np.isfinite(v) else None
+    if isinstance(value, (np.integer,)):
+        return int(value)
+    if isinstance(value, (np.bool_,)):
+        return bool(value)
+    if isinstance(value, dict):
+        return {str(k): jsonable(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [jsonable(v) for v in value]
+    return value
+
+
+class _ToDict:
+    def to_dict(self) -> dict[str, Any]:
+        """All fields as a JSON-serialisable dict."""
+        return {f.name: jsonable(getattr(self, f.name)) for f in fields(self)}  # type: ignore[arg-type]
+
+
+@dataclass
+class OptimizeResult(_ToDict):
+    """Outcome of ``optimize`` on a plain objective.
+
+    Attributes:
+        x: best point found, shape ``(d,)``.
+        f: objective value at ``x``.
+        history: best value after each iteration, shape ``(nit + 1,)`` (entry 0 is
+            the initial population).
+        history_nfev: evaluations spent when each ``history`` entry was recorded.
+        nfev: objective evaluations (rows of ``X`` passed to ``f``).
+        nit: iterations completed.
+        runtime_s: wall time in seconds.
+        status: ``"max_iters"``, ``"max_evals"``, ``"stagnation"``, ``"target"`` or ``"callback"``.
+        message: human-readable explanation of ``status``.
+        algorithm: registry name of the algorithm.
+        seed: the seed passed in (``None`` when a Generator was given).
+    """
+
+    x: np.ndarray
+    f: float
+    history: np.ndarray
+    history_nfev: np.ndarray
+    nfev: int
+    nit: int
+    runtime_s: float
+    status: str
+    message: str
+    algorithm: str
+    seed: int | None = None
+
+
+@dataclass
+class PlanResult(_ToDict):
+    """Outcome of a global path planner.
+
+    Attributes:
+        algorithm: registry name of the planner.
+        path: ``(N, 2)`` points in metres, start first, goal last (may be empty if
+            nothing was found).
+        feasible: the path passed the exact ``validate_path`` check.
+        length: path length in metres (``inf`` when there is no path).
+        turn_angle_deg: sum of absolute heading changes, degrees.
+        n_turns: number of vertices where the heading changes.
+        min_clearance: smallest distance from the path to an obstacle, metres.
+        runtime_s: wall time in seconds.
+        history: best objective per iteration (empty for graph search).
+        refined: ``True`` when a refinement stage changed the path.
+        seed: the seed used, if any.
+        message: what happened, in words (why infeasible, why refinement fell back).
+        nfev: objective evaluations spent (0 for graph search).
+    """
+
+    algorithm: str
+    path: np.ndarray
+    feasible: bool
+    length: float
+    turn_angle_deg: float
+    n_turns: int
+    min_clearance: float
+    runtime_s: float
+    history: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    refined: bool = False
+    seed: int | None = None
+    message: str = ""
+    nfev: int = 0
+
+    JSON_KEYS = ("algorithm", "feasible", "path", "length", "turn_angle_deg", "n_turns",
+                 "min_clearance", "runtime_s", "refined", "seed")
+
+    def to_json_dict(self) -> dict[str, Any]:
+        """Exactly the keys of the ``optplan plan --json`` contract."""
+        d = self.to_dict()
+        return {k: d[k] for k in self.JSON_KEYS}

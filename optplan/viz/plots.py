@@ -1,0 +1,65 @@
+"""Static pictures of maps and paths (matplotlib, no screen needed)."""
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Mapping
+
+import numpy as np
+
+
+def _pyplot():
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def draw_world(ax, world) -> None:
+    """Draw a GridMap (blocked cells black) or a CircleWorld (grey discs) on ``ax``."""
+    from matplotlib.patches import Circle
+
+    xmin, ymin, xmax, ymax = world.bounds
+    if hasattr(world, "occ"):
+        ax.imshow(world.occ, origin="lower", cmap="Greys", vmin=0, vmax=1, extent=(xmin, xmax, ymin, ymax),
+                  interpolation="nearest")
+        if world.width <= 60 and world.height <= 60:
+            ax.set_xticks(np.arange(xmin, xmax + 1e-9, world.resolution), minor=True)
+            ax.set_yticks(np.arange(ymin, ymax + 1e-9, world.resolution), minor=True)
+            ax.grid(which="minor", color="0.85", linewidth=0.4)
+    else:
+        for (x, y, r), R in zip(world.circles, world.radii):
+            if R > r:
+                ax.add_patch(Circle((x, y), R, color="0.85", zorder=1))
+            ax.add_patch(Circle((x, y), r, color="0.45", zorder=2))
+    ax.set_xlim(xmin, xmax)
+    ax.set_ylim(ymin, ymax)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+
+
+def plot_paths(world, paths: Mapping[str, np.ndarray], filename: str | Path, title: str = "") -> Path:
+    """Save a PNG of ``world`` with each named ``(N, 2)`` path overlaid; returns the file path."""
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(6.4, 6.4))
+    draw_world(ax, world)
+    styles = ["-", "--", "-.", ":"]
+    for k, (name, path) in enumerate(paths.items()):
+        P = np.asarray(path, dtype=float)
+        if P.ndim == 2 and len(P):
+            ax.plot(P[:, 0], P[:, 1], styles[k % len(styles)], lw=2, marker="o", ms=3, label=name, zorder=5)
+    first = next((np.asarray(p) for p in paths.values() if len(p)), None)
+    if first is not None:
+        ax.plot(*first[0], "g^", ms=10, zorder=6, label="start")
+        ax.plot(*first[-1], "r*", ms=13, zorder=6, label="goal")
+    ax.legend(loc="best", fontsize=8, framealpha=0.85)
+    if title:
+        ax.set_title(title)
+    filename = Path(filename)
+    filename.parent.mkdir(parents=True, exist_ok=True)
+    fig.tight_layout()
+    fig.savefig(filename, dpi=120)
+    plt.close(fig)
+    return filename

@@ -1,0 +1,133 @@
+"""Worlds of circular obstacles (yang2023 §2.2).
+
+Each obstacle of influence radius ``R_obs`` is grown by a safety distance ``d``
+that depends on the robot size, giving the effective radius ``R = R_obs + d``
+(yang2023 eq 5). Points exactly on the grown circle count as free (touching is
+allowed, as on grids); the rectangle ``bounds`` is the map border.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import InfeasibleQueryError, MapFormatError, ParameterError
+
+
+@dataclass(eq=False)
+class CircleWorld:
+    """Rectangle with circular obstacles.
+
+    Args:
+        bounds: ``(xmin, ymin, xmax, ymax)`` in metres.
+        circles: ``(n, 3)`` rows ``(x, y, r)`` in metres (``r`` is ``R_obs``).
+        safety: the safety distance ``d`` of yang2023 eq 5, metres, added to every radius.
+        name: free text used in tables and plots.
+    """
+
+    bounds: tuple[float, float, float, float]
+    circles: np.ndarray
+    safety: float = 0.0
+    name: str = ""
+    _cache: dict = field(default_factory=dict, repr=False)
+
+    def __post_init__(self) -> None:
+        b = np.asarray(self.bounds, dtype=float).reshape(-1)
+        if b.shape != (4,) or not np.all(np.isfinite(b)) or b[2] <= b[0] or b[3] <= b[1]:
+            raise ParameterError(f"bounds must be (xmin, ymin, xmax, ymax) with xmin < xmax and ymin < ymax, got {self.bounds!r}")
+        self.bounds = tuple(float(v) for v in b)
+        c = np.asarray(self.circles, dtype=float)
+        if c.size == 0:
+            c = np.zeros((0, 3))
+        if c.ndim != 2 or c.shape[1] != 3:
+            raise MapFormatError(f"circles must be rows (x, y, r), got shape {c.shape}")
+        if not np.all(np.isfinite(c)) or np.any(c[:, 2] <= 0):
+            raise MapFormatError("circle centres must be finite and radii positive")
+        self.circles = c
+        s = float(self.safety)
+        if not np.isfinite(s) or s < 0:
+            raise ParameterError(f"safety must be a finite distance >= 0 metres, got {self.safety!r}")
+        self.safety = s
+
+    @classmethod
+    def from_json(cls, path, variant: str | None = None) -> "CircleWorld":
+        """Load a world from JSON: ``{"bounds": [...], "circles": [[x, y, r], ...], "safety": d}``."""
+        import json
+        from pathlib import Path
+
+        try:
+            data = json.loads(Path(path).read_text())
+        except (OSError, ValueError) as exc:
+            raise MapFormatError(f"cannot read circle world {path}: {exc}") from None
+        if variant is not None:
+            data = data[variant]
+        try:
+            return cls(tuple(data["bounds"]), np.asarray(data["circles"], float), float(data.get("safety", 0.0)),
+                       data.get("name", Path(path).stem))
+        except (KeyError, TypeError) as exc:
+            raise MapFormatError(f"{path}: circle world needs 'bounds' and 'circles' ({exc})") from None
+
+    @property
+    def radii(self) -> np.ndarray:
+        """Effective radii ``R = R_obs + d`` (yang2023 eq 5)."""
+        return self.circles[:, 2] + self.safety
+
+    # ----------------------------------------------------------------- queries
+    def _border_distance(self, p: np.ndarray) -> np.ndarray:
+        xmin, ymin, xmax, ymax = self.bounds
+        return np.minimum.reduce([p[..., 0] - xmin, p[..., 1] - ymin, xmax - p[..., 0], ymax - p[..., 1]])
+
+    def clearance(self, points) -> np.ndarray:
+        """Signed distance (metres) from points to the nearest grown circle or the border."""
+        p = np.asarray(points, dtype=float)
+        d = self._border_distance(p)
+        if len(self.circles):
+            diff = p[..., None, :] - self.circles[:, :2]
+            dc = np.sqrt(np.einsum("...ij,...ij->...i", diff, diff)) - self.radii
+            d = np.minimum(d, dc.min(axis=-1))
+        return d
+
+    def is_free(self, points, clearance: float = 0.0) -> np.ndarray:
+        """Whether points keep at least ``clearance`` metres from circles and border."""
+        return self.clearance(points) >= float(clearance)
+
+    def segment_distances(self, a, b) -> np.ndarray:
+        """Distance from each segment ``a[i] -> b[i]`` to each circle centre, shape ``(n, m)``."""
+        A, B = np.broadcast_arrays(np.asarray(a, float), np.asarray(b, float))
+        A, B = A.reshape(-1, 2), B.reshape(-1, 2)
+        ab = B - A
+        L2 = np.einsum("ij,ij->i", ab, ab)
+        ac = self.circles[None, :, :2] - A[:, None, :]
+        t = np.einsum("imj,ij->im", ac, ab) / np.where(L2 > 0, L2, 1.0)[:, None]
+        t = np.clip(t, 0.0, 1.0)
+        closest = A[:, None, :] + t[..., None] * ab[:, None, :]
+        diff = self.circles[None, :, :2] - closest
+        return np.sqrt(np.einsum("imj,imj->im", diff, diff))
+
+    def segments_free(self, a, b, clearance: float = 0.0) -> np.ndarray:
+        """Segments stay inside the bounds (minus ``clearance``) and at least
+        ``clearance`` metres outside every grown circle."""
+        c = float(clearance)
+        A, B = np.broadcast_arrays(np.asarray(a, float), np.asarray(b, float))
+        shape = A.shape[:-1]
+        A, B = A.reshape(-1, 2), B.reshape(-1, 2)
+        ok = (self._border_distance(A) >= c) & (self._border_distance(B) >= c)
+        ok &= np.isfinite(A).all(axis=1) & np.isfinite(B).all(axis=1)
+        if len(self.circles):
+            ok &= np.all(self.segment_distances(A, B) >= self.radii + c, axis=1)
+        return ok.reshape(shape)
+
+    def check_query_point(self, point, what: str, clearance: float = 0.0) -> np.ndarray:
+        """Validate a start/goal point, raising InfeasibleQueryError with a helpful message."""
+        p = np.asarray(point, dtype=float).reshape(-1)
+        if p.shape != (2,) or not np.all(np.isfinite(p)):
+            raise InfeasibleQueryError(f"{what} must be two finite numbers (x, y) in metres, got {point!r}")
+        if self._border_distance(p) < 0:
+            raise InfeasibleQueryError(f"{what} ({p[0]:g}, {p[1]:g}) is outside the world bounds {self.bounds}")
+        if self.clearance(p) < clearance:
+            raise InfeasibleQueryError(f"{what} ({p[0]:g}, {p[1]:g}) lies inside an obstacle grown by the safety distance "
+                                       f"{self.safety:g} m (+ clearance {clearance:g} m); pick a free point")
+        return p
+
+    def __repr__(self) -> str:
+        return f"CircleWorld(bounds={self.bounds}, circles={len(self.circles)}, safety={self.safety:g}, name={self.name!r})"

@@ -1,0 +1,409 @@
+"""Exact geometry shared by every solver: the segment rule and ``validate_path``.
+
+The rule (DESIGN.md, "Conventions"): a segment is free when it does not enter the
+interior of any blocked cell (after inflating the blocked cells by the requested
+clearance) and does not pass through a point where two blocked cells meet only
+diagonally. The outside of the map is blocked, so segments must stay inside it.
+A segment may run along an edge between a free and a blocked cell, but not along
+an edge between two blocked cells.
+
+Exactness: coordinates are converted to grid units. When every coordinate of a
+query is a multiple of half a cell (cell centres and cell corners, which is what
+graph search and the grid encodings produce), the test runs in int64 arithmetic
+on doubled coordinates and is exact. Other coordinates use the same formulas in
+float64, so decisions within ~1e-12 cells of a cell boundary follow rounding; the
+test then errs on the blocked side near double corners (a path that passes
+within 1e-9 cells of one is rejected).
+
+With ``clearance > 0`` a segment must additionally keep a Euclidean distance of at
+least ``clearance`` metres from every blocked cell and from the map border.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import ParameterError
+
+_VERTEX_EPS = 1e-9  # float mode: how close to a lattice vertex counts as "through it"
+_INT_LIMIT = 1 << 24  # doubled coordinates beyond this fall back to float mode
+
+
+# --------------------------------------------------------------------------- helpers
+def _as_points(points) -> np.ndarray:
+    p = np.asarray(points, dtype=float)
+    if p.shape[-1:] != (2,):
+        raise ParameterError(f"points must have shape (..., 2), got {p.shape}")
+    return p
+
+
+def _check_clearance(clearance: float) -> float:
+    c = float(clearance)
+    if not np.isfinite(c) or c < 0:
+        raise ParameterError(f"clearance must be a finite number >= 0 metres, got {clearance!r}")
+    return c
+
+
+def _doubled_ints(*arrays: np.ndarray) -> tuple[np.ndarray, ...] | None:
+    """Return ``2 * a`` as int64 for every array if all are exact half-integers, else None."""
+    out = []
+    for a in arrays:
+        d = 2.0 * a
+        if a.size and (np.abs(d).max() >= _INT_LIMIT or not np.array_equal(d, np.round(d))):
+            return None
+        out.append(d.astype(np.int64))
+    return tuple(out)
+
+
+def _expand(counts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """For counts ``[2, 0, 3]`` return owners ``[0,0,2,2,2]`` and offsets ``[0,1,0,1,2]``."""
+    counts = np.maximum(counts, 0)
+    owner = np.repeat(np.arange(counts.size), counts)
+    starts = np.cumsum(counts) - counts
+    offset = np.arange(owner.size) - starts[owner]
+    return owner, offset
+
+
+def _floor_div(n, d, integer: bool):
+    return n // d if integer else np.floor(n / d)
+
+
+def _ceil_div(n, d, integer: bool):
+    return -((-n) // d) if integer else np.ceil(n / d)
+
+
+# ------------------------------------------------------------------ grid: points
+def points_free(grid, points, clearance: float = 0.0) -> np.ndarray:
+    """Whether points are free on ``grid`` (see :meth:`GridMap.is_free`)."""
+    c = _check_clearance(clearance)
+    p = _as_points(points)
+    shape = p.shape[:-1]
+    g = grid.to_grid(p.reshape(-1, 2))
+    if c > 0:
+        return (grid_clearance(grid, p.reshape(-1, 2)) >= c).reshape(shape)
+    inside = (g[:, 0] >= 0) & (g[:, 0] <= grid.width) & (g[:, 1] >= 0) & (g[:, 1] <= grid.height)
+    ok = np.isfinite(g).all(axis=1) & inside
+    gx = np.where(ok, g[:, 0], 0.0)
+    gy = np.where(ok, g[:, 1], 0.0)
+    fx, fy = np.floor(gx), np.floor(gy)
+    # a point on a grid line belongs to the closure of the cells on both sides
+    xs = np.stack([fx, np.where(gx == fx, fx - 1, fx)], axis=1).astype(np.int64)
+    ys = np.stack([fy, np.where(gy == fy, fy - 1, fy)], axis=1).astype(np.int64)
+    pad = grid.padded
+    any_free = np.zeros(len(g), dtype=bool)
+    for i in range(2):
+        for j in range(2):
+            any_free |= ~pad[np.clip(ys[:, j] + 1, 0, grid.height + 1), np.clip(xs[:, i] + 1, 0, grid.width + 1)]
+    return (ok & any_free).reshape(shape)
+
+
+# --------------------------------------------------------------- grid: segments
+def _segments_free_grid_units(occ_pad: np.ndarray, a: np.ndarray, b: np.ndarray, scale, integer: bool) -> np.ndarray:
+    """Core of the rule for segments with ``b.x != a.x`` (sorted so that a.x < b.x).
+
+    ``occ_pad`` is the occupancy with a blocked one-cell frame; ``a``, ``b`` are in
+    grid units times ``scale`` (1 for float mode, 2 for integer mode).
+    Returns a boolean array: no blocked interior is entered, no edge between two
+    blocked cells is followed, no double corner is passed through.
+    """
+    n = len(a)
+    ok = np.ones(n, dtype=bool)
+    if n == 0:
+        return ok
+    S = scale
+    x0, y0, x1, y1 = a[:, 0], a[:, 1], b[:, 0], b[:, 1]
+    dx, dy = x1 - x0, y1 - y0  # dx > 0
+    H, W = occ_pad.shape[0] - 2, occ_pad.shape[1] - 2
+
+    def blocked(ix, iy):
+        return occ_pad[np.clip(iy + 1, 0, H + 1), np.clip(ix + 1, 0, W + 1)]
+
+    def num(xv, seg):  # y(x) * dx, exact in integer mode
+        return y0[seg] * dx[seg] + (xv - x0[seg]) * dy[seg]
+
+    # ---- cells whose open interior the segment crosses, column by column
+    k_first = _floor_div(x0, S, integer)
+    k_last = _ceil_div(x1, S, integer) - 1
+    seg, off = _expand((k_last - k_first + 1).astype(np.int64))
+    k = k_first[seg] + off
+    xa = np.maximum(x0[seg], k * S)
+    xb = np.minimum(x1[seg], (k + 1) * S)
+    na, nb = num(xa, seg), num(xb, seg)
+    nlo, nhi = np.minimum(na, nb), np.maximum(na, nb)
+    den = dx[seg] * S
+    sloped = dy[seg] != 0
+    if np.any(sloped):
+        s_seg, s_k, s_lo, s_hi, s_den = seg[sloped], k[sloped], nlo[sloped], nhi[sloped], den[sloped]
+        j_first = _floor_div(s_lo, s_den, integer)
+        j_last = _ceil_div(s_hi, s_den, integer) - 1
+        own, joff = _expand((j_last - j_first + 1).astype(np.int64))
+        hit = blocked(s_k[own].astype(np.int64), (j_first[own] + joff).astype(np.int64))
+        np.logical_and.at(ok, s_seg[own], ~hit)
+    flat = ~sloped
+    if np.any(flat):
+        f_seg, f_k = seg[flat], k[flat].astype(np.int64)
+        yv = y0[f_seg]
+        on_line = (yv % S) == 0
+        row = _floor_div(yv, S, integer).astype(np.int64)
+        # inside a row: that cell must be free; on a grid line: not both neighbours blocked
+        bad = np.where(on_line, blocked(f_k, row - 1) & blocked(f_k, row), blocked(f_k, row))
+        np.logical_and.at(ok, f_seg, ~bad)
+
+    # ---- lattice vertices strictly inside the segment: no double corners
+    v_first = _floor_div(x0, S, integer) + 1
+    v_last = _ceil_div(x1, S, integer) - 1
+    seg, off = _expand((v_last - v_first + 1).astype(np.int64))
+    if seg.size:
+        X = (v_first[seg] + off) * S
+        nv = num(X, seg)
+        den = dx[seg] * S
+        if integer:
+            on_vertex = (nv % den) == 0
+            Y = nv // den
+        else:
+            q = nv / den
+            Y = np.round(q)
+            on_vertex = np.abs(q - Y) <= _VERTEX_EPS
+        seg, X, Y = seg[on_vertex], (X[on_vertex] // S if integer else X[on_vertex] / S), Y[on_vertex]
+        X = X.astype(np.int64)
+        Y = Y.astype(np.int64)
+        bl, br = blocked(X - 1, Y - 1), blocked(X, Y - 1)
+        tl, tr = blocked(X - 1, Y), blocked(X, Y)
+        double = (bl & tr & ~br & ~tl) | (br & tl & ~bl & ~tr)
+        np.logical_and.at(ok, seg, ~double)
+    return ok
+
+
+def _segments_rule(grid, ga: np.ndarray, gb: np.ndarray) -> np.ndarray:
+    """Apply the clearance-0 rule to segments given in grid units."""
+    n = len(ga)
+    ok = np.ones(n, dtype=bool)
+    ints = _doubled_ints(ga, gb)
+    integer = ints is not None
+    if integer:
+        a, b, S = ints[0], ints[1], 2
+    else:
+        a, b, S = ga, gb, 1.0
+    vertical = a[:, 0] == b[:, 0]
+    same = vertical & (a[:, 1] == b[:, 1])
+    if np.any(same):
+        ok[same] = points_free(grid, grid.to_world(ga[same]))
+    # non-vertical: order endpoints by x
+    nv = ~vertical
+    if np.any(nv):
+        swap = a[nv, 0] > b[nv, 0]
+        aa = np.where(swap[:, None], b[nv], a[nv])
+        bb = np.where(swap[:, None], a[nv], b[nv])
+        ok[nv] = _segments_free_grid_units(grid.padded, aa, bb, S, integer)
+    # vertical: the same rule on the transposed map
+    v = vertical & ~same
+    if np.any(v):
+        at, bt = a[v][:, ::-1], b[v][:, ::-1]
+        swap = at[:, 0] > bt[:, 0]
+        aa = np.where(swap[:, None], bt, at)
+        bb = np.where(swap[:, None], at, bt)
+        ok[v] = _segments_free_grid_units(np.ascontiguousarray(grid.padded.T), aa, bb, S, integer)
+    return ok
+
+
+def _segment_box_distance(a: np.ndarray, b: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """Distance between segments ``a->b`` and closed boxes ``[lo, hi]`` that do not
+    overlap (checked by the caller): the minimum over segment endpoints to box and
+    box corners to segment."""
+    def point_box(p):
+        d = np.maximum(np.maximum(lo - p, p - hi), 0.0)
+        return np.hypot(d[:, 0], d[:, 1])
+
+    def point_seg(p):
+        ab = b - a
+        L2 = np.einsum("ij,ij->i", ab, ab)
+        t = np.where(L2 > 0, np.einsum("ij,ij->i", p - a, ab) / np.where(L2 > 0, L2, 1.0), 0.0)
+        t = np.clip(t, 0.0, 1.0)
+        q = a + t[:, None] * ab
+        return np.hypot(p[:, 0] - q[:, 0], p[:, 1] - q[:, 1])
+
+    d = np.minimum(point_box(a), point_box(b))
+    for cx, cy in ((lo[:, 0], lo[:, 1]), (hi[:, 0], lo[:, 1]), (lo[:, 0], hi[:, 1]), (hi[:, 0], hi[:, 1])):
+        d = np.minimum(d, point_seg(np.stack([cx, cy], axis=1)))
+    return d
+
+
+def _segments_clear_grid_units(grid, ga: np.ndarray, gb: np.ndarray, r: float) -> np.ndarray:
+    """Segments (grid units) keep distance >= r (grid units) from blocked cells and border."""
+    n = len(ga)
+    ok = np.ones(n, dtype=bool)
+    lo_b, hi_b = np.array([r, r]), np.array([grid.width - r, grid.height - r])
+    ok &= np.all((ga >= lo_b) & (ga <= hi_b) & (gb >= lo_b) & (gb <= hi_b), axis=1)
+    # candidate cells: per column of the thickened segment, the rows it can reach
+    xmin = np.minimum(ga[:, 0], gb[:, 0]) - r
+    xmax = np.maximum(ga[:, 0], gb[:, 0]) + r
+    k0 = np.floor(xmin).astype(np.int64)
+    k1 = np.ceil(xmax).astype(np.int64) - 1
+    seg, off = _expand(k1 - k0 + 1)
+    k = k0[seg] + off
+    a, b = ga[seg], gb[seg]
+    dxs = b[:, 0] - a[:, 0]
+    # y-range of the segment over x in [k - r, k + 1 + r]
+    xl = np.clip(k - r, np.minimum(a[:, 0], b[:, 0]), np.maximum(a[:, 0], b[:, 0]))
+    xr = np.clip(k + 1 + r, np.minimum(a[:, 0], b[:, 0]), np.maximum(a[:, 0], b[:, 0]))
+    safe = np.where(dxs != 0, dxs, 1.0)
+    ya = np.where(dxs != 0, a[:, 1] + (xl - a[:, 0]) * (b[:, 1] - a[:, 1]) / safe, np.minimum(a[:, 1], b[:, 1]))
+    yb = np.where(dxs != 0, a[:, 1] + (xr - a[:, 0]) * (b[:, 1] - a[:, 1]) / safe, np.maximum(a[:, 1], b[:, 1]))
+    j0 = np.floor(np.minimum(ya, yb) - r).astype(np.int64)
+    j1 = np.ceil(np.maximum(ya, yb) + r).astype(np.int64) - 1
+    own, joff = _expand(j1 - j0 + 1)
+    cx, cy = k[own], j0[own] + joff
+    inside = (cx >= 0) & (cx < grid.width) & (cy >= 0) & (cy < grid.height)
+    cand = np.zeros(len(cx), dtype=bool)
+    cand[inside] = grid.occ[cy[inside], cx[inside]]
+    if np.any(cand):
+        sidx = seg[own][cand]
+        lo = np.stack([cx[cand], cy[cand]], axis=1).astype(float)
+        d = _segment_box_distance(ga[sidx], gb[sidx], lo, lo + 1.0)
+        np.logical_and.at(ok, sidx, d >= r * (1 - 1e-12))
+    return ok
+
+
+def segments_free(grid, a, b, clearance: float = 0.0) -> np.ndarray:
+    """Exact segment rule for many segments at once on a :class:`GridMap`.
+
+    Args:
+        grid: the map.
+        a, b: arrays of shape ``(n, 2)`` (or ``(2,)``) of segment end points in metres.
+        clearance: required distance to blocked cells and the map border, metres.
+
+    Returns:
+        Boolean array of shape ``(n,)`` (a scalar bool array for single segments).
+    """
+    c = _check_clearance(clearance)
+    A, B = _as_points(a), _as_points(b)
+    A, B = np.broadcast_arrays(A, B)
+    shape = A.shape[:-1]
+    A, B = A.reshape(-1, 2), B.reshape(-1, 2)
+    ga, gb = grid.to_grid(A), grid.to_grid(B)
+    finite = np.isfinite(ga).all(axis=1) & np.isfinite(gb).all(axis=1)
+    inside = finite & np.all((ga >= 0) & (gb >= 0), axis=1)
+    inside &= (ga[:, 0] <= grid.width) & (gb[:, 0] <= grid.width)
+    inside &= (ga[:, 1] <= grid.height) & (gb[:, 1] <= grid.height)
+    ok = inside.copy()
+    if np.any(inside):
+        ok[inside] = _segments_rule(grid, ga[inside], gb[inside])
+    if c > 0 and np.any(ok):
+        ok[ok] = _segments_clear_grid_units(grid, ga[ok], gb[ok], c / grid.resolution)
+    return ok.reshape(shape)
+
+
+# --------------------------------------------------------------- grid: clearance
+def _boundary_cells(mask: np.ndarray) -> np.ndarray:
+    """Cells of ``mask`` with a 4-neighbour outside ``mask`` (inside the map)."""
+    m = np.pad(mask, 1, constant_values=False)
+    core = m[1:-1, 1:-1]
+    edge = core & ~(m[:-2, 1:-1] & m[2:, 1:-1] & m[1:-1, :-2] & m[1:-1, 2:])
+    # the frame does not count as "other": only real free/blocked neighbours matter
+    iy, ix = np.nonzero(edge)
+    return np.stack([ix, iy], axis=1)
+
+
+def _distance_to_cells(tree_cache: dict, key: str, cells_fn, p: np.ndarray) -> np.ndarray:
+    """Exact distance (grid units) from points to the union of unit squares."""
+    from scipy.spatial import cKDTree
+
+    if key not in tree_cache:
+        cells = cells_fn()
+        tree_cache[key] = (cKDTree(cells + 0.5) if len(cells) else None, cells)
+    tree, cells = tree_cache[key]
+    out = np.full(len(p), np.inf)
+    if tree is None or len(p) == 0:
+        return out
+    todo = np.arange(len(p))
+    k = min(8, len(cells))
+    while todo.size:
+        dist, idx = tree.query(p[todo], k=k)
+        dist, idx = dist.reshape(len(todo), -1), idx.reshape(len(todo), -1)
+        lo = cells[idx].astype(float)
+        gap = np.maximum(np.maximum(lo - p[todo, None, :], p[todo, None, :] - (lo + 1.0)), 0.0)
+        d = np.hypot(gap[..., 0], gap[..., 1]).min(axis=1)
+        out[todo] = d
+        # an unqueried square has distance >= its centre distance - sqrt(2)/2
+        done = (dist[:, -1] - np.sqrt(0.5) > d) | (k >= len(cells))
+        todo = todo[~done]
+        k = min(2 * k, len(cells))
+    return out
+
+
+def grid_clearance(grid, points) -> np.ndarray:
+    """Signed distance (metres) from points to blocked cells and the map border."""
+    p = _as_points(points)
+    shape = p.shape[:-1]
+    g = grid.to_grid(p.reshape(-1, 2))
+    border = np.minimum.reduce([g[:, 0], g[:, 1], grid.width - g[:, 0], grid.height - g[:, 1]])
+    cache = grid._cache
+    to_blocked = _distance_to_cells(cache, "tree_blocked", lambda: _boundary_cells(grid.occ), g)
+    d = np.minimum(to_blocked, border)
+    # inside an obstacle (interior of a blocked cell) or outside the map: negative depth
+    cell = np.floor(g).astype(np.int64)
+    inside_map = (g[:, 0] > 0) & (g[:, 0] < grid.width) & (g[:, 1] > 0) & (g[:, 1] < grid.height)
+    in_blocked = ~points_free(grid, p.reshape(-1, 2)) & inside_map
+    if np.any(in_blocked):
+        depth = _distance_to_cells(cache, "tree_free", lambda: _boundary_cells(~grid.occ), g[in_blocked])
+        d[in_blocked] = -depth
+    outside = ~inside_map & (border < 0)
+    d[outside] = border[outside]
+    del cell
+    return (d * grid.resolution).reshape(shape)
+
+
+# ------------------------------------------------------------------ validate_path
+@dataclass
+class PathCheck:
+    """Outcome of :func:`validate_path`; truthy when the path is valid.
+
+    Attributes:
+        ok: every point and every segment satisfies the rule.
+        bad_segments: indices ``i`` of segments ``path[i] -> path[i+1]`` that fail.
+        bad_points: indices of points that are not free.
+        reason: empty when ``ok``, otherwise a sentence naming the first problem.
+    """
+
+    ok: bool
+    bad_segments: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    bad_points: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    reason: str = ""
+
+    def __bool__(self) -> bool:
+        return self.ok
+
+
+def validate_path(world, path, clearance: float = 0.0) -> PathCheck:
+    """The one exact collision test every returned path goes through.
+
+    Args:
+        world: a :class:`GridMap` or :class:`CircleWorld`.
+        path: ``(N, 2)`` points in metres, start first, goal last (``N >= 1``).
+        clearance: required distance to obstacles and map border, metres.
+
+    Returns:
+        A :class:`PathCheck` (truthy when valid) naming the failing segments.
+    """
+    c = _check_clearance(clearance)
+    P = np.asarray(path, dtype=float)
+    if P.ndim != 2 or P.shape[1] != 2 or len(P) == 0:
+        return PathCheck(False, reason=f"a path must be an (N, 2) array with N >= 1, got shape {P.shape}")
+    if not np.all(np.isfinite(P)):
+        bad = np.nonzero(~np.isfinite(P).all(axis=1))[0]
+        return PathCheck(False, bad_points=bad, reason=f"path has non-finite coordinates at point {bad[0]}")
+    pts_ok = np.asarray(world.is_free(P, c), dtype=bool)
+    seg_ok = np.asarray(world.segments_free(P[:-1], P[1:], c), dtype=bool) if len(P) > 1 else np.ones(0, bool)
+    bad_pts = np.nonzero(~pts_ok)[0]
+    bad_segs = np.nonzero(~seg_ok)[0]
+    if bad_pts.size:
+        i = bad_pts[0]
+        reason = f"point {i} ({P[i, 0]:.6g}, {P[i, 1]:.6g}) is not free" + (f" with clearance {c:g} m" if c else "")
+    elif bad_segs.size:
+        i = bad_segs[0]
+        reason = (f"segment {i} ({P[i, 0]:.6g}, {P[i, 1]:.6g}) -> ({P[i + 1, 0]:.6g}, {P[i + 1, 1]:.6g}) "
+                  "collides" + (f" or comes closer than {c:g} m to an obstacle" if c else ""))
+    else:
+        reason = ""
+    return PathCheck(not reason, bad_segs, bad_pts, reason)

@@ -1,0 +1,201 @@
+"""Occupancy grid maps.
+
+Convention (DESIGN.md): ``occ[iy, ix]`` is ``True`` for a blocked cell, ``iy``
+grows upwards, cell ``(ix, iy)`` covers ``[ix, ix+1) x [iy, iy+1)`` times the
+resolution from ``origin`` (the bottom-left corner of the map). Everything
+outside the map counts as blocked.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import numpy as np
+
+from ..errors import InfeasibleQueryError, MapFormatError, ParameterError
+
+
+@dataclass(eq=False)
+class GridMap:
+    """A 2-D occupancy grid.
+
+    Args:
+        occ: boolean (or 0/1) array of shape ``(height, width)``; ``occ[iy, ix]``
+            is blocked, row 0 is the *bottom* row.
+        resolution: cell side length in metres.
+        origin: world coordinates ``(x, y)`` of the bottom-left map corner, metres.
+        name: free text used in tables and plots.
+    """
+
+    occ: np.ndarray
+    resolution: float = 1.0
+    origin: tuple[float, float] = (0.0, 0.0)
+    name: str = ""
+    _cache: dict = field(default_factory=dict, repr=False)
+
+    def __post_init__(self) -> None:
+        occ = np.asarray(self.occ)
+        if occ.ndim != 2 or occ.shape[0] == 0 or occ.shape[1] == 0:
+            raise MapFormatError(f"occupancy must be a non-empty 2-D array, got shape {occ.shape}")
+        if occ.dtype != bool:
+            if not np.all(np.isin(occ, (0, 1))):
+                raise MapFormatError("occupancy values must be 0 (free) or 1 (blocked)")
+            occ = occ.astype(bool)
+        self.occ = np.ascontiguousarray(occ)
+        self.occ.setflags(write=False)
+        res = float(self.resolution)
+        if not np.isfinite(res) or res <= 0:
+            raise ParameterError(f"resolution must be a positive finite number of metres, got {self.resolution!r}")
+        self.resolution = res
+        ox, oy = (float(v) for v in self.origin)
+        if not (np.isfinite(ox) and np.isfinite(oy)):
+            raise ParameterError(f"origin must be finite, got {self.origin!r}")
+        self.origin = (ox, oy)
+
+    # ------------------------------------------------------------------ shape
+    @classmethod
+    def from_rows(cls, rows, resolution: float = 1.0, origin=(0.0, 0.0), name: str = "") -> "GridMap":
+        """Build from rows written top row first (image convention, as in map files)."""
+        arr = np.asarray(rows)
+        if arr.ndim != 2:
+            raise MapFormatError("rows must form a 2-D 0/1 matrix with equal-length rows")
+        return cls(arr[::-1].copy(), resolution, origin, name)
+
+    def to_rows(self) -> np.ndarray:
+        """0/1 ``uint8`` matrix with the top row first (the file convention)."""
+        return self.occ[::-1].astype(np.uint8)
+
+    @property
+    def width(self) -> int:
+        """Number of columns."""
+        return int(self.occ.shape[1])
+
+    @property
+    def height(self) -> int:
+        """Number of rows."""
+        return int(self.occ.shape[0])
+
+    @property
+    def bounds(self) -> tuple[float, float, float, float]:
+        """``(xmin, ymin, xmax, ymax)`` of the map in metres."""
+        ox, oy = self.origin
+        return (ox, oy, ox + self.width * self.resolution, oy + self.height * self.resolution)
+
+    @cached_property
+    def free_fraction(self) -> float:
+        """Fraction of free cells."""
+        return float(1.0 - self.occ.mean())
+
+    # ----------------------------------------------------------- coordinates
+    def to_grid(self, points) -> np.ndarray:
+        """World metres -> continuous grid units (cell ``(ix, iy)`` spans ``[ix, ix+1)``)."""
+        p = np.asarray(points, dtype=float)
+        return (p - np.asarray(self.origin)) / self.resolution
+
+    def to_world(self, grid_points) -> np.ndarray:
+        """Continuous grid units -> world metres."""
+        g = np.asarray(grid_points, dtype=float)
+        return g * self.resolution + np.asarray(self.origin)
+
+    def cell_of(self, points) -> np.ndarray:
+        """Integer cell indices ``(ix, iy)`` containing each point (may lie outside the map)."""
+        return np.floor(self.to_grid(points)).astype(np.int64)
+
+    def cell_center(self, cells) -> np.ndarray:
+        """World coordinates of the centres of cells ``(ix, iy)``."""
+        return self.to_world(np.asarray(cells, dtype=float) + 0.5)
+
+    def in_map(self, cells) -> np.ndarray:
+        """Whether integer cells ``(..., 2)`` lie inside the map."""
+        c = np.asarray(cells)
+        return (c[..., 0] >= 0) & (c[..., 0] < self.width) & (c[..., 1] >= 0) & (c[..., 1] < self.height)
+
+    def blocked_cells(self, cells) -> np.ndarray:
+        """Whether integer cells are blocked; cells outside the map are blocked."""
+        c = np.asarray(cells, dtype=np.int64)
+        inside = self.in_map(c)
+        out = np.ones(c.shape[:-1], dtype=bool)
+        out[inside] = self.occ[c[..., 1][inside], c[..., 0][inside]]
+        return out
+
+    @cached_property
+    def padded(self) -> np.ndarray:
+        """Occupancy with a one-cell blocked frame: ``padded[iy+1, ix+1] == occ[iy, ix]``."""
+        return np.pad(self.occ, 1, constant_values=True)
+
+    # ------------------------------------------------------------- queries
+    def is_free(self, points, clearance: float = 0.0) -> np.ndarray:
+        """Whether each point is at least ``clearance`` metres from every blocked cell.
+
+        With ``clearance == 0`` a point is free when it is not in the interior of a
+        blocked cell (points on the boundary between a free and a blocked cell are
+        free; points inside the map only). Shape ``(..., 2)`` in, ``(...)`` out.
+        """
+        from .geometry import points_free
+
+        return points_free(self, points, clearance)
+
+    def clearance(self, points) -> np.ndarray:
+        """Signed Euclidean distance (metres) from each point to the blocked region.
+
+        Positive in free space, negative inside obstacles (depth to free space);
+        the outside of the map counts as blocked.
+        """
+        from .geometry import grid_clearance
+
+        return grid_clearance(self, points)
+
+    def segments_free(self, a, b, clearance: float = 0.0) -> np.ndarray:
+        """Exact segment rule of DESIGN.md for many segments ``a[i] -> b[i]`` at once."""
+        from .geometry import segments_free
+
+        return segments_free(self, a, b, clearance)
+
+    def inflate(self, margin: float) -> "GridMap":
+        """A new map whose blocked cells also include every cell closer than ``margin``
+        metres (square-to-square distance) to a blocked cell or the map border.
+
+        This is the conservative cell-level inflation used by graph search with a
+        clearance; the exact continuous rule is ``segments_free(..., clearance)``.
+        """
+        margin = float(margin)
+        if not np.isfinite(margin) or margin < 0:
+            raise ParameterError(f"margin must be a finite number >= 0 metres, got {margin!r}")
+        if margin == 0:
+            return self
+        r = margin / self.resolution
+        k = int(np.ceil(r))
+        # offsets (dx, dy) whose square-to-square gap max(|d|-1, 0) is < r
+        d = np.arange(-k, k + 1)
+        gx = np.maximum(np.abs(d)[None, :] - 1, 0)
+        gy = np.maximum(np.abs(d)[:, None] - 1, 0)
+        kernel = (gx**2 + gy**2) < r**2
+        from scipy.ndimage import binary_dilation
+
+        padded = np.pad(self.occ, k + 1, constant_values=True)
+        grown = binary_dilation(padded, structure=kernel)[k + 1 : -k - 1, k + 1 : -k - 1]
+        return GridMap(grown, self.resolution, self.origin, f"{self.name}+{margin:g}m")
+
+    def check_query_point(self, point, what: str, clearance: float = 0.0) -> np.ndarray:
+        """Validate a start/goal point, raising InfeasibleQueryError with a helpful message."""
+        p = np.asarray(point, dtype=float).reshape(-1)
+        if p.shape != (2,) or not np.all(np.isfinite(p)):
+            raise InfeasibleQueryError(f"{what} must be two finite numbers (x, y) in metres, got {point!r}")
+        xmin, ymin, xmax, ymax = self.bounds
+        if not (xmin <= p[0] <= xmax and ymin <= p[1] <= ymax):
+            raise InfeasibleQueryError(
+                f"{what} ({p[0]:g}, {p[1]:g}) is outside the map, whose bounds are "
+                f"x in [{xmin:g}, {xmax:g}], y in [{ymin:g}, {ymax:g}] metres"
+            )
+        if not bool(self.is_free(p, clearance)):
+            cell = self.cell_of(p)
+            raise InfeasibleQueryError(
+                f"{what} ({p[0]:g}, {p[1]:g}) lies in blocked cell (ix={cell[0]}, iy={cell[1]})"
+                + (f" or within clearance {clearance:g} m of an obstacle" if clearance > 0 else "")
+                + "; pick a free point"
+            )
+        return p
+
+    def __repr__(self) -> str:  # compact: the matrix can be large
+        return (f"GridMap({self.width}x{self.height}, resolution={self.resolution:g}, "
+                f"origin={self.origin}, free={self.free_fraction:.1%}, name={self.name!r})")
