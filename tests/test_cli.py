@@ -1,0 +1,78 @@
+"""The command line: exit codes, one-line errors, the JSON contract, the demo."""
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import optplan as op
+from optplan.cli import main
+
+PLAN_KEYS = {"algorithm", "feasible", "path", "length", "turn_angle_deg", "n_turns", "min_clearance",
+             "runtime_s", "refined", "seed"}
+
+
+def run_cli(*args):
+    proc = subprocess.run([sys.executable, "-m", "optplan", *args], capture_output=True, text=True, timeout=300)
+    return proc.returncode, proc.stdout, proc.stderr
+
+
+def test_plan_json_has_exactly_the_contract_keys(capsys):
+    code = main(["plan", "multialgo20_template", "--start", "0.5", "0.5", "--goal", "19.5", "19.5",
+                 "--algo", "astar", "--json"])
+    out = capsys.readouterr().out.strip().splitlines()
+    assert code == 0 and len(out) == 1
+    d = json.loads(out[0])
+    assert set(d) == PLAN_KEYS
+    assert d["feasible"] is True and d["algorithm"] == "astar"
+    g = op.load_map("multialgo20_template")
+    assert op.validate_path(g, np.array(d["path"]))
+    assert d["length"] == pytest.approx(np.hypot(*np.diff(np.array(d["path"]), axis=0).T).sum())
+
+
+@pytest.mark.parametrize("args,needle", [
+    (["plan", "no_such_map", "--start", "0", "0", "--goal", "1", "1"], "does not exist"),
+    (["plan", "multialgo20_template", "--start", "0.5", "0.5", "--goal", "25", "25"], "outside the map"),
+    (["plan", "multialgo20_template", "--start", "0.5", "0.5", "--goal", "19.5", "19.5", "--algo", "nope"], "unknown"),
+])
+def test_errors_print_one_line_and_exit_2(args, needle):
+    code, out, err = run_cli(*args)
+    assert code == 2
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and needle in lines[0] and "Traceback" not in err
+
+
+def test_start_in_obstacle_is_reported(tmp_path, capsys):
+    f = tmp_path / "m.txt"
+    f.write_text("0 0 0\n0 1 0\n0 0 0\n")
+    code = main(["plan", str(f), "--start", "1.5", "1.5", "--goal", "0.5", "0.5"])
+    assert code == 2 and "blocked cell" in capsys.readouterr().err
+
+
+def test_unreachable_goal_is_reported(tmp_path, capsys):
+    f = tmp_path / "m.txt"
+    f.write_text("0 1 0\n0 1 0\n0 1 0\n")
+    code = main(["plan", str(f), "--start", "0.5", "0.5", "--goal", "2.5", "2.5", "--algo", "visibility"])
+    assert code == 2 and "unreachable" in capsys.readouterr().err.lower()
+
+
+def test_algorithms_lists_graph_methods(capsys):
+    assert main(["algorithms"]) == 0
+    names = capsys.readouterr().out.split()
+    assert {"astar", "visibility"} <= set(names)
+
+
+def test_help_shows_an_example():
+    code, out, _ = run_cli("plan", "--help")
+    assert code == 0 and "example:" in out
+
+
+def test_demo_prints_table_and_writes_png(tmp_path, capsys):
+    png = tmp_path / "demo.png"
+    assert main(["demo", "--out", str(png)]) == 0
+    out = capsys.readouterr().out
+    assert "| astar |" in out and "| visibility |" in out and "gap to exact optimum" in out
+    assert png.stat().st_size > 5000 and png.read_bytes()[:4] == b"\x89PNG"
