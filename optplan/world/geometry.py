@@ -342,15 +342,13 @@ def grid_clearance(grid, points) -> np.ndarray:
     to_blocked = _distance_to_cells(cache, "tree_blocked", lambda: _boundary_cells(grid.occ), g)
     d = np.minimum(to_blocked, border)
     # inside an obstacle (interior of a blocked cell) or outside the map: negative depth
-    cell = np.floor(g).astype(np.int64)
-    inside_map = (g[:, 0] > 0) & (g[:, 0] < grid.width) & (g[:, 1] > 0) & (g[:, 1] < grid.height)
+    inside_map = (g[:, 0] >= 0) & (g[:, 0] <= grid.width) & (g[:, 1] >= 0) & (g[:, 1] <= grid.height)
     in_blocked = ~points_free(grid, p.reshape(-1, 2)) & inside_map
     if np.any(in_blocked):
         depth = _distance_to_cells(cache, "tree_free", lambda: _boundary_cells(~grid.occ), g[in_blocked])
         d[in_blocked] = -depth
     outside = ~inside_map & (border < 0)
     d[outside] = border[outside]
-    del cell
     return (d * grid.resolution).reshape(shape)
 
 

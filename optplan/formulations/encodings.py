@@ -1,0 +1,138 @@
+"""Path encodings: how a row ``x`` of a population ``X`` of shape ``(n, d)`` becomes a path.
+
+Every encoding decodes a whole population at once into ``(n, N, 2)`` polylines
+(metres, start first, goal last) with a fixed ``N``, so objective terms are plain
+array operations over the population.
+
+* :class:`ColumnNodes` — one node per grid column between start and goal
+  (chen2025 §4.3.1; the usual sparrow-search grid encoding of hou2024 §4.1).
+* :class:`FreeWaypoints` — ``m`` free 2-D waypoints between start and goal.
+* :class:`SplinePath` — ``m`` handle points; the path is the cubic spline through
+  start, handles and goal, sampled densely (yang2023 eq 3-4).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import ParameterError
+
+
+@dataclass
+class PathEncoding:
+    """Base class: subclasses set ``lower``/``upper`` (shape ``(d,)``) and implement ``decode``."""
+
+    world: object
+    start: np.ndarray
+    goal: np.ndarray
+    lower: np.ndarray = field(init=False)
+    upper: np.ndarray = field(init=False)
+
+    @property
+    def dim(self) -> int:
+        return int(self.lower.size)
+
+    def decode(self, X: np.ndarray) -> np.ndarray:  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    def waypoints(self, x: np.ndarray) -> np.ndarray:
+        """The path's defining points for one individual (what is reported before refinement)."""
+        return self.decode(np.asarray(x, dtype=float)[None, :])[0]
+
+    def _frame(self, inner: np.ndarray) -> np.ndarray:
+        """Put start and goal around ``inner`` of shape ``(n, m, 2)``."""
+        n = inner.shape[0]
+        s = np.broadcast_to(self.start, (n, 1, 2))
+        g = np.broadcast_to(self.goal, (n, 1, 2))
+        return np.concatenate([s, inner, g], axis=1)
+
+
+@dataclass
+class ColumnNodes(PathEncoding):
+    """One node per grid column strictly between the start and goal columns.
+
+    ``x[j]`` is the row coordinate (grid units, ``[0, height)``) of the node in the
+    ``j``-th column met when walking from the start column to the goal column. With
+    ``snap=True`` the node is the centre of the cell ``floor(x[j])`` (the papers'
+    grid nodes); with ``snap=False`` it keeps the continuous row coordinate.
+    """
+
+    snap: bool = True
+    columns: np.ndarray = field(init=False)
+
+    def __post_init__(self) -> None:
+        grid = self.world
+        if not hasattr(grid, "occ"):
+            raise ParameterError("ColumnNodes needs a GridMap")
+        cs, cg = (int(c) for c in (grid.cell_of(self.start)[0], grid.cell_of(self.goal)[0]))
+        step = 1 if cg >= cs else -1
+        self.columns = np.arange(cs + step, cg, step, dtype=np.int64)
+        self.lower = np.zeros(self.columns.size)
+        self.upper = np.full(self.columns.size, grid.height - 1e-9)
+
+    def decode(self, X: np.ndarray) -> np.ndarray:
+        grid = self.world
+        X = np.asarray(X, dtype=float).reshape(-1, self.dim)
+        rows = np.clip(X, 0.0, grid.height - 1e-9)
+        rows = np.floor(rows) + 0.5 if self.snap else rows
+        cols = np.broadcast_to(self.columns + 0.5, rows.shape)
+        inner = grid.to_world(np.stack([cols, rows], axis=-1))
+        return self._frame(inner)
+
+    def encode_path_rows(self, rows: np.ndarray) -> np.ndarray:
+        """Inverse of ``decode`` for snapped rows: cell rows -> a decision vector."""
+        return np.asarray(rows, dtype=float) + 0.5
+
+
+@dataclass
+class FreeWaypoints(PathEncoding):
+    """``m`` free waypoints; ``x = (x1, y1, ..., xm, ym)`` in metres inside the world bounds."""
+
+    m: int = 3
+
+    def __post_init__(self) -> None:
+        if int(self.m) < 1:
+            raise ParameterError(f"number of waypoints m must be >= 1, got {self.m}")
+        xmin, ymin, xmax, ymax = self.world.bounds
+        self.lower = np.tile([xmin, ymin], self.m).astype(float)
+        self.upper = np.tile([xmax, ymax], self.m).astype(float)
+
+    def decode(self, X: np.ndarray) -> np.ndarray:
+        X = np.asarray(X, dtype=float).reshape(-1, self.dim)
+        return self._frame(X.reshape(X.shape[0], self.m, 2))
+
+
+@dataclass
+class SplinePath(FreeWaypoints):
+    """Cubic spline through start, ``m`` handle points and goal (yang2023 eq 3-4).
+
+    The spline is parametrised uniformly in ``[0, 1]`` over start, handles and goal
+    and sampled at ``samples`` points; the polyline through the samples is the
+    path whose length is eq 4's spline length. ``waypoints`` returns the handles.
+    """
+
+    samples: int = 100
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        if int(self.samples) < 3:
+            raise ParameterError(f"samples must be >= 3, got {self.samples}")
+        from scipy.interpolate import CubicSpline
+
+        # the spline is linear in its data: precompute the sampling matrix once
+        knots = np.linspace(0.0, 1.0, self.m + 2)
+        t = np.linspace(0.0, 1.0, self.samples)
+        bc = "not-a-knot" if self.m + 2 > 3 else "natural"
+        self._basis = CubicSpline(knots, np.eye(self.m + 2), axis=0, bc_type=bc)(t)  # (samples, m+2)
+
+    def handles(self, X: np.ndarray) -> np.ndarray:
+        """Start, handle points and goal, ``(n, m + 2, 2)``."""
+        return super().decode(X)
+
+    def decode(self, X: np.ndarray) -> np.ndarray:
+        H = self.handles(X)
+        return np.einsum("sk,nkc->nsc", self._basis, H)
+
+    def waypoints(self, x: np.ndarray) -> np.ndarray:
+        return self.decode(np.asarray(x, dtype=float)[None, :])[0]

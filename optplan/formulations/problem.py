@@ -1,0 +1,107 @@
+"""A path planning problem as a constrained program over a population.
+
+``PathProblem`` ties an encoding (decision vector -> path) to a fitness preset
+(weights on shared terms + constraint handling). Solvers see only
+``objective(X)`` and, in feasibility mode, ``violation(X)``; they never write a
+fitness function of their own.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import ParameterError
+from . import terms
+from .encodings import PathEncoding
+from .presets import FitnessPreset, get_preset
+
+
+@dataclass
+class PathProblem:
+    """Encoding + fitness.
+
+    Args:
+        encoding: a :class:`PathEncoding`.
+        preset: a :class:`FitnessPreset` or its name.
+        clearance: required distance from obstacles, metres.
+        constraint: override the preset's ``"penalty"`` / ``"feasibility"`` mode.
+    """
+
+    encoding: PathEncoding
+    preset: FitnessPreset | str = "length"
+    clearance: float = 0.0
+    constraint: str | None = None
+    nfev: int = field(default=0, init=False)
+
+    def __post_init__(self) -> None:
+        self.preset = get_preset(self.preset)
+        if self.constraint is not None:
+            self.preset = self.preset.with_constraint(self.constraint)
+        if self.preset.constraint not in ("penalty", "feasibility"):
+            raise ParameterError(f"constraint must be 'penalty' or 'feasibility', got {self.preset.constraint!r}")
+        c = float(self.clearance)
+        if not np.isfinite(c) or c < 0:
+            raise ParameterError(f"clearance must be a finite number >= 0 metres, got {self.clearance!r}")
+        self.clearance = c
+        from ..world.fields import distance_function
+
+        self._distance = distance_function(self.encoding.world)
+        pen = self.preset.collision_penalty
+        if pen == "goal_product":
+            world = self.encoding.world
+            tx, ty = world.cell_of(self.encoding.goal) + 1 if hasattr(world, "occ") else self.encoding.goal
+            pen = float(tx * ty)
+        self._collision_penalty = float(pen)
+
+    # ------------------------------------------------------------------ pieces
+    @property
+    def lower(self) -> np.ndarray:
+        return self.encoding.lower
+
+    @property
+    def upper(self) -> np.ndarray:
+        return self.encoding.upper
+
+    def decode(self, X: np.ndarray) -> np.ndarray:
+        return self.encoding.decode(X)
+
+    def cost_terms(self, paths: np.ndarray) -> np.ndarray:
+        """Weighted path-quality terms (no constraint part), ``(n,)``."""
+        p = self.preset
+        f = p.length * terms.length(paths)
+        if p.turn_angle:
+            f = f + p.turn_angle * terms.turn_angle(paths)
+        if p.turn_count:
+            f = f + p.turn_count * terms.turn_count(paths)
+        if p.turn_cost:
+            f = f + p.turn_cost * terms.turn_cost_quantised(paths)
+        return f
+
+    def violation_of_paths(self, paths: np.ndarray) -> np.ndarray:
+        """Constraint violation ``(n,)``: colliding segments (exact rule) plus the smooth
+        penetration integral; zero exactly for feasible paths."""
+        v = terms.collisions(self.encoding.world, paths, self.clearance)
+        if self.preset.penetration_penalty or self.preset.constraint == "feasibility":
+            v = v + terms.penetration(self.encoding.world, paths, self.clearance, distance=self._distance)
+        return v
+
+    # ------------------------------------------------------------ solver view
+    def evaluate(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``(objective, violation)`` for a population ``X`` of shape ``(n, d)``."""
+        paths = self.decode(X)
+        self.nfev += len(paths)
+        cost = self.cost_terms(paths)
+        coll = terms.collisions(self.encoding.world, paths, self.clearance)
+        pen = (terms.penetration(self.encoding.world, paths, self.clearance, distance=self._distance)
+               if self.preset.penetration_penalty or self.preset.constraint == "feasibility" else 0.0)
+        if self.preset.constraint == "penalty":
+            return cost + self._collision_penalty * coll + self.preset.penetration_penalty * pen, coll + pen
+        return cost, coll + pen
+
+    def objective(self, X: np.ndarray) -> np.ndarray:
+        """Penalised objective (penalty mode) or the plain cost (feasibility mode)."""
+        return self.evaluate(X)[0]
+
+    def violation(self, X: np.ndarray) -> np.ndarray:
+        return self.evaluate(X)[1]

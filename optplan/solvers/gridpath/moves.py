@@ -1,0 +1,50 @@
+"""The 8-connected move table of a grid, with the no-corner-cutting rule.
+
+``neighbours[c, k]`` is the flat index of the k-th neighbour of flat cell ``c``
+(``iy * width + ix``) or ``-1`` when that move is not allowed: the target is
+blocked or outside, or (without corner cutting) the move is diagonal and one
+of the two side cells is blocked. ``step_length[k]`` is 1 or sqrt(2) cells.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+OFFSETS = np.array([(1, 0), (1, 1), (0, 1), (-1, 1), (-1, 0), (-1, -1), (0, -1), (1, -1)], dtype=np.int64)
+STEP = np.hypot(OFFSETS[:, 0], OFFSETS[:, 1])
+
+
+@dataclass(frozen=True)
+class MoveTable:
+    width: int
+    height: int
+    neighbours: np.ndarray   # (n_cells, 8) int64, -1 = no move
+    step_length: np.ndarray  # (8,) cells
+
+    def xy(self, flat) -> np.ndarray:
+        """Flat indices -> integer cells ``(ix, iy)``."""
+        flat = np.asarray(flat)
+        return np.stack([flat % self.width, flat // self.width], axis=-1)
+
+
+def move_table(grid, corner_cutting: bool = False) -> MoveTable:
+    """Build (and cache on the grid) the move table."""
+    key = ("moves", bool(corner_cutting))
+    if key in grid._cache:
+        return grid._cache[key]
+    H, W = grid.height, grid.width
+    pad = grid.padded  # blocked frame: padded[iy + 1, ix + 1]
+    iy, ix = np.mgrid[0:H, 0:W]
+    ix, iy = ix.ravel(), iy.ravel()
+    nb = np.full((H * W, 8), -1, dtype=np.int64)
+    free_here = ~grid.occ.ravel()
+    for k, (dx, dy) in enumerate(OFFSETS):
+        tx, ty = ix + dx, iy + dy
+        ok = free_here & ~pad[ty + 1, tx + 1]
+        if dx and dy and not corner_cutting:
+            ok &= ~pad[iy + 1, tx + 1] & ~pad[ty + 1, ix + 1]
+        nb[ok, k] = (ty * W + tx)[ok]
+    table = MoveTable(W, H, nb, STEP.copy())
+    grid._cache[key] = table
+    return table
