@@ -80,6 +80,76 @@ class ColumnNodes(PathEncoding):
         inner = grid.to_world(np.stack([cols, rows], axis=-1))
         return self._frame(inner)
 
+    def rows_of(self, X: np.ndarray) -> np.ndarray:
+        """Integer cell rows of the nodes, ``(n, d)``."""
+        return np.clip(np.floor(np.asarray(X, dtype=float)), 0, self.world.height - 1).astype(np.int64)
+
+    def segment_tables(self, clearance: float, penetration_fn=None) -> dict:
+        """Per-segment collision (and penetration) values for every pair of node rows.
+
+        With snapped nodes a path has only ``height**2`` possible segments between
+        two neighbouring columns, so the exact segment rule is evaluated once per
+        map for all of them and population evaluation becomes a table lookup.
+        Returns arrays ``inner[j, r1, r2]`` (segment from column j to j+1),
+        ``first[r]`` (start to the first node) and ``last[r]`` (last node to goal).
+        Cached per clearance.
+        """
+        if not self.snap:
+            raise ParameterError("segment tables exist only for snapped column nodes")
+        key = ("column_tables", float(clearance), penetration_fn is not None)
+        cache = self.world._cache
+        if key in cache and cache[key]["columns"].shape == self.columns.shape \
+                and np.array_equal(cache[key]["columns"], self.columns) \
+                and np.array_equal(cache[key]["ends"], np.concatenate([self.start, self.goal])):
+            return cache[key]
+        grid, H, d = self.world, self.world.height, self.dim
+        rows = np.arange(H) + 0.5
+        col_x = self.columns + 0.5
+        out = {"columns": self.columns.copy(), "ends": np.concatenate([self.start, self.goal])}
+
+        def evaluate(a, b):
+            A, B = grid.to_world(a), grid.to_world(b)
+            coll = ~np.asarray(grid.segments_free(A, B, clearance))
+            if penetration_fn is None:
+                return coll.astype(float), None
+            return coll.astype(float), penetration_fn(np.stack([A, B], axis=1))
+
+        g_start, g_goal = grid.to_grid(self.start), grid.to_grid(self.goal)
+        if d == 0:
+            c, p = evaluate(g_start[None], g_goal[None])
+            out.update(direct=c[0], direct_pen=None if p is None else p[0])
+        else:
+            r1, r2 = np.meshgrid(rows, rows, indexing="ij")
+            if d > 1:
+                a = np.stack([np.repeat(col_x[:-1], H * H), np.tile(r1.ravel(), d - 1)], axis=1)
+                b = np.stack([np.repeat(col_x[1:], H * H), np.tile(r2.ravel(), d - 1)], axis=1)
+                c, p = evaluate(a, b)
+                out["inner"] = c.reshape(d - 1, H, H)
+                out["inner_pen"] = None if p is None else p.reshape(d - 1, H, H)
+            else:
+                out["inner"] = np.zeros((0, H, H))
+                out["inner_pen"] = None if penetration_fn is None else np.zeros((0, H, H))
+            first = np.stack([np.full(H, col_x[0]), rows], axis=1)
+            last = np.stack([np.full(H, col_x[-1]), rows], axis=1)
+            c, p = evaluate(np.repeat(g_start[None], H, 0), first)
+            out["first"], out["first_pen"] = c, p
+            c, p = evaluate(last, np.repeat(g_goal[None], H, 0))
+            out["last"], out["last_pen"] = c, p
+        cache[key] = out
+        return out
+
+    def lookup(self, tables: dict, X: np.ndarray, what: str = "") -> np.ndarray:
+        """Sum of a per-segment table over each individual's path, ``(n,)``."""
+        X = np.asarray(X, dtype=float).reshape(-1, self.dim)
+        if self.dim == 0:
+            return np.full(len(X), tables["direct" + what])
+        r = self.rows_of(X)
+        j = np.arange(self.dim - 1)
+        total = tables["first" + what][r[:, 0]] + tables["last" + what][r[:, -1]]
+        if self.dim > 1:
+            total = total + tables["inner" + what][j, r[:, :-1], r[:, 1:]].sum(axis=1)
+        return total
+
     def encode_path_rows(self, rows: np.ndarray) -> np.ndarray:
         """Inverse of ``decode`` for snapped rows: cell rows -> a decision vector."""
         return np.asarray(rows, dtype=float) + 0.5

@@ -82,19 +82,38 @@ class PathProblem:
         """Constraint violation ``(n,)``: colliding segments (exact rule) plus the smooth
         penetration integral; zero exactly for feasible paths."""
         v = terms.collisions(self.encoding.world, paths, self.clearance)
-        if self.preset.penetration_penalty or self.preset.constraint == "feasibility":
+        if self._wants_penetration:
             v = v + terms.penetration(self.encoding.world, paths, self.clearance, distance=self._distance)
         return v
 
     # ------------------------------------------------------------ solver view
+    @property
+    def _wants_penetration(self) -> bool:
+        return bool(self.preset.penetration_penalty) or self.preset.constraint == "feasibility"
+
+    def _constraint_parts(self, X: np.ndarray, paths: np.ndarray) -> tuple[np.ndarray, np.ndarray | float]:
+        """Collision count and penetration; table lookups when the encoding offers them."""
+        enc = self.encoding
+        if getattr(enc, "snap", False) and hasattr(enc, "segment_tables"):
+            pen_fn = None
+            if self._wants_penetration:
+                pen_fn = lambda seg: terms.penetration(enc.world, seg, self.clearance, distance=self._distance)  # noqa: E731
+            tables = enc.segment_tables(self.clearance, pen_fn)
+            coll = enc.lookup(tables, X)
+            pen = enc.lookup(tables, X, "_pen") if pen_fn is not None else 0.0
+            return coll, pen
+        coll = terms.collisions(enc.world, paths, self.clearance)
+        pen = (terms.penetration(enc.world, paths, self.clearance, distance=self._distance)
+               if self._wants_penetration else 0.0)
+        return coll, pen
+
     def evaluate(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``(objective, violation)`` for a population ``X`` of shape ``(n, d)``."""
+        X = np.asarray(X, dtype=float)
         paths = self.decode(X)
         self.nfev += len(paths)
         cost = self.cost_terms(paths)
-        coll = terms.collisions(self.encoding.world, paths, self.clearance)
-        pen = (terms.penetration(self.encoding.world, paths, self.clearance, distance=self._distance)
-               if self.preset.penetration_penalty or self.preset.constraint == "feasibility" else 0.0)
+        coll, pen = self._constraint_parts(X, paths)
         if self.preset.constraint == "penalty":
             return cost + self._collision_penalty * coll + self.preset.penetration_penalty * pen, coll + pen
         return cost, coll + pen

@@ -1,0 +1,89 @@
+"""Path formulations: decoding, shared terms, table lookups equal to the exact rule."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import optplan as op
+from optplan.formulations import terms
+from optplan.formulations.encodings import ColumnNodes, FreeWaypoints, SplinePath
+from optplan.formulations.presets import PRESETS, get_preset
+from optplan.formulations.problem import PathProblem
+
+
+@pytest.fixture(scope="module")
+def grid():
+    return op.load_map("multialgo20_template")
+
+
+def test_column_nodes_decode_to_cell_centres(grid):
+    enc = ColumnNodes(grid, np.array([0.5, 0.5]), np.array([19.5, 19.5]))
+    assert enc.dim == 18
+    X = np.full((2, 18), 3.7)
+    P = enc.decode(X)
+    assert P.shape == (2, 20, 2)
+    np.testing.assert_array_equal(P[0, 1:-1, 1], 3.5)
+    np.testing.assert_array_equal(P[0, 1:-1, 0], np.arange(1, 19) + 0.5)
+    # right to left also works
+    back = ColumnNodes(grid, np.array([19.5, 0.5]), np.array([0.5, 19.5]))
+    assert back.decode(X)[0, 1, 0] == 18.5
+
+
+@pytest.mark.parametrize("clearance", [0.0, 0.3])
+def test_table_lookup_equals_exact_rule(grid, clearance):
+    enc = ColumnNodes(grid, np.array([0.5, 0.5]), np.array([19.5, 19.5]))
+    X = np.random.default_rng(2).uniform(0, 20, (200, enc.dim))
+    tables = enc.segment_tables(clearance)
+    np.testing.assert_array_equal(enc.lookup(tables, X), terms.collisions(grid, enc.decode(X), clearance))
+
+
+def test_problem_penalty_and_feasibility_modes(grid):
+    enc = ColumnNodes(grid, np.array([0.5, 0.5]), np.array([19.5, 19.5]))
+    X = np.random.default_rng(3).uniform(0, 20, (50, enc.dim))
+    pen = PathProblem(enc, "hou2024")
+    fea = PathProblem(enc, "hou2024", constraint="feasibility")
+    f1, v1 = pen.evaluate(X)
+    f2, v2 = fea.evaluate(X)
+    np.testing.assert_allclose(v1, v2)
+    np.testing.assert_allclose(f2, terms.length(enc.decode(X)))
+    assert np.all(f1 >= f2) and np.all((f1 > f2) == (v1 > 0))
+    # zero violation exactly when every decoded path passes the exact check
+    ok = np.array([bool(op.validate_path(grid, p)) for p in enc.decode(X)])
+    np.testing.assert_array_equal(v1 == 0, ok)
+
+
+def test_chen2025_penalty_is_goal_product(grid):
+    enc = ColumnNodes(grid, np.array([0.5, 0.5]), np.array([19.5, 19.5]))
+    prob = PathProblem(enc, "chen2025")
+    X = np.random.default_rng(4).uniform(0, 20, (20, enc.dim))
+    f, v = prob.evaluate(X)
+    np.testing.assert_allclose(f, terms.length(enc.decode(X)) + 400.0 * v)
+
+
+def test_spline_and_waypoints_on_circles():
+    w = op.CircleWorld((0, 0, 10, 10), [(5, 5, 1.5)], safety=0.2)
+    s, g = np.array([0.0, 0.0]), np.array([10.0, 10.0])
+    spl = SplinePath(w, s, g, m=3, samples=50)
+    wp = FreeWaypoints(w, s, g, m=3)
+    straight = np.tile(np.linspace(2.5, 7.5, 3)[:, None], (1, 2)).ravel()[None, :]
+    for enc in (spl, wp):
+        prob = PathProblem(enc, "yang2023", constraint="feasibility")
+        f, v = prob.evaluate(straight)
+        assert v[0] > 0  # through the obstacle
+        assert f[0] == pytest.approx(np.hypot(10, 10), rel=1e-6)
+    around = np.array([[2.0, 6.5, 3.5, 8.5, 6.0, 9.5]])
+    assert PathProblem(wp, "yang2023").evaluate(around)[1][0] == 0
+
+
+def test_turn_terms():
+    P = np.array([[[0, 0], [1, 0], [2, 1], [2, 2]]], float)
+    assert terms.turn_angle(P)[0] == pytest.approx(np.pi / 2)
+    assert terms.turn_count(P)[0] == 2
+    assert terms.turn_cost_quantised(P)[0] == pytest.approx(2 * np.pi / 4)
+
+
+def test_presets_cite_sources():
+    for p in PRESETS.values():
+        assert p.source
+    with pytest.raises(op.UnknownAlgorithmError):
+        get_preset("nope")
