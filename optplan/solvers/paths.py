@@ -1,0 +1,106 @@
+"""Global path planning with metaheuristics: formulation + solver + exact check.
+
+``plan_path`` builds a :class:`PathProblem` (an encoding and a paper's fitness
+preset), hands its batched objective to ``optimize`` with the chosen algorithm,
+decodes the best individual, applies the paper's post-processing, and returns a
+:class:`PlanResult` validated by the exact segment rule. Grid-graph planners
+(``aco``) and cell-sequence GAs are dispatched here as well.
+"""
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from ..errors import ParameterError, UnknownAlgorithmError
+from ..formulations.encodings import ColumnNodes, FreeWaypoints, SplinePath
+from ..formulations.problem import PathProblem
+from ..world.postprocess import key_points, prune_direct, remove_collinear
+from .result import make_plan_result
+
+# which paper's fitness and post-processing each algorithm uses by default
+PAPER_OF = {
+    "ssa": "hou2024", "missa": "hou2024",
+    "pso": "yang2023", "ipso": "yang2023",
+    "ba": "yuan2021", "iba": "yuan2021",
+    "ga": "li2023", "iga": "li2023",
+    "gwo": "chen2025", "msiar-gwo": "chen2025", "woa": "chen2025", "aro": "chen2025",
+    "dbo": "chen2025", "igwo": "chen2025", "random": "chen2025",
+}
+POSTPROCESS = {"hou2024": "collinear", "yang2023": "none", "yuan2021": "collinear", "li2023": "keypoints",
+               "chen2025": "prune", "length": "collinear"}
+GRAPH_PLANNERS = ("aco",)
+
+
+def algorithm_names() -> list[str]:
+    """Global path planners available through ``op.plan``."""
+    from . import metaheuristics
+
+    return sorted(set(metaheuristics.algorithm_names()) | set(GRAPH_PLANNERS))
+
+
+def make_problem(world, start, goal, *, preset: str, encoding: str | None = None, clearance: float = 0.0,
+                 constraint: str | None = None, waypoints: int = 3, samples: int = 100) -> PathProblem:
+    """The default formulation: column nodes on grids, spline handles on circle worlds."""
+    s, g = np.asarray(start, float), np.asarray(goal, float)
+    if encoding is None:
+        encoding = "columns" if hasattr(world, "occ") else "spline"
+    if encoding == "columns":
+        enc = ColumnNodes(world, s, g)
+    elif encoding == "waypoints":
+        enc = FreeWaypoints(world, s, g, m=waypoints)
+    elif encoding == "spline":
+        enc = SplinePath(world, s, g, m=waypoints, samples=samples)
+    else:
+        raise ParameterError(f"encoding must be 'columns', 'waypoints' or 'spline', got {encoding!r}")
+    return PathProblem(enc, preset, clearance=clearance, constraint=constraint)
+
+
+def postprocess_path(world, path: np.ndarray, mode: str, clearance: float = 0.0) -> np.ndarray:
+    """``none``, ``collinear`` (li2023 §4.4 step 1), ``keypoints`` (li2023 §4.4) or
+    ``prune`` (chen2025 §4.3.1)."""
+    if mode == "none":
+        return path
+    if mode == "collinear":
+        return remove_collinear(path)
+    if mode == "keypoints":
+        return key_points(world, path, clearance)
+    if mode == "prune":
+        return prune_direct(world, path, clearance)
+    raise ParameterError(f"postprocess must be none, collinear, keypoints or prune; got {mode!r}")
+
+
+def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iters: int = 500,
+              clearance: float = 0.0, preset: str | None = None, encoding: str | None = None,
+              constraint: str | None = None, postprocess: str | None = None, max_evals: int | None = None,
+              waypoints: int = 3, **params):
+    """Plan with a metaheuristic (or ACO) and return a validated PlanResult."""
+    name = algorithm.lower()
+    s = world.check_query_point(start, "start", clearance)
+    g = world.check_query_point(goal, "goal", clearance)
+    if name == "aco":
+        from .gridpath.aco import plan_aco
+
+        return plan_aco(world, s, g, seed=seed, pop=pop, iters=iters, clearance=clearance, **params)
+    from . import metaheuristics
+
+    if name not in metaheuristics.algorithm_names():
+        raise UnknownAlgorithmError(f"unknown path planner {algorithm!r}; known: {', '.join(algorithm_names())}")
+    paper = PAPER_OF.get(name, "length")
+    preset = preset or paper
+    t0 = time.perf_counter()
+    problem = make_problem(world, s, g, preset=preset, encoding=encoding, clearance=clearance,
+                           constraint=constraint, waypoints=waypoints)
+    if problem.encoding.dim == 0:
+        path = np.stack([s, g])
+        return make_plan_result(world, path, name, time.perf_counter() - t0, clearance=clearance,
+                                seed=seed if isinstance(seed, int) else None, message="start and goal in adjacent columns")
+    bounds = np.stack([problem.lower, problem.upper], axis=1)
+    opt = metaheuristics.optimize(problem.objective, bounds, algorithm=name, pop=pop, iters=iters, seed=seed,
+                                  max_evals=max_evals, **params)
+    raw = problem.encoding.waypoints(opt.x)
+    mode = postprocess or POSTPROCESS.get(preset if isinstance(preset, str) else "length", "collinear")
+    path = postprocess_path(world, raw, mode, clearance)
+    return make_plan_result(world, path, name, time.perf_counter() - t0, clearance=clearance, history=opt.history,
+                            seed=seed if isinstance(seed, int) else None, nfev=opt.nfev,
+                            message=opt.message)

@@ -1,0 +1,48 @@
+"""Exact shortest paths among circles (the optimum for circle worlds)."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import optplan as op
+from optplan.solvers.tangent_graph import plan_tangent, tangent_shortest_path
+from optplan.world.metrics import path_length
+
+
+def test_single_disc_matches_closed_form():
+    w = op.CircleWorld((0, 0, 10, 10), [(5, 5, 1.5)], safety=0.5)
+    r = plan_tangent(w, (0, 5), (10, 5))
+    d, R = 5.0, 2.0
+    expected = 2 * np.sqrt(d * d - R * R) + R * (np.pi - 2 * np.arccos(R / d))
+    assert r.length == pytest.approx(expected, abs=1e-9)
+    assert r.feasible and path_length(r.path) == pytest.approx(expected, rel=1e-4)
+
+
+def test_straight_line_when_free_and_symmetric():
+    w = op.CircleWorld((0, 0, 10, 10), [(5, 8, 1.0)])
+    L, poly = tangent_shortest_path(w, np.array([0.0, 1.0]), np.array([10.0, 1.0]))
+    assert L == pytest.approx(10.0) and len(poly) == 2
+
+
+def test_never_longer_than_any_valid_polyline():
+    rng = np.random.default_rng(0)
+    circles = [(2.5, 2.5, 1.0), (6, 5, 1.4), (3, 7.5, 1.1), (8, 8, 0.8), (7.5, 2, 0.9)]
+    w = op.CircleWorld((0, 0, 10, 10), circles, safety=0.1)
+    r = plan_tangent(w, (0.2, 0.2), (9.8, 9.8))
+    assert r.feasible
+    rev = plan_tangent(w, (9.8, 9.8), (0.2, 0.2))
+    assert rev.length == pytest.approx(r.length, abs=1e-9)
+    tried = 0
+    for _ in range(3000):
+        mid = rng.uniform(0, 10, size=(2, 2))
+        P = np.vstack([[0.2, 0.2], mid, [9.8, 9.8]])
+        if op.validate_path(w, P):
+            tried += 1
+            assert path_length(P) >= r.length - 1e-9
+    assert tried > 20
+
+
+def test_blocked_goal_is_reported():
+    w = op.CircleWorld((0, 0, 10, 10), [(5, 5, 6.0)])
+    with pytest.raises(op.InfeasibleQueryError):
+        plan_tangent(w, (0.1, 0.1), (9.9, 9.9))
