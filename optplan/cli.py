@@ -16,10 +16,6 @@ EXAMPLES = {
 
 
 def _load_world(spec: str):
-    if spec.lower().endswith(".json"):
-        from .world.circles import CircleWorld
-
-        return CircleWorld.from_json(spec)
     from .world.loaders import load_map
 
     return load_map(spec)

@@ -266,7 +266,14 @@ def _load_pgm(path: Path) -> GridMap:
     return _grid_from_image(img, maxval, False, 0.65, 0.196, 1.0, (0.0, 0.0), path.stem)
 
 
+def _load_circles(path: Path):
+    from .circles import CircleWorld
+
+    return CircleWorld.from_json(path)
+
+
 _LOADERS = {
+    ".json": _load_circles,
     ".map": _load_movingai,
     ".txt": _load_matrix_text,
     ".csv": _load_matrix_text,
@@ -282,7 +289,8 @@ def load_map(path: str | os.PathLike) -> GridMap:
 
     Args:
         path: ``.map`` (Moving AI), ``.yaml`` + ``.pgm`` (ROS map_server), ``.pgm``,
-            ``.npy``, ``.txt`` or ``.csv`` (0/1 matrix). Names of maps shipped with
+            ``.npy``, ``.txt`` or ``.csv`` (0/1 matrix), or ``.json`` (a circle world,
+            returned as a :class:`CircleWorld`). Names of maps shipped with
             optplan (``optplan.world.maps.names()``) are accepted too.
 
     Raises:

@@ -4,7 +4,7 @@ from __future__ import annotations
 from pathlib import Path
 
 MAPS_DIR = Path(__file__).resolve().parent.parent / "data" / "maps"
-_SUFFIXES = (".map", ".txt", ".csv", ".npy", ".yaml")
+_SUFFIXES = (".map", ".txt", ".csv", ".npy", ".yaml", ".json")
 
 
 def names() -> list[str]:
