@@ -56,7 +56,7 @@ PRESETS: dict[str, FitnessPreset] = {
                       collision_penalty=100.0),
         FitnessPreset("li2023", "li2023 eq 2-3: alpha*l + beta*theta + gamma*turns, alpha = 1, beta = 0.1, "
                       "gamma = 0.1 (the paper leaves the weights open); eq 3 as a hard constraint",
-                      turn_angle=0.1, turn_count=0.1, collision_penalty=100.0),
+                      turn_angle=0.1, turn_count=0.1, collision_penalty=100.0, penetration_penalty=0.0),
         FitnessPreset("chen2025", "chen2025 eq 32: O * (Tx * Ty) + length", collision_penalty="goal_product",
                       penetration_penalty=0.0),
     )

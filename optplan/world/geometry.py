@@ -99,10 +99,18 @@ def points_free(grid, points, clearance: float = 0.0) -> np.ndarray:
 
 
 # --------------------------------------------------------------- grid: segments
-def _segments_free_grid_units(occ_pad: np.ndarray, a: np.ndarray, b: np.ndarray, scale, integer: bool) -> np.ndarray:
+def _column_prefix(occ_pad: np.ndarray) -> np.ndarray:
+    """``cum[c, j] = number of blocked cells in padded column c below padded row j``."""
+    return np.concatenate([np.zeros((occ_pad.shape[1], 1), np.int64),
+                           np.cumsum(occ_pad.T, axis=1, dtype=np.int64)], axis=1)
+
+
+def _segments_free_grid_units(occ_pad: np.ndarray, col_cum: np.ndarray, a: np.ndarray, b: np.ndarray, scale,
+                              integer: bool) -> np.ndarray:
     """Core of the rule for segments with ``b.x != a.x`` (sorted so that a.x < b.x).
 
-    ``occ_pad`` is the occupancy with a blocked one-cell frame; ``a``, ``b`` are in
+    ``occ_pad`` is the occupancy with a blocked one-cell frame and ``col_cum`` its
+    column prefix sums (:func:`_column_prefix`); ``a``, ``b`` are in
     grid units times ``scale`` (1 for float mode, 2 for integer mode).
     Returns a boolean array: no blocked interior is entered, no edge between two
     blocked cells is followed, no double corner is passed through.
@@ -135,11 +143,13 @@ def _segments_free_grid_units(occ_pad: np.ndarray, a: np.ndarray, b: np.ndarray,
     sloped = dy[seg] != 0
     if np.any(sloped):
         s_seg, s_k, s_lo, s_hi, s_den = seg[sloped], k[sloped], nlo[sloped], nhi[sloped], den[sloped]
-        j_first = _floor_div(s_lo, s_den, integer)
-        j_last = _ceil_div(s_hi, s_den, integer) - 1
-        own, joff = _expand((j_last - j_first + 1).astype(np.int64))
-        hit = blocked(s_k[own].astype(np.int64), (j_first[own] + joff).astype(np.int64))
-        np.logical_and.at(ok, s_seg[own], ~hit)
+        j_first = np.clip(_floor_div(s_lo, s_den, integer).astype(np.int64), -1, H)
+        j_last = np.clip((_ceil_div(s_hi, s_den, integer) - 1).astype(np.int64), -1, H)
+        # the rows crossed in one column form a run: count its blocked cells with
+        # per-column prefix sums instead of visiting every cell
+        col = np.clip(s_k.astype(np.int64) + 1, 0, W + 1)
+        hit = (col_cum[col, j_last + 2] - col_cum[col, j_first + 1]) > 0
+        ok[s_seg[hit]] = False
     flat = ~sloped
     if np.any(flat):
         f_seg, f_k = seg[flat], k[flat].astype(np.int64)
@@ -148,7 +158,7 @@ def _segments_free_grid_units(occ_pad: np.ndarray, a: np.ndarray, b: np.ndarray,
         row = _floor_div(yv, S, integer).astype(np.int64)
         # inside a row: that cell must be free; on a grid line: not both neighbours blocked
         bad = np.where(on_line, blocked(f_k, row - 1) & blocked(f_k, row), blocked(f_k, row))
-        np.logical_and.at(ok, f_seg, ~bad)
+        ok[f_seg[bad]] = False
 
     # ---- lattice vertices strictly inside the segment: no double corners
     v_first = _floor_div(x0, S, integer) + 1
@@ -171,8 +181,21 @@ def _segments_free_grid_units(occ_pad: np.ndarray, a: np.ndarray, b: np.ndarray,
         bl, br = blocked(X - 1, Y - 1), blocked(X, Y - 1)
         tl, tr = blocked(X - 1, Y), blocked(X, Y)
         double = (bl & tr & ~br & ~tl) | (br & tl & ~bl & ~tr)
-        np.logical_and.at(ok, seg, ~double)
+        ok[seg[double]] = False
     return ok
+
+
+def _cached_transpose(grid) -> np.ndarray:
+    if "padded_T" not in grid._cache:
+        grid._cache["padded_T"] = np.ascontiguousarray(grid.padded.T)
+    return grid._cache["padded_T"]
+
+
+def _cached_prefix(grid, transposed: bool) -> np.ndarray:
+    key = "col_prefix_T" if transposed else "col_prefix"
+    if key not in grid._cache:
+        grid._cache[key] = _column_prefix(_cached_transpose(grid) if transposed else grid.padded)
+    return grid._cache[key]
 
 
 def _segments_rule(grid, ga: np.ndarray, gb: np.ndarray) -> np.ndarray:
@@ -195,7 +218,7 @@ def _segments_rule(grid, ga: np.ndarray, gb: np.ndarray) -> np.ndarray:
         swap = a[nv, 0] > b[nv, 0]
         aa = np.where(swap[:, None], b[nv], a[nv])
         bb = np.where(swap[:, None], a[nv], b[nv])
-        ok[nv] = _segments_free_grid_units(grid.padded, aa, bb, S, integer)
+        ok[nv] = _segments_free_grid_units(grid.padded, _cached_prefix(grid, False), aa, bb, S, integer)
     # vertical: the same rule on the transposed map
     v = vertical & ~same
     if np.any(v):
@@ -203,7 +226,7 @@ def _segments_rule(grid, ga: np.ndarray, gb: np.ndarray) -> np.ndarray:
         swap = at[:, 0] > bt[:, 0]
         aa = np.where(swap[:, None], bt, at)
         bb = np.where(swap[:, None], at, bt)
-        ok[v] = _segments_free_grid_units(np.ascontiguousarray(grid.padded.T), aa, bb, S, integer)
+        ok[v] = _segments_free_grid_units(_cached_transpose(grid), _cached_prefix(grid, True), aa, bb, S, integer)
     return ok
 
 
@@ -261,7 +284,7 @@ def _segments_clear_grid_units(grid, ga: np.ndarray, gb: np.ndarray, r: float) -
         sidx = seg[own][cand]
         lo = np.stack([cx[cand], cy[cand]], axis=1).astype(float)
         d = _segment_box_distance(ga[sidx], gb[sidx], lo, lo + 1.0)
-        np.logical_and.at(ok, sidx, d >= r * (1 - 1e-12))
+        ok[sidx[~(d >= r * (1 - 1e-12))]] = False
     return ok
 
 
