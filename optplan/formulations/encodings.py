@@ -150,6 +150,58 @@ class ColumnNodes(PathEncoding):
             total = total + tables["inner" + what][j, r[:, :-1], r[:, 1:]].sum(axis=1)
         return total
 
+    def feasible_transitions(self, clearance: float = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Boolean masks of collision-free moves: ``first[r]``, ``inner[j, r1, r2]``,
+        ``last[r]``, pruned backwards so that every allowed move can still reach
+        the goal (a dynamic programme over the columns)."""
+        t = self.segment_tables(clearance)
+        first, inner, last = t["first"] == 0, t["inner"] == 0, t["last"] == 0
+        alive = last.copy()                       # rows of the last column that reach the goal
+        pruned = np.zeros_like(inner)
+        for j in range(self.dim - 2, -1, -1):
+            pruned[j] = inner[j] & alive[None, :]
+            alive = pruned[j].any(axis=1)
+        return first & alive, pruned, last
+
+    def sample_feasible(self, n: int, rng: np.random.Generator, clearance: float = 0.0,
+                        spread: float = 2.0) -> np.ndarray:
+        """``n`` random collision-free individuals (rows + 0.5).
+
+        Each move to the next column is drawn among the moves that can still reach
+        the goal, with weight ``exp(-|row change| / spread)`` so that paths wander
+        rather than zigzag across the map (``spread=inf`` is uniform).
+
+        Raises InfeasibleQueryError when no path with one node per column exists
+        (the map needs a path that turns back in x; use another encoding or ``aco``).
+        """
+        from ..errors import InfeasibleQueryError
+
+        first, inner, _ = self.feasible_transitions(clearance)
+        if not first.any():
+            raise InfeasibleQueryError("no collision-free path with one node per column exists between start and goal; "
+                                       "this encoding cannot represent a solution (try encoding='waypoints' or algorithm='aco')")
+        rows = np.empty((n, self.dim), dtype=np.int64)
+
+        H = self.world.height
+        levels = np.arange(H)
+
+        def pick(mask: np.ndarray, centre: np.ndarray) -> np.ndarray:
+            # roulette over allowed rows, weighted by closeness to ``centre``
+            w = mask * np.exp(-np.abs(levels[None, :] - centre[:, None]) / spread)
+            cum = np.cumsum(w, axis=1)
+            r = rng.random(len(mask)) * cum[:, -1]
+            return np.minimum((cum < r[:, None]).sum(axis=1), H - 1)
+
+        start_row = np.floor(self.world.to_grid(self.start)[1])
+        goal_row = np.floor(self.world.to_grid(self.goal)[1])
+        d = self.dim
+        # aim each move at the straight line from the current row to the goal row
+        rows[:, 0] = pick(np.broadcast_to(first, (n, H)), np.full(n, start_row + (goal_row - start_row) / (d + 1)))
+        for j in range(d - 1):
+            aim = rows[:, j] + (goal_row - rows[:, j]) / (d - j)
+            rows[:, j + 1] = pick(inner[j][rows[:, j]], aim)
+        return rows + 0.5
+
     def encode_path_rows(self, rows: np.ndarray) -> np.ndarray:
         """Inverse of ``decode`` for snapped rows: cell rows -> a decision vector."""
         return np.asarray(rows, dtype=float) + 0.5

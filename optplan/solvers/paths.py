@@ -29,7 +29,7 @@ PAPER_OF = {
 }
 POSTPROCESS = {"hou2024": "collinear", "yang2023": "none", "yuan2021": "collinear", "li2023": "keypoints",
                "chen2025": "prune", "length": "collinear"}
-GRAPH_PLANNERS = ("aco",)
+GRAPH_PLANNERS = ("aco", "ga", "iga")  # grid-graph / cell-sequence planners of their own
 
 
 def algorithm_names() -> list[str]:
@@ -82,6 +82,11 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
         from .gridpath.aco import plan_aco
 
         return plan_aco(world, s, g, seed=seed, pop=pop, iters=iters, clearance=clearance, **params)
+    if name in ("ga", "iga") and hasattr(world, "occ") and encoding in (None, "columns"):
+        from .gridpath.ga_path import plan_ga
+
+        return plan_ga(world, s, g, improved=name == "iga", seed=seed, pop=pop, iters=iters, clearance=clearance,
+                       preset=preset or "li2023", postprocess=postprocess, **params)
     from . import metaheuristics
 
     if name not in metaheuristics.algorithm_names():

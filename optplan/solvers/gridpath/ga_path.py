@@ -1,0 +1,244 @@
+"""Genetic algorithms on grid paths: the traditional GA (``ga``) and li2023's IGA (``iga``).
+
+Chromosome: one free cell per grid column between start and goal (the cell's
+sequence number ``N = x + n*y`` of li2023 eq 1 fixes the column, so a gene is the
+row). Every operator keeps paths continuous in the sense of the exact segment
+rule: one-point crossover swaps tails at a column, mutation redraws one gene
+among the rows that keep both neighbouring moves free, and the initial
+population is drawn among collision-free paths (a sampler over the column graph).
+
+IGA (li2023 §4) adds, each as a small function below:
+
+* variance-checked initialisation (§4.1): half the population random, half
+  redrawn ``m`` chromosomes at a time until the fitness variance exceeds ``sigma1``;
+* tanh-adaptive selection, crossover and mutation probabilities (eq 4) and an
+  elite count that shrinks linearly (eq 5);
+* the regeneration operator (§4.3): offspring that collide are replaced by fresh
+  paths, redrawn while their mean distance to the best chromosome is <= ``sigma2``;
+* termination after 50 generations without improvement (§4.5);
+* key point extraction of the result (§4.4).
+
+Eq 4 as printed grows every probability with ``f_i - f_avg``. For a cost to be
+minimised we read it with the sign that protects good individuals: with
+``z_i = (f_avg - f_i) / std(f)``, ``P_s = Ps_min + (Ps_max - Ps_min) * tanh(max(z_i, 0))``
+and ``P_c``, ``P_m`` fall from their maxima by the same amount. The paper gives no
+numbers for the bounds, ``k_e``, ``sigma1`` or ``sigma2``; the defaults below are ours.
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...errors import ParameterError
+from ...formulations.encodings import ColumnNodes
+from ...formulations.problem import PathProblem
+from ...rng import as_generator
+from ...world.postprocess import key_points, remove_collinear
+from ..result import make_plan_result
+
+
+@dataclass(frozen=True)
+class GAParams:
+    """Settings of the path GA; ``improved`` switches on the IGA mechanisms."""
+
+    improved: bool = True
+    pc: float = 0.8                  # traditional GA: fixed crossover probability
+    pm: float = 0.2                  # traditional GA: fixed mutation probability
+    ps_range: tuple[float, float] = (0.5, 1.0)
+    pc_range: tuple[float, float] = (0.6, 0.9)
+    pm_range: tuple[float, float] = (0.05, 0.3)
+    k_e: float = 0.1                 # eq 5 elite retention factor, as a fraction of the population
+    sigma1: float = 1.0              # §4.1 fitness variance threshold (metres^2)
+    sigma2: float = 1.0              # §4.3 mean distance-to-best threshold (cells)
+    redraw: int = 5                  # m chromosomes redrawn per diversity check
+    stall: int = 50                  # §4.5 generations without improvement before stopping
+
+
+def adaptive_probabilities(f: np.ndarray, lo_hi: tuple[float, float], protect: bool) -> np.ndarray:
+    """li2023 eq 4 for a minimised cost (see module docstring). ``protect=False`` gives
+    the selection probability (rises for good individuals), ``True`` the crossover or
+    mutation probability (falls for good individuals)."""
+    lo, hi = lo_hi
+    z = (f.mean() - f) / (f.std() + 1e-12)
+    t = np.tanh(np.maximum(z, 0.0))
+    return hi - (hi - lo) * t if protect else lo + (hi - lo) * t
+
+
+def elite_count(t: int, t_max: int, k_e: float, pop: int) -> int:
+    """li2023 eq 5: ``k_elite = (T_max - t) / T_max * k_e`` (here ``k_e`` is a share of ``pop``), at least 1."""
+    return max(1, int(round((t_max - t) / max(t_max, 1) * k_e * pop)))
+
+
+def _crossover(rows: np.ndarray, pc: np.ndarray, rng: np.random.Generator) -> np.ndarray:
+    """One-point crossover of consecutive pairs; pair (2i, 2i+1) crosses with the mean of their pc."""
+    n, d = rows.shape
+    out = rows.copy()
+    if d < 2:
+        return out
+    half = n // 2
+    a, b = np.arange(0, 2 * half, 2), np.arange(1, 2 * half, 2)
+    go = rng.random(half) < 0.5 * (pc[a] + pc[b])
+    cut = rng.integers(1, d, size=half)
+    tail = np.arange(d)[None, :] >= cut[:, None]
+    swap = tail & go[:, None]
+    out[a] = np.where(swap, rows[b], rows[a])
+    out[b] = np.where(swap, rows[a], rows[b])
+    return out
+
+
+def _mutate(rows: np.ndarray, pm: np.ndarray, first: np.ndarray, inner: np.ndarray, last: np.ndarray,
+            rng: np.random.Generator) -> np.ndarray:
+    """Redraw one gene per mutating individual among rows whose two moves stay free."""
+    n, d = rows.shape
+    out = rows.copy()
+    who = np.nonzero(rng.random(n) < pm)[0]
+    if who.size == 0:
+        return out
+    j = rng.integers(0, d, size=who.size)
+    H = first.size
+    ok = np.ones((who.size, H), dtype=bool)
+    has_prev = j > 0
+    ok[~has_prev] &= first[None, :]
+    if has_prev.any():
+        w = who[has_prev]
+        ok[has_prev] &= inner[j[has_prev] - 1, rows[w, j[has_prev] - 1], :]
+    has_next = j < d - 1
+    if has_next.any():
+        w = who[has_next]
+        ok[has_next] &= inner[j[has_next], :, rows[w, j[has_next] + 1]]
+    ok[~has_next] &= last[None, :]
+    any_ok = ok.any(axis=1)
+    choice = np.argmax(ok * rng.random(ok.shape), axis=1)
+    out[who[any_ok], j[any_ok]] = choice[any_ok]
+    return out
+
+
+def _variance_checked(sample, evaluate, n: int, p: GAParams, rng) -> np.ndarray:
+    """§4.1: redraw ``p.redraw`` random chromosomes until the fitness variance exceeds sigma1."""
+    X = sample(n)
+    f = evaluate(X)
+    for _ in range(100):
+        if f.var(ddof=1) > p.sigma1 if n > 1 else True:
+            break
+        k = rng.choice(n, size=min(p.redraw, n), replace=False)
+        X[k] = sample(len(k))
+        f[k] = evaluate(X[k])
+    return X
+
+
+def _regenerate(X: np.ndarray, bad: np.ndarray, best: np.ndarray, sample, p: GAParams, rng) -> np.ndarray:
+    """§4.3: replace colliding offspring by fresh paths, diverse w.r.t. the best chromosome."""
+    idx = np.nonzero(bad)[0]
+    if idx.size == 0:
+        return X
+    fresh = sample(idx.size)
+    for _ in range(20):
+        if np.linalg.norm(fresh - best, axis=1).mean() > p.sigma2:
+            break
+        k = rng.choice(idx.size, size=min(p.redraw, idx.size), replace=False)
+        fresh[k] = sample(len(k))
+    X = X.copy()
+    X[idx] = fresh
+    return X
+
+
+def ga_path(problem: PathProblem, *, pop: int = 50, iters: int = 200, seed=0, params: GAParams = GAParams(),
+            callback=None):
+    """Run the path GA on a column-node problem.
+
+    Returns ``(best_x, best_f, history, nfev, generations)``.
+    """
+    enc = problem.encoding
+    if not isinstance(enc, ColumnNodes) or not enc.snap:
+        raise ParameterError("the path GA works on snapped ColumnNodes encodings")
+    if isinstance(pop, bool) or not isinstance(pop, (int, np.integer)) or pop < 2:
+        raise ParameterError(f"pop must be an integer >= 2, got {pop!r}")
+    if isinstance(iters, bool) or not isinstance(iters, (int, np.integer)) or iters < 0:
+        raise ParameterError(f"iters must be an integer >= 0, got {iters!r}")
+    rng = as_generator(seed)
+    first, inner, last = enc.feasible_transitions(problem.clearance)
+    nfev = 0
+
+    def sample(k: int) -> np.ndarray:
+        return enc.sample_feasible(k, rng, problem.clearance)
+
+    def evaluate(X: np.ndarray) -> np.ndarray:
+        nonlocal nfev
+        nfev += len(X)
+        f, v = problem.evaluate(X)
+        return np.where(v > 0, np.inf, f) if params.improved else f
+
+    if params.improved:
+        half = pop // 2
+        X = np.vstack([sample(pop - half), _variance_checked(sample, evaluate, half, params, rng)])
+    else:
+        X = sample(pop)
+    f = evaluate(X)
+    best = int(np.argmin(f))
+    best_x, best_f = X[best].copy(), float(f[best])
+    history = [best_f]
+    stalled = 0
+    gen = 0
+    for gen in range(1, iters + 1):
+        rows = np.floor(X).astype(np.int64)
+        finite = np.isfinite(f)
+        fs = np.where(finite, f, f[finite].max() if finite.any() else 0.0)
+        if params.improved:
+            ps = adaptive_probabilities(fs, params.ps_range, protect=False)
+            pc = adaptive_probabilities(fs, params.pc_range, protect=True)
+            pm = adaptive_probabilities(fs, params.pm_range, protect=True)
+            k_el = elite_count(gen, iters, params.k_e, pop)
+        else:
+            ps = 1.0 / (fs - fs.min() + 1.0)     # roulette on inverse cost
+            pc = np.full(pop, params.pc)
+            pm = np.full(pop, params.pm)
+            k_el = 1
+        order = np.argsort(f, kind="stable")
+        elites = rows[order[:k_el]]
+        w = ps / ps.sum()
+        parents = rng.choice(pop, size=pop - k_el, p=w)
+        kids = _crossover(rows[parents], pc[parents], rng)
+        kids = _mutate(kids, pm[parents], first, inner, last, rng)
+        Xk = kids + 0.5
+        fk = evaluate(Xk)
+        if params.improved:
+            bad = ~np.isfinite(fk)
+            if bad.any():
+                Xk = _regenerate(Xk, bad, best_x, sample, params, rng)
+                fk[bad] = evaluate(Xk[bad])
+        X = np.vstack([elites + 0.5, Xk])
+        f = np.concatenate([f[order[:k_el]], fk])
+        i = int(np.argmin(f))
+        if f[i] < best_f - 1e-12:
+            best_x, best_f = X[i].copy(), float(f[i])
+            stalled = 0
+        else:
+            stalled += 1
+        history.append(best_f)
+        if callback is not None and callback(gen, best_f) is False:
+            break
+        if params.improved and stalled >= params.stall:
+            break
+    return best_x, best_f, np.asarray(history), nfev, gen
+
+
+def plan_ga(world, start, goal, *, improved: bool, seed=0, pop: int = 50, iters: int = 200, clearance: float = 0.0,
+            preset: str = "li2023", postprocess: str | None = None, **params):
+    """``op.plan(..., algorithm="ga" | "iga")`` on a grid map (li2023 §3-4)."""
+    t0 = time.perf_counter()
+    s = world.check_query_point(start, "start", clearance)
+    g = world.check_query_point(goal, "goal", clearance)
+    problem = PathProblem(ColumnNodes(world, s, g), preset, clearance=clearance)
+    name = "iga" if improved else "ga"
+    if problem.encoding.dim == 0:
+        return make_plan_result(world, np.stack([s, g]), name, time.perf_counter() - t0, clearance=clearance)
+    p = GAParams(improved=improved, **params)
+    x, fbest, history, nfev, gens = ga_path(problem, pop=pop, iters=iters, seed=seed, params=p)
+    raw = problem.encoding.waypoints(x)
+    mode = postprocess or ("keypoints" if improved else "collinear")
+    path = key_points(world, raw, clearance) if mode == "keypoints" else remove_collinear(raw) if mode == "collinear" else raw
+    return make_plan_result(world, path, name, time.perf_counter() - t0, clearance=clearance, history=history,
+                            seed=seed if isinstance(seed, int) else None, nfev=nfev,
+                            message=f"{gens} generations")
