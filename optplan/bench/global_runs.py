@@ -1,0 +1,85 @@
+"""Repeated global planning runs and the tables the example scripts print.
+
+Every table puts each path length next to the exact optimum of the same map
+(``visibility`` in centre mode on grids, the tangent graph on circle worlds) and
+reports the gap in percent; infeasible runs are counted, never averaged in.
+"""
+from __future__ import annotations
+
+import sys
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..results import PlanResult
+
+
+@dataclass
+class RunSet:
+    """All runs of one algorithm on one map."""
+
+    algorithm: str
+    results: list[PlanResult] = field(default_factory=list)
+
+    @property
+    def feasible(self) -> list[PlanResult]:
+        return [r for r in self.results if r.feasible]
+
+    def values(self, attr: str) -> np.ndarray:
+        """``attr`` of the feasible runs."""
+        return np.array([getattr(r, attr) for r in self.feasible], dtype=float)
+
+
+def exact_optimum(world, start, goal, clearance: float = 0.0) -> float:
+    """Length of the exact any-angle optimum (metres) between ``start`` and ``goal``."""
+    from ..solvers.graph import shortest_path
+
+    return float(shortest_path(world, start, goal, method="visibility", clearance=clearance).length)
+
+
+def run_many(world, start, goal, algorithm: str, runs: int, seed0: int = 0, progress: bool = True,
+             **params) -> RunSet:
+    """``runs`` seeded calls of ``op.plan`` (seeds ``seed0 .. seed0 + runs - 1``)."""
+    from ..planning import plan
+
+    out = RunSet(algorithm)
+    for k in range(runs):
+        out.results.append(plan(world, start, goal, algorithm=algorithm, seed=seed0 + k, **params))
+        if progress:
+            print(f"\r  {algorithm}: {k + 1}/{runs} runs", end="", file=sys.stderr, flush=True)
+    if progress:
+        print(file=sys.stderr)
+    return out
+
+
+def wilcoxon_p(a: np.ndarray, b: np.ndarray) -> float:
+    """Two-sided Wilcoxon rank-sum p-value (NaN when either sample is empty)."""
+    from scipy.stats import ranksums
+
+    if len(a) == 0 or len(b) == 0:
+        return float("nan")
+    if np.allclose(a, a[0]) and np.allclose(b, b[0]) and np.isclose(a[0], b[0]):
+        return 1.0
+    return float(ranksums(a, b).pvalue)
+
+
+def global_table(sets: list[RunSet], optimum: float, reference: str | None = None) -> str:
+    """Markdown: min/mean length, gap of the best and mean to the optimum, turning,
+    time, feasible share, and the rank-sum p-value against ``reference``."""
+    ref = next((s for s in sets if s.algorithm == reference), None)
+    head = ("| algorithm | min length [m] | mean length [m] | best gap [%] | mean gap [%] | min turn [deg] | "
+            "mean turn [deg] | mean time [s] | feasible | p vs " + (reference or "-") + " |")
+    rows = [head, "|" + "---|" * 10]
+    for s in sets:
+        L = s.values("length")
+        T = s.values("turn_angle_deg")
+        t = np.array([r.runtime_s for r in s.results])
+        if len(L):
+            p = wilcoxon_p(L, ref.values("length")) if ref is not None and s is not ref else float("nan")
+            rows.append(f"| {s.algorithm} | {L.min():.4f} | {L.mean():.4f} | {100 * (L.min() / optimum - 1):.2f} | "
+                        f"{100 * (L.mean() / optimum - 1):.2f} | {T.min():.1f} | {T.mean():.1f} | {t.mean():.3f} | "
+                        f"{len(L)}/{len(s.results)} | {'-' if np.isnan(p) else f'{p:.3g}'} |")
+        else:
+            rows.append(f"| {s.algorithm} | - | - | - | - | - | - | {t.mean():.3f} | 0/{len(s.results)} | - |")
+    rows.append(f"\nexact optimum (any-angle, same start/goal): {optimum:.4f} m")
+    return "\n".join(rows)
