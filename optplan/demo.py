@@ -13,7 +13,8 @@ DEMO_MAP = "multialgo20_template"
 DEMO_START = (0.5, 0.5)
 DEMO_GOAL = (19.5, 19.5)
 # global planners shown when they are available in this version, with small budgets
-DEMO_PLANNERS = (("astar", {}), ("visibility", {}), ("msiar-gwo", {"pop": 30, "iters": 200}),
+DEMO_PLANNERS = (("astar", {}), ("visibility", {}), ("aco", {"pop": 30, "iters": 60}),
+                 ("iga", {"pop": 50, "iters": 100}), ("msiar-gwo", {"pop": 30, "iters": 200}),
                  ("gwo", {"pop": 30, "iters": 200}))
 
 
@@ -31,8 +32,9 @@ def format_table(rows: list[dict], columns: list[tuple[str, str, str]]) -> str:
     return "\n".join([head, rule, *body])
 
 
-def run_demo(out: str | Path = "optplan_demo.png", seed: int = 0, stream=sys.stdout) -> list[dict]:
-    """Run the demo, print the table to ``stream`` and write the PNG to ``out``."""
+def run_demo(out: str | Path = "optplan_demo.png", seed: int = 0, stream=None) -> list[dict]:
+    """Run the demo, print the table to ``stream`` (stdout) and write the PNG to ``out``."""
+    stream = stream or sys.stdout
     grid = load_map(DEMO_MAP)
     print(f"map {DEMO_MAP}: {grid.width}x{grid.height} cells, start {DEMO_START}, goal {DEMO_GOAL}", file=stream)
     results = {}

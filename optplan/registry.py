@@ -22,7 +22,7 @@ def algorithms() -> list[str]:
             m = importlib.import_module(mod)
         except ImportError:
             continue
-        fn = getattr(m, "algorithm_names", None)
+        fn = getattr(m, "algorithm_names", None)  # a layer under construction may lack it
         if fn is not None:
             names.update(fn())
     return sorted(names)

@@ -34,9 +34,14 @@ GRAPH_PLANNERS = ("aco", "ga", "iga")  # grid-graph / cell-sequence planners of 
 
 def algorithm_names() -> list[str]:
     """Global path planners available through ``op.plan``."""
+    return sorted(set(_metaheuristic_names()) | set(GRAPH_PLANNERS))
+
+
+def _metaheuristic_names() -> list[str]:
     from . import metaheuristics
 
-    return sorted(set(metaheuristics.algorithm_names()) | set(GRAPH_PLANNERS))
+    fn = getattr(metaheuristics, "algorithm_names", None)
+    return list(fn()) if fn is not None else []
 
 
 def make_problem(world, start, goal, *, preset: str, encoding: str | None = None, clearance: float = 0.0,
@@ -89,7 +94,7 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
                        preset=preset or "li2023", postprocess=postprocess, **params)
     from . import metaheuristics
 
-    if name not in metaheuristics.algorithm_names():
+    if name not in _metaheuristic_names():
         raise UnknownAlgorithmError(f"unknown path planner {algorithm!r}; known: {', '.join(algorithm_names())}")
     paper = PAPER_OF.get(name, "length")
     preset = preset or paper
