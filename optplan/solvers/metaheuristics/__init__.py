@@ -1,0 +1,116 @@
+"""Swarm metaheuristics, one module per family, basic and improved variants side by side.
+
+``optimize(f, bounds, algorithm=..., pop=..., iters=..., max_evals=..., seed=...)``
+works on any batched objective ``f(X: (n, d)) -> (n,)`` (or ``(f, violation)``);
+path formulations are solved through the same call.
+"""
+from __future__ import annotations
+
+import time
+from typing import Callable
+
+import numpy as np
+
+from ...errors import ParameterError, UnknownAlgorithmError
+from ...results import OptimizeResult
+from .engine import Algorithm, Problem, run
+
+# registry: name -> class (filled from the family modules)
+ALGORITHMS: dict[str, type[Algorithm]] = {}
+
+
+def register(cls: type[Algorithm]) -> type[Algorithm]:
+    ALGORITHMS[cls.name] = cls
+    return cls
+
+
+def _load_families() -> None:
+    from . import bat, dbo, ga, gwo, pso, random_search, ssa, woa_aro
+
+    for mod in (random_search, gwo, pso, ssa, bat, woa_aro, dbo, ga):
+        for obj in vars(mod).values():
+            if isinstance(obj, type) and issubclass(obj, Algorithm) and obj is not Algorithm \
+                    and obj.__module__ == mod.__name__:
+                register(obj)
+
+
+_load_families()
+
+
+def algorithm_names() -> list[str]:
+    """Registered metaheuristic names."""
+    return sorted(ALGORITHMS)
+
+
+def get_algorithm(name: str) -> type[Algorithm]:
+    """The algorithm class for ``name`` (case-insensitive)."""
+    try:
+        return ALGORITHMS[str(name).lower()]
+    except KeyError:
+        raise UnknownAlgorithmError(f"unknown algorithm {name!r}; known: {', '.join(algorithm_names())}") from None
+
+
+def _positive_int(name: str, value, minimum: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
+        raise ParameterError(f"{name} must be an integer >= {minimum}, got {value!r}")
+    return int(value)
+
+
+def _bounds(bounds, dim: int | None) -> tuple[np.ndarray, np.ndarray]:
+    b = np.asarray(bounds, dtype=float)
+    if b.ndim == 1 and b.size == 2 and dim is not None:
+        b = np.tile(b, (dim, 1))
+    if b.ndim != 2 or b.shape[1] != 2 or b.shape[0] == 0:
+        raise ParameterError(f"bounds must be a (d, 2) array of (lower, upper) rows, got shape {b.shape}")
+    lo, hi = b[:, 0].copy(), b[:, 1].copy()
+    if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
+        raise ParameterError("bounds must be finite numbers")
+    if np.any(lo >= hi):
+        j = int(np.argmax(lo >= hi))
+        raise ParameterError(f"lower bound must be below upper bound; dimension {j} has {lo[j]} >= {hi[j]}")
+    return lo, hi
+
+
+def optimize(f: Callable, bounds, algorithm: str = "gwo", pop: int = 30, iters: int | None = 500,
+             max_evals: int | None = None, seed=0, *, dim: int | None = None, init=None, repair=None,
+             callback=None, progress: bool = False, stagnation: int | None = None, target: float | None = None,
+             **params) -> OptimizeResult:
+    """Minimise a batched objective with a registered metaheuristic.
+
+    Args:
+        f: ``f(X)`` for ``X`` of shape ``(n, d)`` returning ``(n,)`` values, or a tuple
+            ``(values, violations)`` to rank by the feasibility rule.
+        bounds: ``(d, 2)`` rows of (lower, upper); or one ``(lower, upper)`` pair with ``dim``.
+        algorithm: a name from :func:`algorithm_names`.
+        pop: population size.
+        iters: iteration budget (``None``: only ``max_evals`` limits the run).
+        max_evals: evaluation budget (rows passed to ``f``); the run stops exactly there.
+        seed: int or ``numpy.random.Generator``; the same seed gives the same result.
+        init: initial population ``(pop, d)`` or a callable ``(n, rng) -> X``.
+        repair: callable applied to every population before evaluation.
+        callback: ``callback(state)`` after each iteration; return ``False`` to stop.
+        progress: print progress to stderr.
+        stagnation: stop after this many iterations without improvement.
+        target: stop once the best feasible value is ``<= target``.
+        **params: the algorithm's own parameters (see its class for defaults).
+    """
+    cls = get_algorithm(algorithm)
+    pop = _positive_int("pop", pop, max(cls.min_pop, 1))
+    if iters is None and max_evals is None:
+        raise ParameterError("give iters or max_evals (or both): an unbounded run never ends")
+    if iters is not None:
+        iters = _positive_int("iters", iters, 0)
+    if max_evals is not None:
+        max_evals = _positive_int("max_evals", max_evals, 1)
+    if stagnation is not None:
+        stagnation = _positive_int("stagnation", stagnation, 1)
+    lo, hi = _bounds(bounds, dim)
+    algo = cls(**params)
+    t0 = time.perf_counter()
+    state, hist, hist_nfev, status, message, nit = run(
+        algo, Problem(f, lo, hi, repair), pop=pop, iters=iters, max_evals=max_evals, seed=seed, init=init,
+        callback=callback, progress=progress, stagnation=stagnation, target=target)
+    return OptimizeResult(
+        x=state.best_x, f=float(state.best_f), history=hist, history_nfev=hist_nfev, nfev=state.nfev, nit=nit,
+        runtime_s=time.perf_counter() - t0, status=status, message=message, algorithm=cls.name,
+        seed=int(seed) if isinstance(seed, (int, np.integer)) else None)

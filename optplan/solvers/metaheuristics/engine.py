@@ -1,0 +1,270 @@
+"""The one population loop shared by every metaheuristic.
+
+An algorithm is a class with small named update rules; the engine owns
+everything else: the budget (iterations and/or function evaluations), bounds,
+the ranking rule, the best-so-far record, the history, stagnation and target
+stops, callbacks, progress output and the random generator. That keeps every
+algorithm module down to what its paper says.
+
+Problems. ``optimize`` takes a batched objective ``f(X) -> (n,)``. It may also
+return ``(f, violation)``; then individuals are ranked by the feasibility rule
+(feasible beats infeasible, then lower violation, then lower ``f``), which is
+what path formulations in feasibility mode use. A caller can pass an initial
+population (``init=array``) or an initialiser (``init=callable(n, rng) -> X``),
+and a ``repair`` hook applied to every population before it is evaluated (for
+discrete encodings). Bounds are enforced by clipping.
+
+Budgets. ``nfev`` counts rows passed to ``f``. With ``max_evals`` the run stops
+exactly when the budget is spent: a batch larger than what is left is cut, and
+the rows that could not be evaluated are treated as infinitely bad.
+"""
+from __future__ import annotations
+
+import sys
+import time
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from ...errors import ParameterError
+from ...rng import as_generator
+
+
+class BudgetExhausted(Exception):
+    """Raised inside a step when no evaluations are left; the engine stops cleanly."""
+
+
+@dataclass
+class Problem:
+    """A batched objective with box bounds."""
+
+    f: Callable
+    lower: np.ndarray
+    upper: np.ndarray
+    repair: Callable | None = None
+
+    @property
+    def dim(self) -> int:
+        return int(self.lower.size)
+
+    @property
+    def span(self) -> np.ndarray:
+        return self.upper - self.lower
+
+
+def better(f1, v1, f2, v2) -> np.ndarray:
+    """Feasibility rule: is (f1, v1) strictly better than (f2, v2)? (``v == 0`` is feasible)."""
+    return (v1 < v2) | ((v1 == v2) & (f1 < f2))
+
+
+def rank(f: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Indices from best to worst under the feasibility rule (stable)."""
+    return np.lexsort((f, v))
+
+
+class State:
+    """Everything a step may read or change. Algorithms keep their own memory
+    (velocities, personal bests, loudness, ...) as attributes of their instance."""
+
+    def __init__(self, problem: Problem, pop: int, iters: int | None, max_evals: int | None,
+                 rng: np.random.Generator):
+        self.problem = problem
+        self.pop = pop
+        self.iters = iters
+        self.max_evals = max_evals
+        self.rng = rng
+        self.lower, self.upper = problem.lower, problem.upper
+        self.dim = problem.dim
+        self.nfev = 0
+        self.it = 0
+        self.nan_seen = False
+        self.X = np.empty((0, self.dim))
+        self.F = np.empty(0)
+        self.V = np.empty(0)
+        self.best_x = np.full(self.dim, np.nan)
+        self.best_f = np.inf
+        self.best_v = np.inf
+
+    # ------------------------------------------------------------ budget
+    @property
+    def horizon(self) -> int:
+        """Iterations the schedule-driven rules (a(t), w(t), ...) plan for."""
+        if self.iters is not None:
+            return max(self.iters, 1)
+        # evaluation budget only: assume about one evaluation per individual per iteration
+        return max(int(np.ceil(self.max_evals / self.pop)) - 1, 1)
+
+    @property
+    def progress(self) -> float:
+        """``t / T`` in [0, 1]: the fraction of the budget spent (iterations or evaluations)."""
+        if self.iters is not None and self.max_evals is None:
+            return min(self.it / max(self.iters, 1), 1.0)
+        frac_e = self.nfev / self.max_evals if self.max_evals else 0.0
+        frac_i = self.it / max(self.iters, 1) if self.iters is not None else 0.0
+        return float(min(max(frac_e, frac_i), 1.0))
+
+    @property
+    def evals_left(self) -> float:
+        return np.inf if self.max_evals is None else self.max_evals - self.nfev
+
+    # -------------------------------------------------------- evaluation
+    def clip(self, X: np.ndarray) -> np.ndarray:
+        return np.clip(X, self.lower, self.upper)
+
+    def evaluate(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Evaluate a batch (clipped and repaired first); returns ``(f, violation)``.
+
+        Raises :class:`BudgetExhausted` when no evaluation is left at all.
+        """
+        n = len(X)
+        left = self.evals_left
+        if left <= 0:
+            raise BudgetExhausted
+        k = n if n <= left else int(left)
+        Xk = X if k == n else X[:k]
+        out = self.problem.f(Xk)
+        if isinstance(out, tuple):
+            fk, vk = (np.asarray(o, dtype=float).reshape(-1) for o in out)
+            vk = np.where(np.isnan(vk), np.inf, vk)
+        else:
+            fk, vk = np.asarray(out, dtype=float).reshape(-1), np.zeros(k)
+        if fk.shape != (k,) or vk.shape != (k,):
+            raise ParameterError(f"the objective must return shape ({k},) for {k} rows, got {fk.shape}")
+        if not np.isfinite(fk).all():
+            self.nan_seen |= bool(np.isnan(fk).any())
+            fk = np.where(np.isfinite(fk), fk, np.inf)
+        self.nfev += k
+        self._offer(Xk, fk, vk)
+        if k == n:
+            return fk, vk
+        # the part beyond the budget was not evaluated: infinitely bad
+        return np.concatenate([fk, np.full(n - k, np.inf)]), np.concatenate([vk, np.full(n - k, np.inf)])
+
+
+    def _offer(self, X, f, v) -> None:
+        i = int(np.argmin(f)) if not v.any() else int(rank(f, v)[0])
+        if better(f[i], v[i], self.best_f, self.best_v):
+            self.best_x, self.best_f, self.best_v = X[i].copy(), float(f[i]), float(v[i])
+
+    def prepare(self, X: np.ndarray) -> np.ndarray:
+        """Clip to the bounds and apply the problem's repair hook."""
+        X = self.clip(X)
+        if self.problem.repair is not None:
+            X = self.clip(np.asarray(self.problem.repair(X), dtype=float))
+        return X
+
+    def eval_new(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``prepare`` then ``evaluate``: returns ``(X, f, v)``."""
+        X = self.prepare(X)
+        f, v = self.evaluate(X)
+        return X, f, v
+
+    def greedy(self, Xnew, Fnew, Vnew, idx=None) -> np.ndarray:
+        """Replace population rows (all, or ``idx``) by the new ones where those are better."""
+        idx = np.arange(len(self.X)) if idx is None else np.asarray(idx)
+        win = better(Fnew, Vnew, self.F[idx], self.V[idx])
+        rows = idx[win]
+        self.X[rows], self.F[rows], self.V[rows] = Xnew[win], Fnew[win], Vnew[win]
+        return win
+
+
+class Algorithm:
+    """Base class. Subclasses set ``name`` and implement ``step``; they may override
+    ``initial_population`` and ``setup`` (memory after the first evaluation)."""
+
+    name = "base"
+    min_pop = 2
+
+    def __init__(self, **params) -> None:
+        unknown = set(params) - set(self.defaults())
+        if unknown:
+            raise ParameterError(f"{self.name} has no parameter(s) {sorted(unknown)}; "
+                                 f"known: {sorted(self.defaults())}")
+        for k, v in {**self.defaults(), **params}.items():
+            setattr(self, k, v)
+
+    @classmethod
+    def defaults(cls) -> dict:
+        """Parameters and their paper defaults (class attributes in UPPER case are constants)."""
+        out = {}
+        for klass in reversed(cls.__mro__):
+            for k, v in vars(klass).items():
+                if not k.startswith("_") and not k.isupper() and k not in ("name", "min_pop") \
+                        and not callable(v) and not isinstance(v, (property, classmethod, staticmethod)):
+                    out[k] = v
+        return out
+
+    def initial_population(self, state: State, n: int) -> np.ndarray:
+        """Uniform random points in the box."""
+        return state.lower + state.rng.random((n, state.dim)) * (state.upper - state.lower)
+
+    def setup(self, state: State) -> None:
+        """Called once after the initial population is evaluated."""
+
+    def step(self, state: State) -> None:  # pragma: no cover - abstract
+        raise NotImplementedError
+
+
+def run(algorithm: Algorithm, problem: Problem, *, pop: int, iters: int | None, max_evals: int | None, seed,
+        init=None, callback=None, progress: bool = False, stagnation: int | None = None,
+        target: float | None = None):
+    """Run ``algorithm`` on ``problem``; returns ``(state, history, history_nfev, status, message, nit)``."""
+    rng = as_generator(seed)
+    state = State(problem, pop, iters, max_evals, rng)
+    if init is None:
+        X0 = algorithm.initial_population(state, pop)
+    elif callable(init):
+        X0 = np.asarray(init(pop, rng), dtype=float)
+    else:
+        X0 = np.asarray(init, dtype=float)
+    if X0.shape != (pop, problem.dim):
+        raise ParameterError(f"initial population must have shape ({pop}, {problem.dim}), got {X0.shape}")
+    status, message = "max_iters", "iteration budget spent"
+    history, history_nfev = [], []
+    try:
+        state.X, state.F, state.V = state.eval_new(X0)
+        algorithm.setup(state)
+    except BudgetExhausted:
+        pass
+    history.append(state.best_f)
+    history_nfev.append(state.nfev)
+    last_improvement, last_best = 0, state.best_f
+    t_report = time.perf_counter()
+    while True:
+        if iters is not None and state.it >= iters:
+            break
+        if state.evals_left <= 0:
+            status, message = "max_evals", f"evaluation budget of {max_evals} spent"
+            break
+        state.it += 1
+        try:
+            algorithm.step(state)
+        except BudgetExhausted:
+            pass
+        history.append(state.best_f)
+        history_nfev.append(state.nfev)
+        if state.best_f < last_best:
+            last_best, last_improvement = state.best_f, state.it
+        if progress and time.perf_counter() - t_report > 0.5:
+            t_report = time.perf_counter()
+            print(f"\r{algorithm.name}: iteration {state.it}, evaluations {state.nfev}, best {state.best_f:.6g}",
+                  end="", file=sys.stderr, flush=True)
+        if target is not None and state.best_v == 0 and state.best_f <= target:
+            status, message = "target", f"reached the target value {target:g}"
+            break
+        if stagnation is not None and state.it - last_improvement >= stagnation:
+            status, message = "stagnation", f"no improvement in {stagnation} iterations"
+            break
+        if callback is not None and callback(state) is False:
+            status, message = "callback", "stopped by the callback"
+            break
+    if state.evals_left <= 0 and status == "max_iters":
+        status, message = "max_evals", f"evaluation budget of {max_evals} spent"
+    if progress:
+        print(file=sys.stderr)
+    if state.nan_seen:
+        message += "; the objective returned NaN for some points (treated as +inf)"
+    if state.best_v > 0 and np.isfinite(state.best_v):
+        message += f"; no feasible point found (least violation {state.best_v:.3g})"
+    return state, np.asarray(history), np.asarray(history_nfev, dtype=np.int64), status, message, state.it
