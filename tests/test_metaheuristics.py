@@ -1,0 +1,175 @@
+"""The engine, every algorithm, and each paper mechanism doing what its equation says."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import optplan as op
+from optplan.formulations.functions import get_function
+from optplan.solvers.metaheuristics import algorithm_names, get_algorithm
+from optplan.solvers.metaheuristics.engine import Problem, State
+from optplan.solvers.metaheuristics.gwo import GWO, MSIARGWO
+from optplan.solvers.metaheuristics.operators import levy, logistic_tent
+
+ALGOS = [a for a in algorithm_names()]
+IMPROVED = ["missa", "ipso", "iba", "msiar-gwo"]
+SPHERE = get_function("F1", shifted=True)
+
+
+def random_median(F, evals: int, runs: int = 11) -> float:
+    return float(np.median([op.optimize(F, F.bounds, algorithm="random", pop=30, iters=None, max_evals=evals,
+                                        seed=s).f for s in range(runs)]))
+
+
+@pytest.mark.parametrize("algo", ALGOS)
+def test_same_seed_same_result(algo):
+    F = get_function("F9", shifted=True, dim=5)
+    a = op.optimize(F, F.bounds, algorithm=algo, pop=12, iters=30, seed=4)
+    b = op.optimize(F, F.bounds, algorithm=algo, pop=12, iters=30, seed=4)
+    np.testing.assert_array_equal(a.x, b.x)
+    np.testing.assert_array_equal(a.history, b.history)
+    assert a.f == F(a.x[None])[0]
+
+
+@pytest.mark.parametrize("algo", ALGOS)
+def test_evaluation_budget_is_exact(algo):
+    calls = []
+
+    def f(X):
+        calls.append(len(X))
+        return (X ** 2).sum(1)
+
+    r = op.optimize(f, [(-5, 5)] * 4, algorithm=algo, pop=10, iters=None, max_evals=537, seed=0)
+    assert r.nfev == sum(calls) == 537 and r.status == "max_evals"
+    assert np.all(np.diff(r.history) <= 0) and r.history_nfev[-1] == 537
+
+
+@pytest.mark.parametrize("algo", [a for a in ALGOS if a != "random"])
+def test_beats_random_search_on_shifted_sphere(algo):
+    """Every algorithm must clearly beat random search at the same budget (15,000 evaluations).
+    The issue's 1000x target is measured, not asserted: see benchmarks/shifted_sphere.py."""
+    med = random_median(SPHERE, 15000, runs=5)
+    r = op.optimize(SPHERE, SPHERE.bounds, algorithm=algo, pop=30, iters=None, max_evals=15000, seed=1)
+    assert r.f < med
+
+
+@pytest.mark.parametrize("fname", ["F15", "F16"])
+@pytest.mark.parametrize("algo", IMPROVED)
+def test_improved_variants_reach_fixed_dim_optima_quick(fname, algo):
+    F = get_function(fname)
+    hits = sum(abs(op.optimize(F, F.bounds, algorithm=algo, pop=30, iters=500, seed=s).f - F.f_opt) < 1e-3
+               for s in range(5))
+    assert hits >= 4
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("fname", ["F15", "F16"])
+@pytest.mark.parametrize("algo", IMPROVED)
+def test_improved_variants_reach_fixed_dim_optima_full(fname, algo):
+    F = get_function(fname)
+    hits = sum(abs(op.optimize(F, F.bounds, algorithm=algo, pop=30, iters=500, seed=s).f - F.f_opt) < 1e-3
+               for s in range(20))
+    assert hits >= 18
+
+
+def test_logistic_tent_stays_in_unit_interval_and_covers_it():
+    x = logistic_tent(np.random.default_rng(0), (200, 50))
+    assert x.min() >= 0 and x.max() < 1
+    hist, _ = np.histogram(x, bins=10, range=(0, 1))
+    assert hist.min() > 0.03 * x.size  # every tenth of [0, 1) is visited
+
+
+def test_levy_steps_are_heavy_tailed():
+    s = levy(np.random.default_rng(1), 200_000, beta=1.5, scale=1.0)
+    g = np.random.default_rng(1).normal(size=200_000) * s.std()
+    # far more extreme steps than a normal with the same spread
+    assert (np.abs(s) > 10 * np.median(np.abs(s))).mean() > 20 * (np.abs(g) > 10 * np.median(np.abs(g))).mean()
+
+
+def _state(n=20, d=3, it=0, iters=100, seed=0):
+    st = State(Problem(lambda X: (X ** 2).sum(1), np.full(d, -5.0), np.full(d, 5.0)), n, iters, None,
+               np.random.default_rng(seed))
+    st.it = it
+    return st
+
+
+def test_iba_weight_decreases_logarithmically():
+    iba = get_algorithm("iba")(noise_factor=0.0)
+    T = 100
+    ws = []
+    for t in (1, 10, 100):
+        st = _state(it=t, iters=T)
+        ws.append(iba.inertia(st))
+    # w(t) = w_max - (w_max - w_min) log_T(t): 0.9 at t=1, midway at t=sqrt(T)=10, w_min at T
+    assert ws == pytest.approx([0.9, 0.65, 0.4])
+
+
+def test_msiar_convergence_factor_runs_from_initial_to_final():
+    m = MSIARGWO()
+    st = _state(iters=200)
+    values = []
+    for t in range(0, 201, 20):
+        st.it = t
+        values.append(m.convergence_factor(st))
+    assert values[0] == pytest.approx(m.a_initial) and values[-1] == pytest.approx(m.a_final)
+    assert np.all(np.diff(values) <= 1e-12)
+    g = GWO()
+    st.it = 100
+    assert g.convergence_factor(st) == pytest.approx(1.0)  # linear midpoint for the canonical GWO
+
+
+def test_msiar_leader_weights_favour_alpha_and_sum_to_one():
+    m = MSIARGWO()
+    m.leader_f = np.array([1.0, 2.0, 4.0])
+    w = m.leader_weights()
+    assert w.sum() == pytest.approx(1.0) and w[0] > w[1] > w[2]
+    assert w[0] / w[1] == pytest.approx(2.0)  # W_k proportional to 1 / f_k (eq 21-23)
+
+
+def test_centroid_opposition_touches_only_the_worst_ten_percent():
+    m = MSIARGWO()
+    st = _state(n=30, d=4)
+    st.X = np.random.default_rng(3).uniform(-5, 5, (30, 4))
+    st.F, st.V = st.problem.f(st.X), np.zeros(30)
+    before = st.X.copy()
+    order = np.argsort(st.F)
+    m.centroid_opposition(st)
+    changed = np.nonzero(np.any(st.X != before, axis=1))[0]
+    assert set(changed) <= set(order[-3:])
+    assert st.nfev == 3  # exactly the worst 10 % were evaluated
+
+
+def test_bad_parameters_raise():
+    f = lambda X: (X ** 2).sum(1)  # noqa: E731
+    with pytest.raises(op.ParameterError):
+        op.optimize(f, [(-1, 1)] * 2, pop=0)
+    with pytest.raises(op.ParameterError):
+        op.optimize(f, [(-1, 1)] * 2, iters=-1)
+    with pytest.raises(op.ParameterError):
+        op.optimize(f, [(1, -1)] * 2)
+    with pytest.raises(op.ParameterError):
+        op.optimize(f, [(-1, np.nan)] * 2)
+    with pytest.raises(op.ParameterError):
+        op.optimize(f, [(-1, 1)] * 2, algorithm="gwo", not_a_parameter=3)
+    with pytest.raises(op.UnknownAlgorithmError, match="known"):
+        op.optimize(f, [(-1, 1)] * 2, algorithm="nope")
+
+
+def test_nan_objective_is_treated_as_worst_and_reported():
+    def f(X):
+        out = (X ** 2).sum(1)
+        out[X[:, 0] > 0] = np.nan
+        return out
+
+    r = op.optimize(f, [(-1, 1)] * 3, algorithm="pso", pop=10, iters=20, seed=0)
+    assert np.isfinite(r.f) and r.x[0] <= 0 and "NaN" in r.message
+
+
+def test_feasibility_rule_prefers_feasible_points():
+    # minimise x + y subject to x^2 + y^2 >= 1 (violation = max(0, 1 - r^2))
+    def f(X):
+        return X.sum(1), np.maximum(0.0, 1 - (X ** 2).sum(1))
+
+    r = op.optimize(f, [(-2, 2)] * 2, algorithm="gwo", pop=20, iters=200, seed=0)
+    assert (r.x ** 2).sum() >= 1 - 1e-12
+    assert r.f == pytest.approx(-4.0, abs=1e-2)  # the corner (-2, -2) is feasible and optimal
