@@ -80,6 +80,30 @@ class ColumnNodes(PathEncoding):
         inner = grid.to_world(np.stack([cols, rows], axis=-1))
         return self._frame(inner)
 
+    penetration_samples = 8
+
+    def repair(self, X: np.ndarray) -> np.ndarray:
+        """Move every node to the nearest free cell of its column (the papers draw
+        nodes among free cells; keeping them there is a repair, not a constraint)."""
+        key = ("column_nearest_free", self.columns.tobytes())
+        cache = self.world._cache
+        if key not in cache:
+            occ = self.world.occ[:, self.columns]            # (H, d): column j's cells
+            H = occ.shape[0]
+            rows = np.arange(H)
+            free_rows = [np.nonzero(~occ[:, j])[0] for j in range(occ.shape[1])]
+            table = np.empty((occ.shape[1], H))
+            for j, fr in enumerate(free_rows):               # once per map, not per evaluation
+                table[j] = fr[np.abs(fr[None, :] - rows[:, None]).argmin(axis=1)] + 0.5 if fr.size else rows + 0.5
+            cache[key] = table
+        table = cache[key]
+        r = self.rows_of(X)
+        snapped = table[np.arange(self.dim)[None, :], r]
+        if not self.snap:
+            # keep the continuous offset inside the chosen free cell
+            return snapped - 0.5 + (np.asarray(X) - np.floor(np.asarray(X)))
+        return snapped
+
     def rows_of(self, X: np.ndarray) -> np.ndarray:
         """Integer cell rows of the nodes, ``(n, d)``."""
         return np.clip(np.floor(np.asarray(X, dtype=float)), 0, self.world.height - 1).astype(np.int64)
@@ -212,6 +236,7 @@ class FreeWaypoints(PathEncoding):
     """``m`` free waypoints; ``x = (x1, y1, ..., xm, ym)`` in metres inside the world bounds."""
 
     m: int = 3
+    penetration_samples = 8
 
     def __post_init__(self) -> None:
         if int(self.m) < 1:
@@ -229,12 +254,16 @@ class FreeWaypoints(PathEncoding):
 class SplinePath(FreeWaypoints):
     """Cubic spline through start, ``m`` handle points and goal (yang2023 eq 3-4).
 
+    Its polyline has many short segments, so one penetration sample per segment
+    resolves intrusions as finely as eight per segment do on waypoint paths.
+
     The spline is parametrised uniformly in ``[0, 1]`` over start, handles and goal
     and sampled at ``samples`` points; the polyline through the samples is the
     path whose length is eq 4's spline length. ``waypoints`` returns the handles.
     """
 
     samples: int = 100
+    penetration_samples = 1
 
     def __post_init__(self) -> None:
         super().__post_init__()

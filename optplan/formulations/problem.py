@@ -83,7 +83,8 @@ class PathProblem:
         penetration integral; zero exactly for feasible paths."""
         v = terms.collisions(self.encoding.world, paths, self.clearance)
         if self._wants_penetration:
-            v = v + terms.penetration(self.encoding.world, paths, self.clearance, distance=self._distance)
+            v = v + terms.penetration(self.encoding.world, paths, self.clearance, self.encoding.penetration_samples,
+                                      distance=self._distance)
         return v
 
     # ------------------------------------------------------------ solver view
@@ -97,13 +98,13 @@ class PathProblem:
         if getattr(enc, "snap", False) and hasattr(enc, "segment_tables"):
             pen_fn = None
             if self._wants_penetration:
-                pen_fn = lambda seg: terms.penetration(enc.world, seg, self.clearance, distance=self._distance)  # noqa: E731
+                pen_fn = lambda seg: terms.penetration(enc.world, seg, self.clearance, enc.penetration_samples, distance=self._distance)  # noqa: E731
             tables = enc.segment_tables(self.clearance, pen_fn)
             coll = enc.lookup(tables, X)
             pen = enc.lookup(tables, X, "_pen") if pen_fn is not None else 0.0
             return coll, pen
         coll = terms.collisions(enc.world, paths, self.clearance)
-        pen = (terms.penetration(enc.world, paths, self.clearance, distance=self._distance)
+        pen = (terms.penetration(enc.world, paths, self.clearance, enc.penetration_samples, distance=self._distance)
                if self._wants_penetration else 0.0)
         return coll, pen
 

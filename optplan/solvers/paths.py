@@ -77,9 +77,22 @@ def postprocess_path(world, path: np.ndarray, mode: str, clearance: float = 0.0)
 
 def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iters: int = 500,
               clearance: float = 0.0, preset: str | None = None, encoding: str | None = None,
-              constraint: str | None = None, postprocess: str | None = None, max_evals: int | None = None,
-              waypoints: int = 3, **params):
-    """Plan with a metaheuristic (or ACO) and return a validated PlanResult."""
+              constraint: str | None = "feasibility", postprocess: str | None = None, max_evals: int | None = None,
+              waypoints: int = 3, init: str | None = "auto", **params):
+    """Plan with a metaheuristic (or ACO / the path GAs) and return a validated PlanResult.
+
+    ``preset`` defaults to the algorithm's paper (:data:`PAPER_OF`). ``constraint``
+    defaults to the feasibility rule (feasible beats infeasible, then less
+    violation, then the paper's cost), which finds feasible paths far more often
+    than the papers' penalties on our maps; ``constraint="penalty"`` gives the
+    paper's penalised fitness exactly.
+
+    ``init``: ``"feasible"`` starts from collision-free random paths (column nodes
+    only; it stands in for the papers' obstacle-free decoders and gives every
+    algorithm the same start), ``"own"`` uses the algorithm's initialiser (e.g.
+    MISSA's chaotic map), ``"auto"`` (default) is ``"feasible"`` for column nodes
+    and ``"own"`` otherwise.
+    """
     name = algorithm.lower()
     s = world.check_query_point(start, "start", clearance)
     g = world.check_query_point(goal, "goal", clearance)
@@ -106,8 +119,20 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
         return make_plan_result(world, path, name, time.perf_counter() - t0, clearance=clearance,
                                 seed=seed if isinstance(seed, int) else None, message="start and goal in adjacent columns")
     bounds = np.stack([problem.lower, problem.upper], axis=1)
-    opt = metaheuristics.optimize(problem.objective, bounds, algorithm=name, pop=pop, iters=iters, seed=seed,
-                                  max_evals=max_evals, **params)
+    repair = getattr(problem.encoding, "repair", None)
+    if init == "auto":
+        init = "feasible" if isinstance(problem.encoding, ColumnNodes) else "own"
+    if init == "feasible":
+        if not isinstance(problem.encoding, ColumnNodes):
+            raise ParameterError("init='feasible' needs the column-node encoding")
+        init = lambda n, rng: problem.encoding.sample_feasible(n, rng, clearance)  # noqa: E731
+    elif init == "own":
+        init = None
+    else:
+        raise ParameterError(f"init must be 'auto', 'feasible' or 'own', got {init!r}")
+    opt = metaheuristics.optimize(problem.evaluate if problem.preset.constraint == "feasibility" else problem.objective,
+                                  bounds, algorithm=name, pop=pop, iters=iters, seed=seed, max_evals=max_evals,
+                                  repair=repair, init=init, **params)
     raw = problem.encoding.waypoints(opt.x)
     mode = postprocess or POSTPROCESS.get(preset if isinstance(preset, str) else "length", "collinear")
     path = postprocess_path(world, raw, mode, clearance)
