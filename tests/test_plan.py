@@ -1,0 +1,54 @@
+"""op.plan with every global planner: validated, reproducible, honest about failure."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import optplan as op
+from optplan.world.papermaps import paper_map
+
+GLOBAL = [a for a in op.algorithms() if a not in ("astar", "dijkstra", "visibility")]
+
+
+@pytest.fixture(scope="module")
+def template():
+    return paper_map("chen2025_20")
+
+
+@pytest.mark.parametrize("algo", GLOBAL)
+def test_every_planner_returns_a_validated_reproducible_path(template, algo):
+    world, s, g = template
+    a = op.plan(world, s, g, algorithm=algo, seed=3, pop=20, iters=40)
+    b = op.plan(world, s, g, algorithm=algo, seed=3, pop=20, iters=40)
+    np.testing.assert_array_equal(a.path, b.path)
+    assert a.feasible == bool(op.validate_path(world, a.path))
+    if a.feasible:
+        opt = op.shortest_path(world, s, g, method="visibility").length
+        assert a.length >= opt - 1e-9  # nothing beats the exact optimum
+    else:
+        assert "infeasible" in a.message
+
+
+def test_penalty_mode_reports_infeasible_results_honestly(template):
+    world, s, g = template
+    r = op.plan(world, s, g, algorithm="ssa", seed=0, pop=10, iters=5, constraint="penalty", init="own")
+    assert r.feasible == bool(op.validate_path(world, r.path))
+    if not r.feasible:
+        assert "infeasible" in r.message and "segment" in r.message
+
+
+def test_circle_world_planning_is_checked_against_the_tangent_optimum():
+    world, s, g = paper_map("yang2023_env1")
+    opt = op.shortest_path(world, s, g, method="visibility")
+    r = op.plan(world, s, g, algorithm="ipso", seed=0, pop=30, iters=60)
+    assert opt.feasible
+    if r.feasible:
+        assert r.length >= opt.length - 1e-9
+
+
+def test_unknown_planner_and_bad_refine():
+    world, s, g = paper_map("chen2025_20")
+    with pytest.raises(op.UnknownAlgorithmError):
+        op.plan(world, s, g, algorithm="nope")
+    with pytest.raises(op.ParameterError):
+        op.plan(world, s, g, algorithm="astar", refine="magic")
