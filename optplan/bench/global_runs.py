@@ -83,3 +83,30 @@ def global_table(sets: list[RunSet], optimum: float, reference: str | None = Non
             rows.append(f"| {s.algorithm} | - | - | - | - | - | - | {t.mean():.3f} | 0/{len(s.results)} | - |")
     rows.append(f"\nexact optimum (any-angle, same start/goal): {optimum:.4f} m")
     return "\n".join(rows)
+
+
+def convergence_iteration(history: np.ndarray, rel_tol: float = 1e-9) -> int:
+    """First iteration at which the best value is within ``rel_tol`` of its final value."""
+    h = np.asarray(history, dtype=float)
+    if len(h) == 0 or not np.isfinite(h[-1]):
+        return -1
+    close = np.abs(h - h[-1]) <= rel_tol * max(abs(h[-1]), 1.0)
+    return int(np.argmax(close))
+
+
+def paper_global(title: str, maps: list[str], algorithms: list[str], runs: int, reference: str,
+                 **plan_params) -> dict[str, list[RunSet]]:
+    """Run ``algorithms`` on each paper map and print one table per map; returns the runs."""
+    from ..world.papermaps import paper_map
+
+    print(f"## {title}\n")
+    out = {}
+    for name in maps:
+        world, s, g = paper_map(name)
+        opt = exact_optimum(world, s, g)
+        sets = [run_many(world, s, g, a, runs, **plan_params) for a in algorithms]
+        print(f"### {name}\n")
+        print(global_table(sets, opt, reference=reference))
+        print()
+        out[name] = sets
+    return out
