@@ -53,23 +53,15 @@ def test_beats_random_search_on_shifted_sphere(algo):
     assert r.f < med
 
 
+@pytest.mark.parametrize("runs,needed", [(5, 4), pytest.param(20, 18, marks=pytest.mark.slow)])
 @pytest.mark.parametrize("fname", ["F15", "F16"])
 @pytest.mark.parametrize("algo", IMPROVED)
-def test_improved_variants_reach_fixed_dim_optima_quick(fname, algo):
+def test_improved_variants_reach_fixed_dim_optima(fname, algo, runs, needed):
+    """Issue 3: within 1e-3 of the optimum in >= 18 of 20 runs (CI runs 5 and needs 4)."""
     F = get_function(fname)
     hits = sum(abs(op.optimize(F, F.bounds, algorithm=algo, pop=30, iters=500, seed=s).f - F.f_opt) < 1e-3
-               for s in range(5))
-    assert hits >= 4
-
-
-@pytest.mark.slow
-@pytest.mark.parametrize("fname", ["F15", "F16"])
-@pytest.mark.parametrize("algo", IMPROVED)
-def test_improved_variants_reach_fixed_dim_optima_full(fname, algo):
-    F = get_function(fname)
-    hits = sum(abs(op.optimize(F, F.bounds, algorithm=algo, pop=30, iters=500, seed=s).f - F.f_opt) < 1e-3
-               for s in range(20))
-    assert hits >= 18
+               for s in range(runs))
+    assert hits >= needed
 
 
 def test_logistic_tent_stays_in_unit_interval_and_covers_it():

@@ -10,7 +10,7 @@ import numpy as np
 def plot_convergence(histories: Mapping[str, Sequence[np.ndarray]], filename: str | Path, title: str = "",
                      log: bool = True, f_opt: float | None = None) -> Path:
     """Save a PNG of each algorithm's median curve (runs padded with their last value)."""
-    from .plots import _pyplot
+    from .plots import _pyplot, save_figure
 
     plt = _pyplot()
     fig, ax = plt.subplots(figsize=(6.4, 4.2))
@@ -31,11 +31,4 @@ def plot_convergence(histories: Mapping[str, Sequence[np.ndarray]], filename: st
     ax.set_xlabel("iteration")
     ax.set_ylabel("best value" + (" - optimum" if f_opt is not None else ""))
     ax.legend(fontsize=7)
-    if title:
-        ax.set_title(title)
-    filename = Path(filename)
-    filename.parent.mkdir(parents=True, exist_ok=True)
-    fig.tight_layout()
-    fig.savefig(filename, dpi=110)
-    plt.close(fig)
-    return filename
+    return save_figure(fig, filename, title)

@@ -55,11 +55,17 @@ def plot_paths(world, paths: Mapping[str, np.ndarray], filename: str | Path, tit
         ax.plot(*first[0], "g^", ms=10, zorder=6, label="start")
         ax.plot(*first[-1], "r*", ms=13, zorder=6, label="goal")
     ax.legend(loc="best", fontsize=8, framealpha=0.85)
+    return save_figure(fig, filename, title, dpi=120)
+
+
+def save_figure(fig, filename: str | Path, title: str = "", dpi: int = 110) -> Path:
+    """Title, lay out, write the PNG (creating its folder) and close the figure."""
+    plt = _pyplot()
     if title:
-        ax.set_title(title)
+        fig.axes[0].set_title(title)
     filename = Path(filename)
     filename.parent.mkdir(parents=True, exist_ok=True)
     fig.tight_layout()
-    fig.savefig(filename, dpi=120)
+    fig.savefig(filename, dpi=dpi)
     plt.close(fig)
     return filename

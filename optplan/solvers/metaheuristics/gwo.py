@@ -36,7 +36,7 @@ from __future__ import annotations
 import numpy as np
 
 from .engine import Algorithm, State, better, rank
-from .operators import levy, sample_mask
+from .operators import levy, running_operator
 
 
 class GWO(Algorithm):
@@ -141,19 +141,12 @@ class MSIARGWO(GWO):
         guide = mu[0] * rho1 * (self._Xr - state.X) + mu[1] * (1 - rho1) * (self.leaders[0] - state.X)
         return np.tensordot(w, pulled, axes=1) + self.l1 * guide
 
-    def running_operator(self, state: State, n: int, d: int) -> np.ndarray:
-        """ARO's ``R = S * c`` (chen2025 eq 10-13)."""
-        t, T = state.it, state.horizon
-        S = (np.e - np.exp(((t - 1) / T) ** 2)) * np.sin(2 * np.pi * state.rng.random((n, 1)))
-        c = sample_mask(state.rng, n, d, state.rng.random(n))
-        return S * c
-
     def detour(self, state: State, X: np.ndarray) -> np.ndarray:
         """Eq 24-27: Levy detour (E > 1) or Brownian detour around alpha (E <= 1)."""
         rng = state.rng
         n, d = X.shape
         E = 4 * (1 - state.progress) * np.log(1 / np.maximum(rng.random((n, 1)), 1e-300))
-        R = self.running_operator(state, n, d)
+        R = running_operator(rng, state.it, state.horizon, n, d)
         jitter = np.round(0.5 * (0.05 + rng.random((n, 1)))) * rng.normal(size=(n, d))
         Xr = self._Xr
         far = Xr + levy(rng, (n, d), self.levy_beta, self.levy_scale) * R * (X - Xr) + jitter

@@ -50,3 +50,10 @@ def sample_mask(rng: np.random.Generator, n: int, d: int, frac: np.ndarray) -> n
     ranks = np.empty_like(order)
     np.put_along_axis(ranks, order, np.arange(d)[None, :].repeat(n, 0), axis=1)
     return ranks < counts[:, None]
+
+
+def running_operator(rng: np.random.Generator, t: int, T: int, n: int, d: int) -> np.ndarray:
+    """ARO's running operator ``R = S * c`` (Wang 2022; chen2025 eq 10-13):
+    ``S = (e - e^(((t - 1) / T)^2)) sin(2 pi r)`` and ``c`` a 0/1 mask of ``ceil(r' d)`` random dimensions."""
+    S = (np.e - np.exp(((t - 1) / T) ** 2)) * np.sin(2 * np.pi * rng.random((n, 1)))
+    return S * sample_mask(rng, n, d, rng.random(n))

@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from .engine import Algorithm, State
-from .operators import sample_mask
+from .operators import running_operator
 
 
 class WOA(Algorithm):
@@ -41,17 +41,12 @@ class WOA(Algorithm):
 class ARO(Algorithm):
     name = "aro"
 
-    def running_operator(self, state: State, n: int, d: int) -> np.ndarray:
-        t, T = state.it, state.horizon
-        S = (np.e - np.exp(((t - 1) / T) ** 2)) * np.sin(2 * np.pi * state.rng.random((n, 1)))
-        return S * sample_mask(state.rng, n, d, state.rng.random(n))
-
     def step(self, state: State) -> None:
         rng = state.rng
         n, d = state.X.shape
         X = state.X
         E = 4 * (1 - state.progress) * np.log(1 / np.maximum(rng.random((n, 1)), 1e-300))
-        R = self.running_operator(state, n, d)
+        R = running_operator(rng, state.it, state.horizon, n, d)
         # detour foraging: towards a random other rabbit
         j = (np.arange(n) + rng.integers(1, n, n)) % n
         detour = X[j] + R * (X - X[j]) + np.round(0.5 * (0.05 + rng.random((n, 1)))) * rng.normal(size=(n, d))
