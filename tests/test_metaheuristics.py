@@ -165,3 +165,12 @@ def test_feasibility_rule_prefers_feasible_points():
     r = op.optimize(f, [(-2, 2)] * 2, algorithm="gwo", pop=20, iters=200, seed=0)
     assert (r.x ** 2).sum() >= 1 - 1e-12
     assert r.f == pytest.approx(-4.0, abs=1e-2)  # the corner (-2, -2) is feasible and optimal
+
+
+def test_q_learning_tuning_is_reproducible_and_stays_on_the_grid():
+    from optplan.solvers.metaheuristics.tuning import tune_lambdas
+
+    a = tune_lambdas(steps=6, seed=1, runs=1, iters=15)
+    b = tune_lambdas(steps=6, seed=1, runs=1, iters=15)
+    assert a[:2] == b[:2] and 1 <= a[0] <= 10 and 1 <= a[1] <= 10
+    assert a[2][a[:2]] == min(a[2].values())  # the returned state is the best scored

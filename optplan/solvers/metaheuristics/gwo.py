@@ -90,9 +90,10 @@ class GWO(Algorithm):
         self.update_leaders(X, F, V)
 
 
-# chosen by tune_lambdas(seed=0) on Step and Penalized1 (see optplan/solvers/metaheuristics/tuning.py)
-LAMBDA1_DEFAULT = 2.0
-LAMBDA2_DEFAULT = 3.0
+# chosen by tuning.tune_lambdas() with its defaults (seed 0; shifted Step and Penalized1):
+# (1, 2), i.e. a = 2 (1 - t/T)^2. Rerun with `python -m optplan.solvers.metaheuristics.tuning`.
+LAMBDA1_DEFAULT = 1.0
+LAMBDA2_DEFAULT = 2.0
 
 
 class MSIARGWO(GWO):
