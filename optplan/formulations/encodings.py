@@ -76,9 +76,18 @@ class ColumnNodes(PathEncoding):
         X = np.asarray(X, dtype=float).reshape(-1, self.dim)
         rows = np.clip(X, 0.0, grid.height - 1e-9)
         rows = np.floor(rows) + 0.5 if self.snap else rows
-        cols = np.broadcast_to(self.columns + 0.5, rows.shape)
-        inner = grid.to_world(np.stack([cols, rows], axis=-1))
-        return self._frame(inner)
+        return self._paths_from_rows(rows)
+
+    def _paths_from_rows(self, rows: np.ndarray) -> np.ndarray:
+        """Paths for grid-unit node rows ``(n, d)`` (cell centres when snapped)."""
+        grid = self.world
+        n = len(rows)
+        P = np.empty((n, self.dim + 2, 2))
+        P[:, 0] = self.start
+        P[:, -1] = self.goal
+        P[:, 1:-1, 0] = (self.columns + 0.5) * grid.resolution + grid.origin[0]
+        P[:, 1:-1, 1] = rows * grid.resolution + grid.origin[1]
+        return P
 
     penetration_samples = 8
 
@@ -167,11 +176,18 @@ class ColumnNodes(PathEncoding):
         X = np.asarray(X, dtype=float).reshape(-1, self.dim)
         if self.dim == 0:
             return np.full(len(X), tables["direct" + what])
-        r = self.rows_of(X)
-        j = np.arange(self.dim - 1)
+        return self.lookup_rows(tables, self.rows_of(X), what)
+
+    def lookup_rows(self, tables: dict, r: np.ndarray, what: str = "") -> np.ndarray:
+        """:meth:`lookup` for integer rows already computed, ``(n, d)``."""
+        if self.dim == 0:
+            return np.full(len(r), tables["direct" + what])
         total = tables["first" + what][r[:, 0]] + tables["last" + what][r[:, -1]]
         if self.dim > 1:
-            total = total + tables["inner" + what][j, r[:, :-1], r[:, 1:]].sum(axis=1)
+            H = self.world.height
+            # one flat gather: entry (j, r1, r2) of the (d-1, H, H) table
+            flat = (np.arange(self.dim - 1) * (H * H))[None, :] + r[:, :-1] * H + r[:, 1:]
+            total = total + np.take(tables["inner" + what].reshape(-1), flat).sum(axis=1)
         return total
 
     def feasible_transitions(self, clearance: float = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

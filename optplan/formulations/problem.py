@@ -100,8 +100,9 @@ class PathProblem:
             if self._wants_penetration:
                 pen_fn = lambda seg: terms.penetration(enc.world, seg, self.clearance, enc.penetration_samples, distance=self._distance)  # noqa: E731
             tables = enc.segment_tables(self.clearance, pen_fn)
-            coll = enc.lookup(tables, X)
-            pen = enc.lookup(tables, X, "_pen") if pen_fn is not None else 0.0
+            rows = enc.rows_of(X)
+            coll = enc.lookup_rows(tables, rows)
+            pen = enc.lookup_rows(tables, rows, "_pen") if pen_fn is not None else 0.0
             return coll, pen
         coll = terms.collisions(enc.world, paths, self.clearance)
         pen = (terms.penetration(enc.world, paths, self.clearance, enc.penetration_samples, distance=self._distance)
