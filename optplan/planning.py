@@ -5,7 +5,7 @@ import importlib
 
 import numpy as np
 
-from .errors import OptplanError, ParameterError, UnknownAlgorithmError
+from .errors import ParameterError, UnknownAlgorithmError
 from .registry import GRAPH_METHODS, algorithms
 from .results import PlanResult
 
@@ -49,11 +49,9 @@ def plan(world, start, goal, algorithm: str = "astar", refine: str | None = None
         result = paths.plan_path(world, start, goal, algorithm=name, seed=seed, pop=pop, iters=iters,
                                  clearance=clearance, **params)
     if refine not in (None, "none"):
-        try:
-            refiners = importlib.import_module("optplan.solvers.refine")
-        except ImportError:
-            raise OptplanError(f"refine={refine!r} is not available in this version of optplan; use refine=None") from None
-        result = refiners.refine_result(world, result, method=refine, clearance=clearance, seed=seed)
+        from .solvers.refine import refine_result
+
+        result = refine_result(world, result, method=refine, clearance=clearance, seed=seed)
     if result.seed is None and name not in GRAPH_METHODS and isinstance(seed, (int, np.integer)):
         result.seed = int(seed)
     return result

@@ -33,7 +33,9 @@ def shortest_path(world, start, goal, method: str = "astar", *, corner_cutting: 
             optimum) or ``"visibility"`` (exact any-angle optimum).
         corner_cutting: allow diagonal moves past a blocked side cell (A*/Dijkstra only).
         points: ``"centres"`` or ``"corners"`` (visibility only).
-        clearance: metres; grids are inflated cell-wise by it before the search.
+        clearance: metres. A*/Dijkstra keep only moves whose straight segment keeps
+            it (exact rule); ``visibility`` searches the map inflated cell-wise by it
+            (conservative: the result is feasible but may be longer than necessary).
 
     Raises:
         InfeasibleQueryError: start/goal outside the map, blocked, or unreachable.
@@ -50,8 +52,8 @@ def shortest_path(world, start, goal, method: str = "astar", *, corner_cutting: 
         return plan_tangent(world, start, goal, clearance)
     s = world.check_query_point(start, "start", clearance)
     g = world.check_query_point(goal, "goal", clearance)
-    search_world = world.inflate(clearance) if clearance > 0 else world
     if method == "visibility":
+        search_world = world.inflate(clearance) if clearance > 0 else world
         if points == "centres":
             # both points must sit in free cells for the centre convention
             for p, what in ((s, "start"), (g, "goal")):
@@ -60,12 +62,14 @@ def shortest_path(world, start, goal, method: str = "astar", *, corner_cutting: 
         return make_plan_result(world, path, method, time.perf_counter() - t0, clearance=clearance)
     cs, cg = world.cell_of(s), world.cell_of(g)
     for c, what in ((cs, "start"), (cg, "goal")):
-        if search_world.occ[c[1], c[0]] if search_world.in_map(c) else True:
+        centre = world.cell_center(c)
+        if not (world.in_map(c) and bool(world.is_free(centre, clearance)) and not world.occ[c[1], c[0]]):
             from ...errors import InfeasibleQueryError
 
             raise InfeasibleQueryError(f"the {what} cell (ix={c[0]}, iy={c[1]}) is blocked"
-                                       + (f" after inflating by clearance {clearance:g} m" if clearance else ""))
-    cells, _, expanded = grid_search(search_world, cs, cg, heuristic=method == "astar", corner_cutting=corner_cutting)
+                                       + (f" or its centre is closer than {clearance:g} m to an obstacle" if clearance else ""))
+    cells, _, expanded = grid_search(world, cs, cg, heuristic=method == "astar", corner_cutting=corner_cutting,
+                                     clearance=clearance)
     path = world.cell_center(cells)
     return make_plan_result(world, path, method, time.perf_counter() - t0, clearance=clearance,
                             message=f"{expanded} cells expanded" + (" (corner cutting)" if corner_cutting else ""))

@@ -26,13 +26,14 @@ def octile(dx: float, dy: float) -> float:
     return max(dx, dy) + (SQRT2 - 1.0) * min(dx, dy)
 
 
-def grid_search(grid, start_cell, goal_cell, *, heuristic: bool = True, corner_cutting: bool = False):
+def grid_search(grid, start_cell, goal_cell, *, heuristic: bool = True, corner_cutting: bool = False,
+                clearance: float = 0.0):
     """Optimal 8-connected cell path from ``start_cell`` to ``goal_cell`` (integer ``(ix, iy)``).
 
     Returns ``(cells, length_in_cells, expanded)``; raises InfeasibleQueryError when
     the goal cannot be reached.
     """
-    table = move_table(grid, corner_cutting)
+    table = move_table(grid, corner_cutting, clearance)
     W = grid.width
     nb = table.neighbours.tolist()           # Python lists: the loop below is scalar by nature
     step = table.step_length.tolist()

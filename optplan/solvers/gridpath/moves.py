@@ -28,9 +28,15 @@ class MoveTable:
         return np.stack([flat % self.width, flat // self.width], axis=-1)
 
 
-def move_table(grid, corner_cutting: bool = False) -> MoveTable:
-    """Build (and cache on the grid) the move table."""
-    key = ("moves", bool(corner_cutting))
+def move_table(grid, corner_cutting: bool = False, clearance: float = 0.0) -> MoveTable:
+    """Build (and cache on the grid) the move table.
+
+    With ``clearance > 0`` a move is kept only when both cell centres are at least
+    ``clearance`` metres from obstacles and the map border and the straight move
+    keeps that distance too (the exact segment rule), so graph search with a
+    clearance does not have to block whole cells.
+    """
+    key = ("moves", bool(corner_cutting), float(clearance))
     if key in grid._cache:
         return grid._cache[key]
     H, W = grid.height, grid.width
@@ -45,6 +51,13 @@ def move_table(grid, corner_cutting: bool = False) -> MoveTable:
         if dx and dy and not corner_cutting:
             ok &= ~pad[iy + 1, tx + 1] & ~pad[ty + 1, ix + 1]
         nb[ok, k] = (ty * W + tx)[ok]
+    if clearance > 0:
+        src, k = np.nonzero(nb >= 0)
+        a = grid.cell_center(np.stack([src % W, src // W], axis=1))
+        dst = nb[src, k]
+        b = grid.cell_center(np.stack([dst % W, dst // W], axis=1))
+        ok = grid.is_free(a, clearance) & grid.is_free(b, clearance) & grid.segments_free(a, b, clearance)
+        nb[src[~ok], k[~ok]] = -1
     table = MoveTable(W, H, nb, STEP.copy())
     grid._cache[key] = table
     return table

@@ -1,1 +1,4 @@
-"""See DESIGN.md for what this layer holds."""
+"""Nonlinear-programming refinement (CasADi Opti + IPOPT)."""
+from .smoothing import SmoothResult, resample, smooth_path
+
+__all__ = ["SmoothResult", "resample", "smooth_path"]

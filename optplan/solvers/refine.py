@@ -1,0 +1,44 @@
+"""Refinement stage of ``op.plan(..., refine=...)``: polish a planner's path.
+
+``casadi`` smooths and shortens the path with IPOPT under clearance constraints
+(:mod:`optplan.solvers.nlp`). The refined path replaces the seed only when it
+passed the exact check; otherwise the seed is returned with ``refined=False``
+and the reason in ``message``. (``qp``, the convex corridor smoother, is not
+part of this version.)
+"""
+from __future__ import annotations
+
+from dataclasses import replace
+
+from ..errors import OptplanError, ParameterError
+from ..results import PlanResult
+from .result import make_plan_result
+
+METHODS = ("casadi",)
+
+
+def refine_path(world, path, method: str = "casadi", clearance: float = 0.0, **options):
+    """Refine a raw ``(N, 2)`` path; returns the solver's result object."""
+    if method == "casadi":
+        from .nlp import smooth_path
+
+        return smooth_path(world, path, clearance, **options)
+    if method == "qp":
+        raise OptplanError("refine='qp' (the OSQP corridor smoother) is not available in this version; use 'casadi'")
+    raise ParameterError(f"refine must be 'casadi' or 'qp', got {method!r}")
+
+
+def refine_result(world, result: PlanResult, method: str = "casadi", clearance: float = 0.0, seed=None,
+                  **options) -> PlanResult:
+    """Refine ``result.path``; the algorithm name and seed stay the planner's."""
+    if not result.feasible or len(result.path) < 2:
+        return replace(result, refined=False,
+                       message=(result.message + "; " if result.message else "") + "not refined: the seed path is infeasible")
+    out = refine_path(world, result.path, method, clearance, **options)
+    if not out.success:
+        return replace(result, refined=False, runtime_s=result.runtime_s + out.solve_time_s,
+                       message=(result.message + "; " if result.message else "") + f"refinement fell back to the seed: {out.message}")
+    refined = make_plan_result(world, out.path, result.algorithm, result.runtime_s + out.solve_time_s,
+                               clearance=clearance, history=result.history, seed=result.seed, nfev=result.nfev,
+                               message=result.message, refined=True)
+    return refined
