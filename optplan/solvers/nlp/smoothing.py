@@ -71,6 +71,20 @@ def default_points(path: np.ndarray, spacing: float) -> int:
 _CACHE: dict = {}
 
 
+def _smoothing_core(opti, N: int, w_smooth: float):
+    """Variables, fixed ends and the objective shared by every smoothing NLP."""
+    import casadi as ca
+
+    X = opti.variable(N, 2)
+    ends = opti.parameter(2, 2)
+    d = X[1:, :] - X[:-1, :]
+    dd = X[2:, :] - 2 * X[1:-1, :] + X[:-2, :]
+    opti.minimize(ca.sum1(ca.sum2(d ** 2)) + w_smooth * ca.sum1(ca.sum2(dd ** 2)))
+    opti.subject_to(X[0, :] == ends[0, :])
+    opti.subject_to(X[N - 1, :] == ends[1, :])
+    return X, ends
+
+
 def _circle_solver(N: int, K: int, w_smooth: float):
     """NLP for circle worlds, built once per (N, K, w): inputs (x0, centres, radii, box, ends)."""
     key = ("circles", N, K, w_smooth)
@@ -79,16 +93,10 @@ def _circle_solver(N: int, K: int, w_smooth: float):
     import casadi as ca
 
     opti = ca.Opti()
-    X = opti.variable(N, 2)
+    X, ends = _smoothing_core(opti, N, w_smooth)
     C = opti.parameter(2 * N - 1, 2 * K)   # K nearest centres of each point and midpoint (x..., y...)
     R = opti.parameter(2 * N - 1, K)       # their grown radii + margin
     box = opti.parameter(4)
-    ends = opti.parameter(2, 2)
-    d = X[1:, :] - X[:-1, :]
-    dd = X[2:, :] - 2 * X[1:-1, :] + X[:-2, :]
-    opti.minimize(ca.sum1(ca.sum2(d ** 2)) + w_smooth * ca.sum1(ca.sum2(dd ** 2)))
-    opti.subject_to(X[0, :] == ends[0, :])
-    opti.subject_to(X[N - 1, :] == ends[1, :])
     Q = ca.vertcat(X, (X[1:, :] + X[:-1, :]) / 2)   # points then midpoints
     for k in range(K):
         dx = Q[:, 0] - C[:, k]
@@ -119,14 +127,8 @@ def _grid_solver(grid, N: int, w_smooth: float, subdiv: int = 4):
         grid._cache[("casadi_sdf", subdiv)] = interp
     xmin, ymin, xmax, ymax = grid.bounds
     opti = ca.Opti()
-    X = opti.variable(N, 2)
+    X, ends = _smoothing_core(opti, N, w_smooth)
     margin = opti.parameter()
-    ends = opti.parameter(2, 2)
-    d = X[1:, :] - X[:-1, :]
-    dd = X[2:, :] - 2 * X[1:-1, :] + X[:-2, :]
-    opti.minimize(ca.sum1(ca.sum2(d ** 2)) + w_smooth * ca.sum1(ca.sum2(dd ** 2)))
-    opti.subject_to(X[0, :] == ends[0, :])
-    opti.subject_to(X[N - 1, :] == ends[1, :])
     Q = ca.vertcat(X[1:N - 1, :], (X[1:, :] + X[:-1, :]) / 2)
     opti.subject_to(interp(Q.T).T >= margin)
     opti.subject_to(opti.bounded(xmin, X[:, 0], xmax))
