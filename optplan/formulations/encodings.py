@@ -242,10 +242,6 @@ class ColumnNodes(PathEncoding):
             rows[:, j + 1] = pick(inner[j][rows[:, j]], aim)
         return rows + 0.5
 
-    def encode_path_rows(self, rows: np.ndarray) -> np.ndarray:
-        """Inverse of ``decode`` for snapped rows: cell rows -> a decision vector."""
-        return np.asarray(rows, dtype=float) + 0.5
-
 
 @dataclass
 class FreeWaypoints(PathEncoding):

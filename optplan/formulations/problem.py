@@ -78,15 +78,6 @@ class PathProblem:
             f = f + p.turn_cost * terms.turn_cost_quantised(paths)
         return f
 
-    def violation_of_paths(self, paths: np.ndarray) -> np.ndarray:
-        """Constraint violation ``(n,)``: colliding segments (exact rule) plus the smooth
-        penetration integral; zero exactly for feasible paths."""
-        v = terms.collisions(self.encoding.world, paths, self.clearance)
-        if self._wants_penetration:
-            v = v + terms.penetration(self.encoding.world, paths, self.clearance, self.encoding.penetration_samples,
-                                      distance=self._distance)
-        return v
-
     # ------------------------------------------------------------ solver view
     @property
     def _wants_penetration(self) -> bool:
