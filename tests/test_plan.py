@@ -41,9 +41,8 @@ def test_circle_world_planning_is_checked_against_the_tangent_optimum():
     world, s, g = paper_map("yang2023_env1")
     opt = op.shortest_path(world, s, g, method="visibility")
     r = op.plan(world, s, g, algorithm="ipso", seed=0, pop=30, iters=60)
-    assert opt.feasible
-    if r.feasible:
-        assert r.length >= opt.length - 1e-9
+    assert opt.feasible and r.feasible and op.validate_path(world, r.path)
+    assert r.length >= opt.length - 1e-9
 
 
 def test_unknown_planner_and_bad_refine():

@@ -45,8 +45,8 @@ def test_clearance_is_respected():
     world, _, _ = paper_map("chen2025_20")
     s, g = (1.5, 1.5), (18.5, 18.5)
     res = op.plan(world, s, g, algorithm="astar", refine="casadi", clearance=0.2)
-    assert res.feasible and op.validate_path(world, res.path, clearance=0.2)
-    assert res.min_clearance >= 0.2 - 1e-6 or not res.refined
+    assert res.refined and res.feasible and op.validate_path(world, res.path, clearance=0.2)
+    assert res.min_clearance >= 0.2 - 1e-6
 
 
 def test_topologically_wrong_seed_falls_back_or_validates():
