@@ -16,7 +16,7 @@ from .errors import (
     ScenarioError,
     UnknownAlgorithmError,
 )
-from .results import OptimizeResult, PlanResult
+from .results import OptimizeResult, PlanResult, SimResult
 
 __version__ = "0.1.0"
 
@@ -33,13 +33,17 @@ _LAZY = {
     "optimize": "optplan.solvers.metaheuristics",
     "plan": "optplan.planning",
     "algorithms": "optplan.registry",
+    "RobotSpec": "optplan.world.robot",
+    "Scenario": "optplan.world.scenario",
+    "load_scenario": "optplan.world.scenario",
+    "simulate": "optplan.sim",
 }
 
 __all__ = sorted(
     list(_LAZY)
     + [
         "OptplanError", "MapFormatError", "InfeasibleQueryError", "UnknownAlgorithmError",
-        "ParameterError", "ScenarioError", "OptimizeResult", "PlanResult",
+        "ParameterError", "ScenarioError", "OptimizeResult", "PlanResult", "SimResult",
     ]
 )
 

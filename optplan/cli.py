@@ -2,11 +2,20 @@
 from __future__ import annotations
 
 import argparse
+import importlib
 import json
 import sys
 from pathlib import Path
 
 from .errors import OptplanError
+
+# Subcommands whose arguments and handler live with their layer: each module defines
+# ``add_<name>_arguments(parser)`` and ``run_<name>(args) -> int``.
+LAYER_COMMANDS = (
+    ("simulate", "optplan.sim.command", "run a robot through a scenario (global + local planner)"),
+    ("bench", "optplan.bench.command", "run an experiment spec (maps x algorithms x seeds) into SQLite"),
+    ("reproduce", "optplan.bench.command", "run a paper's shipped experiments and print its tables"),
+)
 
 EXAMPLES = {
     "plan": "example: optplan plan arena --start 1.5 37.5 --goal 40.5 10.5 --algo visibility --plot arena.png",
@@ -87,6 +96,15 @@ def build_parser() -> argparse.ArgumentParser:
 
     a = sub.add_parser("algorithms", help="list every registered planner", epilog=EXAMPLES["algorithms"])
     a.set_defaults(func=_cmd_algorithms)
+
+    for name, module, help_text in LAYER_COMMANDS:
+        try:
+            mod = importlib.import_module(module)
+        except ImportError:  # a layer not built in this version
+            continue
+        c = sub.add_parser(name, help=help_text)
+        getattr(mod, f"add_{name}_arguments")(c)
+        c.set_defaults(func=getattr(mod, f"run_{name}"))
 
     d = sub.add_parser("demo", help="plan on a shipped map, print a table, write a PNG", epilog=EXAMPLES["demo"])
     d.add_argument("--out", default="optplan_demo.png", help="PNG to write (default optplan_demo.png)")

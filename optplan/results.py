@@ -110,3 +110,58 @@ class PlanResult(_ToDict):
         """Exactly the keys of the ``optplan plan --json`` contract."""
         d = self.to_dict()
         return {k: d[k] for k in self.JSON_KEYS}
+
+
+@dataclass
+class SimResult(_ToDict):
+    """Outcome of one closed-loop run (``op.simulate``).
+
+    Attributes:
+        reached: the robot got within the goal tolerance before ``time_limit``.
+        collisions: simulation steps on which the robot's footprint overlapped an
+            obstacle (static known, static unknown or moving), by the exact check.
+        time_s: simulated time until the goal was reached (or the run stopped), seconds.
+        path_length: distance driven, metres.
+        min_clearance: smallest distance from the footprint to any obstacle, metres
+            (negative when it overlapped one).
+        max_abs_accel: largest |dv/dt| over the run, m/s^2.
+        max_abs_ang_accel: largest |dw/dt| over the run, rad/s^2.
+        steps: control steps simulated.
+        mean_step_ms: mean wall time of one local-planner call, milliseconds.
+        trajectory: rows ``[t, x, y, theta, v, w]`` (seconds, metres, radians, m/s, rad/s).
+        status: ``"reached"``, ``"collision"``, ``"timeout"`` or ``"stuck"``.
+        message: what happened, in words.
+        global_planner, local_planner, refine: what was run.
+        global_path: ``(N, 2)`` global path the robot followed (last one if re-planned).
+        seed: the seed used.
+        replans: number of global re-plans (path switch or stuck recovery).
+        max_abs_jerk: largest |d^2v/dt^2| over the run, m/s^3.
+    """
+
+    reached: bool
+    collisions: int
+    time_s: float
+    path_length: float
+    min_clearance: float
+    max_abs_accel: float
+    max_abs_ang_accel: float
+    steps: int
+    mean_step_ms: float
+    trajectory: np.ndarray
+    status: str = ""
+    message: str = ""
+    global_planner: str = ""
+    local_planner: str = ""
+    refine: str | None = None
+    global_path: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    seed: int | None = None
+    replans: int = 0
+    max_abs_jerk: float = 0.0
+
+    JSON_KEYS = ("reached", "collisions", "time_s", "path_length", "min_clearance", "max_abs_accel",
+                 "max_abs_ang_accel", "steps", "mean_step_ms", "trajectory")
+
+    def to_json_dict(self) -> dict[str, Any]:
+        """Exactly the keys of the ``optplan simulate --json`` contract."""
+        d = self.to_dict()
+        return {k: d[k] for k in self.JSON_KEYS}
