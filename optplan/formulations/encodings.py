@@ -107,15 +107,24 @@ class ColumnNodes(PathEncoding):
             cache[key] = table
         table = cache[key]
         r = self.rows_of(X)
-        snapped = table[np.arange(self.dim)[None, :], r]
+        # flat gather: entry (j, r) of the (d, H) table
+        snapped = table.take(r + self._column_offsets())
         if not self.snap:
             # keep the continuous offset inside the chosen free cell
             return snapped - 0.5 + (np.asarray(X) - np.floor(np.asarray(X)))
         return snapped
 
+    def _column_offsets(self) -> np.ndarray:
+        """``j * H`` for each column ``j``: flat offsets into ``(d, H)`` per-column tables."""
+        off = getattr(self, "_col_offsets", None)
+        if off is None:
+            off = self._col_offsets = np.arange(self.dim, dtype=np.int64) * self.world.height
+        return off
+
     def rows_of(self, X: np.ndarray) -> np.ndarray:
         """Integer cell rows of the nodes, ``(n, d)``."""
-        return np.clip(np.floor(np.asarray(X, dtype=float)), 0, self.world.height - 1).astype(np.int64)
+        # on [0, H-1] truncation is floor; bounding first also maps negatives to row 0
+        return np.minimum(np.maximum(np.asarray(X, dtype=float), 0.0), self.world.height - 1).astype(np.int64)
 
     def segment_tables(self, clearance: float, penetration_fn=None) -> dict:
         """Per-segment collision (and penetration) values for every pair of node rows.
@@ -189,6 +198,48 @@ class ColumnNodes(PathEncoding):
             flat = (np.arange(self.dim - 1) * (H * H))[None, :] + r[:, :-1] * H + r[:, 1:]
             total = total + np.take(tables["inner" + what].reshape(-1), flat).sum(axis=1)
         return total
+
+    # ---------------------------------------------------- flat segment layout
+    # Every per-segment quantity of snapped column nodes lives in one flat array
+    # ``[first (H) | inner ((d-1) * H * H) | last (H)]``, so a population's segments
+    # are one ``(n, d + 1)`` index array and any table sum is one gather and one sum.
+
+    def segment_index(self, rows: np.ndarray) -> np.ndarray:
+        """Flat indices ``(n, d + 1)`` of each individual's segments (start->node 1, ...,
+        node d->goal) in the layout above, for integer rows ``(n, d)``; needs ``d >= 1``."""
+        H, d = self.world.height, self.dim
+        layout = getattr(self, "_layout", None)
+        if layout is None:
+            # segment k joins padded rows k and k+1 of [0, rows, 0]: index = base + mult * a + b
+            mult = np.concatenate([[0], np.full(d - 1, H), [1]]).astype(np.int64)
+            base = np.concatenate([[0], H + np.arange(d - 1) * (H * H), [H + (d - 1) * H * H]]).astype(np.int64)
+            layout = self._layout = (mult, base)
+        padded = np.zeros((len(rows), d + 2), dtype=np.int64)
+        padded[:, 1:-1] = rows
+        idx = padded[:, :-1] * layout[0]
+        idx += padded[:, 1:]
+        idx += layout[1]
+        return idx
+
+    @staticmethod
+    def flat_table(tables: dict, what: str = "") -> np.ndarray:
+        """One of :meth:`segment_tables`' arrays (``what`` = ``""`` or ``"_pen"``) in the flat layout."""
+        return np.concatenate([tables["first" + what], tables["inner" + what].reshape(-1), tables["last" + what]])
+
+    def segment_lengths(self) -> np.ndarray:
+        """Length in metres of every possible segment, in the flat layout (``d >= 1``).
+
+        Computed from the same world coordinates :meth:`decode` produces, so a
+        table sum equals ``terms.length`` of the decoded path."""
+        grid, H = self.world, self.world.height
+        res, (ox, oy) = grid.resolution, grid.origin
+        ys = (np.arange(H) + 0.5) * res + oy
+        xs = (self.columns + 0.5) * res + ox
+        first = np.hypot(xs[0] - self.start[0], ys - self.start[1])
+        last = np.hypot(self.goal[0] - xs[-1], self.goal[1] - ys)
+        dy = ys[None, :] - ys[:, None]                          # (r1, r2): ys[r2] - ys[r1]
+        inner = np.hypot(np.diff(xs)[:, None, None], dy[None, :, :])
+        return np.concatenate([first, inner.reshape(-1), last])
 
     def feasible_transitions(self, clearance: float = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Boolean masks of collision-free moves: ``first[r]``, ``inner[j, r1, r2]``,

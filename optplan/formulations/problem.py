@@ -68,8 +68,22 @@ class PathProblem:
 
     def cost_terms(self, paths: np.ndarray) -> np.ndarray:
         """Weighted path-quality terms (no constraint part), ``(n,)``."""
+        f = self.preset.length * terms.length(paths)
+        turns = self.turn_terms(paths)
+        return f if turns is None else f + turns
+
+    @property
+    def _has_turn_terms(self) -> bool:
         p = self.preset
-        f = p.length * terms.length(paths)
+        return bool(p.turn_angle or p.turn_count or p.turn_cost)
+
+    def turn_terms(self, paths: np.ndarray) -> np.ndarray | None:
+        """Weighted terms of consecutive segment pairs (turn angle, count, cost), ``(n,)``;
+        ``None`` when the preset has none."""
+        p = self.preset
+        if not self._has_turn_terms:
+            return None
+        f = 0.0
         if p.turn_angle:
             f = f + p.turn_angle * terms.turn_angle(paths)
         if p.turn_count:
@@ -100,9 +114,52 @@ class PathProblem:
                if self._wants_penetration else 0.0)
         return coll, pen
 
+    def _segment_cost_tables(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """Per-segment ``(objective, violation)`` in the column-node flat layout.
+
+        With snapped column nodes, length, collision count and penetration are sums
+        over segments drawn from a finite set, so their weighted per-segment values
+        are tabulated once per map, clearance and preset (cached on the world) and
+        a population is scored by one gather per table. ``None`` for other encodings.
+        """
+        enc = self.encoding
+        if not (getattr(enc, "snap", False) and hasattr(enc, "segment_index")) or enc.dim == 0:
+            return None
+        cached = getattr(self, "_fused", None)
+        if cached is not None:
+            return cached
+        key = ("column_cost_tables", self.clearance, self.preset, self._collision_penalty,
+               enc.columns.tobytes(), np.concatenate([enc.start, enc.goal]).tobytes())
+        cache = enc.world._cache
+        if key not in cache:
+            pen_fn = None
+            if self._wants_penetration:
+                pen_fn = lambda seg: terms.penetration(enc.world, seg, self.clearance, enc.penetration_samples, distance=self._distance)  # noqa: E731
+            tables = enc.segment_tables(self.clearance, pen_fn)
+            coll = enc.flat_table(tables)
+            pen = enc.flat_table(tables, "_pen") if pen_fn is not None else np.zeros_like(coll)
+            cost = self.preset.length * enc.segment_lengths()
+            if self.preset.constraint == "penalty":
+                cost = cost + self._collision_penalty * coll + self.preset.penetration_penalty * pen
+            cache[key] = (cost, coll + pen)
+        self._fused = cache[key]
+        return self._fused
+
     def evaluate(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``(objective, violation)`` for a population ``X`` of shape ``(n, d)``."""
         X = np.asarray(X, dtype=float)
+        fused = self._segment_cost_tables()
+        if fused is not None:
+            enc = self.encoding
+            X = X.reshape(-1, enc.dim)
+            self.nfev += len(X)
+            idx = enc.segment_index(enc.rows_of(X))
+            # method calls and ufunc reductions: no Python wrappers in this hot path
+            f = np.add.reduce(fused[0].take(idx), axis=1)
+            v = np.add.reduce(fused[1].take(idx), axis=1)
+            if self._has_turn_terms:
+                f = f + self.turn_terms(self.decode(X))
+            return f, v
         paths = self.decode(X)
         self.nfev += len(paths)
         cost = self.cost_terms(paths)

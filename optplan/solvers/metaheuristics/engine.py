@@ -20,6 +20,7 @@ the rows that could not be evaluated are treated as infinitely bad.
 """
 from __future__ import annotations
 
+import math
 import sys
 import time
 from dataclasses import dataclass
@@ -110,7 +111,8 @@ class State:
 
     # -------------------------------------------------------- evaluation
     def clip(self, X: np.ndarray) -> np.ndarray:
-        return np.clip(X, self.lower, self.upper)
+        # two ufuncs: np.clip's Python dispatch costs more than the work at these sizes
+        return np.minimum(np.maximum(X, self.lower), self.upper)
 
     def evaluate(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Evaluate a batch (clipped and repaired first); returns ``(f, violation)``.
@@ -125,13 +127,15 @@ class State:
         Xk = X if k == n else X[:k]
         out = self.problem.f(Xk)
         if isinstance(out, tuple):
-            fk, vk = (np.asarray(o, dtype=float).reshape(-1) for o in out)
-            vk = np.where(np.isnan(vk), np.inf, vk)
+            fk = np.asarray(out[0], dtype=float).reshape(-1)
+            vk = np.asarray(out[1], dtype=float).reshape(-1)
+            if math.isnan(np.add.reduce(vk)):          # one reduction instead of a mask on every call
+                vk = np.where(np.isnan(vk), np.inf, vk)
         else:
             fk, vk = np.asarray(out, dtype=float).reshape(-1), np.zeros(k)
         if fk.shape != (k,) or vk.shape != (k,):
             raise ParameterError(f"the objective must return shape ({k},) for {k} rows, got {fk.shape}")
-        if not np.isfinite(fk).all():
+        if not math.isfinite(np.add.reduce(fk)) and not np.isfinite(fk).all():
             self.nan_seen |= bool(np.isnan(fk).any())
             fk = np.where(np.isfinite(fk), fk, np.inf)
         self.nfev += k
@@ -143,7 +147,7 @@ class State:
 
 
     def _offer(self, X, f, v) -> None:
-        i = int(np.argmin(f)) if not v.any() else int(rank(f, v)[0])
+        i = int(f.argmin()) if not v.any() else int(rank(f, v)[0])
         if better(f[i], v[i], self.best_f, self.best_v):
             self.best_x, self.best_f, self.best_v = X[i].copy(), float(f[i]), float(v[i])
 
@@ -162,7 +166,11 @@ class State:
 
     def greedy(self, Xnew, Fnew, Vnew, idx=None) -> np.ndarray:
         """Replace population rows (all, or ``idx``) by the new ones where those are better."""
-        idx = np.arange(len(self.X)) if idx is None else np.asarray(idx)
+        if idx is None:
+            win = better(Fnew, Vnew, self.F, self.V)
+            self.X[win], self.F[win], self.V[win] = Xnew[win], Fnew[win], Vnew[win]
+            return win
+        idx = np.asarray(idx)
         win = better(Fnew, Vnew, self.F[idx], self.V[idx])
         rows = idx[win]
         self.X[rows], self.F[rows], self.V[rows] = Xnew[win], Fnew[win], Vnew[win]

@@ -13,6 +13,16 @@ and safety threshold ``ST`` (hou2024 eq 4-6):
 Each sparrow keeps the better of its old and new position. Defaults follow
 hou2024 Table 1 (ST = 0.8, producers 0.3, scouts 0.2).
 
+One iteration evaluates the flock once (hou2024 §2.2.5, steps 3-6: producers,
+scroungers and scouts move, then "compute the fitness value for each sparrow").
+As in Xue & Shen's reference implementation, a scout's eq-6 position is computed
+from its position and fitness at the start of the iteration and replaces its
+producer/scrounger move, so every sparrow has one candidate per iteration. Two
+simplifications of that implementation remain: the scroungers follow the new
+position of the top-ranked producer (the reference code first evaluates the
+producers and follows the best of them), and the best/worst used by the scouts
+are those of the start of the iteration.
+
 MISSA changes (hou2024 §2.2):
 
 * eq 9, logistic-tent chaotic initialisation;
@@ -97,16 +107,15 @@ class SSA(Algorithm):
 
     def step(self, state: State) -> None:
         order, n_prod = self.roles(state)
-        Xn, Fn, Vn = state.eval_new(self.move_producers_and_scroungers(state, order, n_prod))
-        state.greedy(Xn, Fn, Vn)
-        # scouts: a random share of the flock
+        new = self.move_producers_and_scroungers(state, order, n_prod)
+        # scouts: a random share of the flock; their danger move replaces their role move
         n = len(state.X)
         k = max(1, int(round(self.scouts * n)))
         idx = state.rng.choice(n, size=k, replace=False)
-        order = rank(state.F, state.V)
         best, worst = state.X[order[0]], state.X[order[-1]]
-        Xs, Fs, Vs = state.eval_new(self.scout_move(state, idx, best, worst, state.F[order[0]], state.F[order[-1]]))
-        state.greedy(Xs, Fs, Vs, idx)
+        new[idx] = self.scout_move(state, idx, best, worst, state.F[order[0]], state.F[order[-1]])
+        Xn, Fn, Vn = state.eval_new(new)
+        state.greedy(Xn, Fn, Vn)
 
 
 class MISSA(SSA):
@@ -147,9 +156,13 @@ class MISSA(SSA):
         n = len(state.X)
         k, d = Xs.shape
         hungry = (ranks + 1) > n / 2
-        far = rng.normal(size=(k, 1)) * np.exp((worst - Xs) / ((ranks[:, None] + 1.0) ** 2))
-        near = best_producer + best_producer * levy(rng, (k, d), 1.5, 0.01)
-        return np.where(hungry[:, None], far, near)
+        out = np.empty_like(Xs)
+        # draw each half's random numbers only for the sparrows that use them
+        h = hungry.nonzero()[0]
+        out[h] = rng.normal(size=(h.size, 1)) * np.exp((worst - Xs[h]) / ((ranks[h, None] + 1.0) ** 2))
+        fed = (~hungry).nonzero()[0]
+        out[fed] = best_producer + best_producer * levy(rng, (fed.size, d), 1.5, 0.01)
+        return out
 
     def cauchy_t(self, state: State) -> None:
         """Eq 18: perturb the best sparrow, keep it if better."""
