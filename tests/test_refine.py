@@ -73,9 +73,3 @@ def test_infeasible_seed_result_is_not_refined():
 
     out = refine_result(world, bad)
     assert not out.refined and "infeasible" in out.message
-
-
-def test_qp_refinement_says_it_is_not_available():
-    world, s, g = paper_map("chen2025_20")
-    with pytest.raises(op.OptplanError, match="not available"):
-        op.plan(world, s, g, algorithm="astar", refine="qp")

@@ -1,20 +1,23 @@
 """Refinement stage of ``op.plan(..., refine=...)``: polish a planner's path.
 
 ``casadi`` smooths and shortens the path with IPOPT under clearance constraints
-(:mod:`optplan.solvers.nlp`). The refined path replaces the seed only when it
-passed the exact check; otherwise the seed is returned with ``refined=False``
-and the reason in ``message``. (``qp``, the convex corridor smoother, is not
-part of this version.)
+(:mod:`optplan.solvers.nlp`): a nonconvex program that may also pull a path
+across into a shorter homotopy class. ``qp`` solves a sequence of convex QPs
+inside a safe corridor around the path (:mod:`optplan.solvers.qp`, OSQP): it
+keeps the seed's homotopy class, needs a collision-free seed, and is the faster
+of the two. The refined path replaces the seed only when it passed the exact
+check; otherwise the seed is returned with ``refined=False`` and the reason in
+``message``.
 """
 from __future__ import annotations
 
 from dataclasses import replace
 
-from ..errors import OptplanError, ParameterError
+from ..errors import ParameterError
 from ..results import PlanResult
 from .result import make_plan_result
 
-METHODS = ("casadi",)
+METHODS = ("casadi", "qp")
 
 
 def refine_path(world, path, method: str = "casadi", clearance: float = 0.0, **options):
@@ -24,7 +27,9 @@ def refine_path(world, path, method: str = "casadi", clearance: float = 0.0, **o
 
         return smooth_path(world, path, clearance, **options)
     if method == "qp":
-        raise OptplanError("refine='qp' (the OSQP corridor smoother) is not available in this version; use 'casadi'")
+        from .qp import smooth_path_qp
+
+        return smooth_path_qp(world, path, clearance, **options)
     raise ParameterError(f"refine must be 'casadi' or 'qp', got {method!r}")
 
 

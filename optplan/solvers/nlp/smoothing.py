@@ -41,13 +41,23 @@ IPOPT_OPTIONS = {
 
 @dataclass
 class SmoothResult:
-    """Outcome of :func:`smooth_path`."""
+    """Outcome of a smoother (:func:`smooth_path`, :func:`optplan.solvers.qp.smooth_path_qp`).
+
+    Attributes:
+        path: the refined path when ``success``, otherwise the seed unchanged, ``(N, 2)`` metres.
+        success: the refined path passed ``validate_path``.
+        message: empty on a first-try success, otherwise what happened (the reason for a fallback).
+        solve_time_s: wall time of the whole call, seconds.
+        iterations: solver iterations (IPOPT iterations / OSQP ADMM iterations, summed over rounds).
+        objective: the smoothing objective ``J`` of ``path`` (NaN when not computed).
+    """
 
     path: np.ndarray
     success: bool
     message: str
     solve_time_s: float
     iterations: int = 0
+    objective: float = float("nan")
 
 
 def resample(path: np.ndarray, n: int) -> np.ndarray:
