@@ -1,0 +1,227 @@
+"""The fusion layer: global plan (+ refinement) -> subgoals -> local planner.
+
+A :class:`Navigator` owns everything between the global planner and the local
+planner during one closed-loop run:
+
+* the initial global plan through ``optplan.planning.plan`` on the *known* map, with
+  the robot radius as clearance (if that finds no valid path, it retries with zero
+  clearance and says so in :attr:`messages`); on grids the path is extended by the
+  exact start and goal (A* snaps both to cell centres, which lie in the same free cell);
+* the subgoal strategy (``optplan.nav.subgoals``) of the local planner's paper;
+* what to do when a newly sensed obstacle blocks the rest of the global path:
+  ``"switch"`` — yuan2021 §4.2's virtual-point graph and Dijkstra
+  (``optplan.nav.path_switch``), falling back to a re-plan when the graph has no route;
+  ``"replan"`` — plan again from the robot's position on the known map plus what has
+  been sensed; ``"ignore"`` — leave avoidance to the local planner (hou2024, yang2023
+  and li2023 do this);
+* stuck recovery: when the robot has moved less than ``stuck_distance`` in the last
+  ``stuck_time`` seconds, the path is re-planned from where it is (at most
+  ``max_replans`` times in a run).
+
+Re-plans use fast exact graph search (``astar`` on grids, ``visibility`` on circle
+worlds) on the believed world, not the global metaheuristic: a re-plan must be
+available within a control period or two.
+"""
+from __future__ import annotations
+
+from collections import deque
+
+import numpy as np
+
+from ..errors import InfeasibleQueryError, OptplanError, ParameterError
+from ..planning import plan
+from ..results import PlanResult
+from .subgoals import SubgoalStrategy, make_strategy
+
+# each local planner preset's paper default: (subgoal strategy, on_blocked)
+PRESET_DEFAULTS = {
+    "dwa": ("goal", "ignore"),                       # Fox et al. 1997: no global guidance
+    "missa-dwa": ("key_points", "ignore"),           # hou2024 §3.2
+    "idwa": ("navigation_points", "ignore"),         # yang2023 §6
+    "ba-dwa": ("turning_points", "switch"),          # yuan2021 §4.1-4.2
+    "iga-dwa": ("key_points", "ignore"),             # li2023 §4.4, §5.5
+    "qp-dwa": ("key_points", "replan"),              # optplan's own: key points + exact re-plan
+}
+ON_BLOCKED = ("switch", "replan", "ignore")
+
+
+def preset_defaults(local_name: str) -> tuple[str, str]:
+    """``(subgoal strategy, on_blocked)`` used for a local planner name."""
+    return PRESET_DEFAULTS.get(local_name, ("key_points", "replan"))
+
+
+class Navigator:
+    """Global path, subgoals and recovery for one run.
+
+    Args:
+        world: the known map.
+        robot: RobotSpec (its radius is the planning clearance).
+        start, goal: ``(2,)`` metres.
+        global_planner: name for ``op.plan`` (``astar`` on a circle world means ``visibility``).
+        refine: ``None``, ``"casadi"`` or ``"qp"``.
+        seed: seed of the global planner.
+        subgoals: strategy name or a :class:`SubgoalStrategy`.
+        on_blocked: ``"switch"``, ``"replan"`` or ``"ignore"``.
+        stuck_time, stuck_distance: seconds and metres of the stuck test.
+        max_replans: re-plans allowed in a run (blocked path or stuck).
+        global_options: extra keyword arguments for ``op.plan`` (``pop``, ``iters``, ...).
+        subgoal_options: keyword arguments of the strategy (``switch_radius``, ...).
+    """
+
+    def __init__(self, world, robot, start, goal, global_planner: str = "astar", refine: str | None = None,
+                 seed=0, subgoals: str | SubgoalStrategy = "key_points", on_blocked: str = "replan",
+                 stuck_time: float = 10.0, stuck_distance: float = 0.3, max_replans: int = 5,
+                 global_options: dict | None = None, subgoal_options: dict | None = None):
+        if on_blocked not in ON_BLOCKED:
+            raise ParameterError(f"on_blocked must be one of {', '.join(ON_BLOCKED)}, got {on_blocked!r}")
+        self.world = world
+        self.robot = robot
+        self.start = np.asarray(start, float)
+        self.goal = np.asarray(goal, float)
+        self.is_grid = hasattr(world, "occ")
+        self.global_planner = global_planner.lower()
+        if not self.is_grid and self.global_planner in ("astar", "dijkstra"):
+            self.global_planner = "visibility"
+        self.refine = None if refine in (None, "none") else refine
+        self.seed = seed
+        self.on_blocked = on_blocked
+        self.stuck_time = float(stuck_time)
+        self.stuck_distance = float(stuck_distance)
+        self.max_replans = int(max_replans)
+        self.global_options = dict(global_options or {})
+        self.strategy = subgoals if isinstance(subgoals, SubgoalStrategy) else \
+            make_strategy(subgoals, robot.radius, **(subgoal_options or {}))
+        self.replans = 0
+        self.switches = 0
+        self.messages: list[str] = []
+        self.plan_result: PlanResult | None = None
+        self.path = np.zeros((0, 2))
+        self._graph = None
+        self._history: deque = deque()
+
+    # ------------------------------------------------------------------ global plan
+    def plan_initial(self) -> PlanResult:
+        """Plan on the known map (robot radius as clearance, else zero clearance)."""
+        opts = dict(self.global_options)
+        opts.setdefault("clearance", self.robot.radius)
+        try:
+            res = plan(self.world, self.start, self.goal, algorithm=self.global_planner, refine=self.refine,
+                       seed=self.seed, **opts)
+        except InfeasibleQueryError:
+            res = None
+        if res is None or not res.feasible:
+            if opts["clearance"] > 0:
+                self.messages.append(f"no valid global path with clearance {opts['clearance']:g} m; "
+                                     "planned with clearance 0")
+            opts["clearance"] = 0.0
+            res = plan(self.world, self.start, self.goal, algorithm=self.global_planner, refine=self.refine,
+                       seed=self.seed, **opts)
+            if not res.feasible:
+                self.messages.append(f"the global path is not valid ({res.message}); following it anyway")
+        self.plan_result = res
+        self._adopt(self._with_ends(res.path, self.start))
+        return res
+
+    def _with_ends(self, path: np.ndarray, origin: np.ndarray) -> np.ndarray:
+        P = np.asarray(path, float).reshape(-1, 2)
+        if not len(P):
+            return np.array([origin, self.goal])
+        if np.hypot(*(P[0] - origin)) > 1e-9:
+            P = np.vstack([origin, P])
+        if np.hypot(*(P[-1] - self.goal)) > 1e-9:
+            P = np.vstack([P, self.goal])
+        return P
+
+    def _adopt(self, path: np.ndarray) -> None:
+        self.path = path
+        self.strategy.reset(path, self.world, self.goal)
+
+    # --------------------------------------------------------------------- each step
+    def subgoal(self, position, velocity, dynamic, static_distance=None) -> np.ndarray:
+        """The local planner's target for this period."""
+        return self.strategy.select(np.asarray(position, float), np.asarray(velocity, float), dynamic, static_distance)
+
+    def path_blocked(self, believed_world, position) -> bool:
+        """Whether the not yet travelled part of the global path (from the point of the
+        path nearest the robot on) collides with what is known now (exact rule, robot
+        radius as clearance)."""
+        P = self._remaining_path(position)
+        if len(P) < 2:
+            return False
+        return not bool(np.all(believed_world.segments_free(P[:-1], P[1:], self.robot.radius)))
+
+    def _remaining_path(self, position) -> np.ndarray:
+        P = self.path
+        if len(P) < 2:
+            return P
+        a, b = P[:-1], P[1:]
+        ab = b - a
+        L2 = np.maximum(np.einsum("ij,ij->i", ab, ab), 1e-12)
+        t = np.clip(np.einsum("ij,ij->i", np.asarray(position) - a, ab) / L2, 0, 1)
+        foot = a + t[:, None] * ab
+        i = int(np.argmin(np.hypot(*(foot - position).T)))
+        return np.vstack([foot[i], P[i + 1:]])
+
+    def on_new_obstacles(self, believed_world, position, t: float) -> bool:
+        """React to newly sensed static obstacles; True when the global path changed."""
+        if self.on_blocked == "ignore" or self.replans >= self.max_replans:
+            return False
+        if not self.path_blocked(believed_world, position):
+            return False
+        if self.on_blocked == "switch":
+            if self._switch(believed_world, position):
+                return True
+            self.messages.append(f"t={t:.1f}s: path switch found no route; re-planning")
+        return self.replan(believed_world, position, t, why="global path blocked")
+
+    def _switch(self, believed_world, position) -> bool:
+        from .path_switch import VirtualPointGraph
+
+        if self._graph is None:
+            self._graph = VirtualPointGraph(self.world, self.start, self.goal, self.robot.radius)
+        self._graph.update(believed_world)
+        route = self._graph.route(believed_world, position)
+        if route is None:
+            return False
+        self.switches += 1
+        self.replans += 1
+        self._adopt(route)
+        return True
+
+    def replan(self, believed_world, position, t: float, why: str) -> bool:
+        """Plan again from ``position`` on ``believed_world`` with exact graph search."""
+        if self.replans >= self.max_replans:
+            return False
+        method = "astar" if self.is_grid else "visibility"
+        position = np.asarray(position, float)
+        for clearance in (self.robot.radius, 0.0):
+            try:
+                res = plan(believed_world, position, self.goal, algorithm=method, clearance=clearance)
+            except OptplanError:
+                continue
+            if res.feasible:
+                self.replans += 1
+                self.messages.append(f"t={t:.1f}s: re-planned ({why})")
+                self._adopt(self._with_ends(res.path, position))
+                return True
+        self.replans += 1  # count the attempt so a hopeless situation ends
+        self.messages.append(f"t={t:.1f}s: re-planning failed ({why})")
+        return False
+
+    def check_stuck(self, position, t: float, dt: float) -> bool:
+        """Record the position; True when the robot stayed within ``stuck_distance`` of
+        where it was ``stuck_time`` seconds ago all that time."""
+        self._history.append((t, np.asarray(position, float).copy()))
+        while self._history and self._history[0][0] < t - self.stuck_time - 1e-9:
+            self._history.popleft()
+        t0, p0 = self._history[0]
+        if t - t0 < self.stuck_time - 0.5 * dt:
+            return False
+        # cheap test first: the newest position already left the circle
+        if float(np.hypot(*(position - p0))) >= self.stuck_distance:
+            return False
+        P = np.array([p for _, p in self._history])
+        if float(np.hypot(*(P - p0).T).max()) < self.stuck_distance:
+            self._history.clear()
+            return True
+        return False

@@ -1,0 +1,247 @@
+"""``op.simulate``: one closed-loop run, global planner + navigation + local planner.
+
+Each period ``dt`` (the scenario's):
+
+1. the robot senses (unknown static obstacles within ``sensor_range`` become known;
+   moving obstacles in range are reported with their velocities);
+2. if something new blocks the rest of the global path, the navigator switches or
+   re-plans (see ``optplan.nav.navigator``); if the robot has been stuck, it re-plans;
+3. the navigator picks the subgoal, the local planner returns a command
+   (timed: ``mean_step_ms``);
+4. the command becomes the robot's velocity for the period (no hidden clipping unless
+   ``actuator_limits=True``, so the recorded accelerations are the planner's own) and
+   the pose advances by the paper's motion model (``optplan.sim.kinematics``);
+5. the swept segment is checked exactly against every obstacle, sensed or not.
+
+The run ends when the robot is within ``goal_tolerance`` of the goal (``reached``), when
+``time_limit`` passes (``timeout``), when it stays stuck after its re-plans are used up
+(``stuck``), or at the first collision when ``stop_on_collision=True`` (``collision``).
+Collisions otherwise are counted per period and the run goes on.
+"""
+from __future__ import annotations
+
+import sys
+import time
+from dataclasses import replace
+from typing import Any, Callable
+
+import numpy as np
+
+from ..errors import ParameterError, UnknownAlgorithmError
+from ..local.base import LocalContext
+from ..nav.navigator import Navigator, preset_defaults
+from ..results import SimResult
+from ..world.robot import Command, RobotState
+from ..world.scenario import Scenario, load_scenario
+from .environment import SimEnvironment
+from .kinematics import step_pose
+
+OPTIONS = ("subgoals", "on_blocked", "stuck_time", "stuck_distance", "max_replans", "stop_on_collision",
+           "actuator_limits", "planner_params", "global_options", "subgoal_options", "progress", "time_limit")
+
+
+def make_planner(local_planner, robot, dt: float, params: dict):
+    """A local planner instance from a name (``optplan.local.make_local_planner``) or an
+    object that already has ``command(ctx)``."""
+    if hasattr(local_planner, "command"):
+        return local_planner
+    if not isinstance(local_planner, str):
+        raise UnknownAlgorithmError(f"local_planner must be a name or a planner object, got {local_planner!r}")
+    try:
+        from ..local import make_local_planner
+    except ImportError:
+        raise UnknownAlgorithmError("no local planners are available in this version of optplan") from None
+    return make_local_planner(local_planner.lower(), robot, dt, **params)
+
+
+def _apply_limits(cmd: Command, prev: RobotState, robot, dt: float) -> tuple[float, float, float]:
+    """Clip a command to speed limits and to the acceleration limits from ``prev``."""
+    v = float(np.clip(cmd.v, max(robot.v_min, prev.v - robot.a_max * dt), min(robot.v_max, prev.v + robot.a_max * dt)))
+    w = float(np.clip(cmd.w, max(-robot.w_max, prev.w - robot.alpha_max * dt), min(robot.w_max, prev.w + robot.alpha_max * dt)))
+    vy = 0.0
+    if robot.model == "omni":
+        vy = float(np.clip(cmd.vy, max(-robot.vy_max, prev.vy - robot.a_max * dt), min(robot.vy_max, prev.vy + robot.a_max * dt)))
+    return v, w, vy
+
+
+def _progress_printer(every: float) -> Callable:
+    next_t = [0.0]
+
+    def report(t, state, info):
+        if t + 1e-9 >= next_t[0]:
+            next_t[0] += every
+            print(f"t={t:7.1f}s  x={state.x:7.2f} y={state.y:7.2f}  v={state.v:5.2f}  "
+                  f"to goal {info['to_goal']:6.2f} m  collisions {info['collisions']}", file=sys.stderr)
+
+    return report
+
+
+def simulate(scenario: Scenario | str, global_planner: str = "astar", local_planner: Any = "dwa",
+             refine: str | None = None, seed=0, **options) -> SimResult:
+    """Run the robot of ``scenario`` from start to goal in closed loop.
+
+    Args:
+        scenario: a :class:`Scenario` or a path / shipped name for ``load_scenario``.
+        global_planner: ``op.plan`` algorithm on the known map (``astar`` means
+            ``visibility`` on circle worlds). The robot radius is the clearance
+            (zero if no valid path keeps it; ``SimResult.message`` says so).
+        local_planner: a preset name (``dwa``, ``missa-dwa``, ``idwa``, ``ba-dwa``,
+            ``iga-dwa``, ``qp-dwa``) or a planner object with ``reset``/``command``.
+        refine: ``None``, ``"casadi"`` or ``"qp"`` refinement of the global path.
+        seed: drives the global planner and the scenario's random obstacles.
+        **options:
+            subgoals: strategy name (``goal``, ``key_points``, ``turning_points``,
+                ``navigation_points``); default: the local preset's paper default.
+            on_blocked: ``switch`` / ``replan`` / ``ignore``; default per preset.
+            stuck_time (10 s), stuck_distance (0.3 m), max_replans (5): stuck recovery.
+            stop_on_collision (False): end the run at the first collision.
+            actuator_limits (False): clip commands to the speed/acceleration limits.
+            planner_params: keyword arguments for ``make_local_planner``.
+            global_options: keyword arguments for ``op.plan`` (``pop``, ``iters``, ``clearance``).
+            subgoal_options: keyword arguments for the subgoal strategy.
+            progress: ``True`` prints a status line to stderr every 10 simulated seconds;
+                a number sets the interval; a callable gets ``(t, state, info)`` every period.
+            time_limit: override the scenario's, seconds.
+
+    Returns:
+        A :class:`SimResult` (``to_json_dict()`` gives the ``optplan simulate --json`` keys).
+    """
+    unknown = sorted(set(options) - set(OPTIONS))
+    if unknown:
+        raise ParameterError(f"unknown simulate option(s) {unknown}; known: {', '.join(OPTIONS)}")
+    sc = load_scenario(scenario).realize(seed)
+    if "time_limit" in options:
+        sc = replace(sc, time_limit=options["time_limit"])
+    robot, dt = sc.robot, sc.dt
+    time_limit = sc.time_limit
+    local_name = local_planner if isinstance(local_planner, str) else getattr(local_planner, "name", "custom")
+    default_subgoals, default_blocked = preset_defaults(str(local_name).lower())
+    nav = Navigator(sc.world, robot, sc.start[:2], sc.goal, global_planner=global_planner, refine=refine, seed=seed,
+                    subgoals=options.get("subgoals", default_subgoals),
+                    on_blocked=options.get("on_blocked", default_blocked),
+                    stuck_time=options.get("stuck_time", 10.0), stuck_distance=options.get("stuck_distance", 0.3),
+                    max_replans=options.get("max_replans", 5), global_options=options.get("global_options"),
+                    subgoal_options=options.get("subgoal_options"))
+    planner = make_planner(local_planner, robot, dt, dict(options.get("planner_params") or {}))
+    env = SimEnvironment(sc)
+    progress = options.get("progress")
+    if progress is True:
+        progress = _progress_printer(10.0)
+    elif isinstance(progress, (int, float)) and not isinstance(progress, bool) and progress > 0:
+        progress = _progress_printer(float(progress))
+    stop_on_collision = bool(options.get("stop_on_collision", False))
+    limits = bool(options.get("actuator_limits", False))
+
+    nav.plan_initial()
+    state = RobotState(float(sc.start[0]), float(sc.start[1]), float(sc.start[2]))
+    planner.reset(state, nav.path)
+    n_max = int(np.ceil(time_limit / dt - 1e-9))
+    rows = [[0.0, state.x, state.y, state.theta, 0.0, 0.0]]
+    vys = [0.0]
+    step_ms: list[float] = []
+    collisions, status = 0, "timeout"
+    moving_hit = np.zeros(n_max, dtype=bool)
+    moving_clear = np.full(n_max, np.inf)
+    t = 0.0
+    movers_now = env.movers(0.0)
+    pos = np.array([state.x, state.y])
+    if env.sense(pos):
+        nav.on_new_obstacles(env.believed_world(), pos, t)
+    for k in range(n_max):
+        if np.hypot(*(pos - sc.goal)) <= sc.goal_tolerance:
+            status = "reached"
+            break
+        if nav.check_stuck(pos, t, dt):
+            if not nav.replan(env.believed_world(), pos, t, why="stuck"):
+                if nav.replans >= nav.max_replans:
+                    status = "stuck"
+                    break
+        c, s_ = np.cos(state.theta), np.sin(state.theta)
+        velocity = np.array([state.v * c - state.vy * s_, state.v * s_ + state.vy * c])
+        seen = env.sensed_movers(pos, movers_now)
+        subgoal = nav.subgoal(pos, velocity, seen, env.static_distance)
+        ctx = LocalContext(state=RobotState(state.x, state.y, state.theta, state.v, state.w, state.vy),
+                           subgoal=subgoal.copy(), goal=sc.goal.copy(), global_path=nav.path,
+                           static_distance=env.static_distance, dynamic=seen, dt=dt, t=t,
+                           static_points=env.static_points(pos), bounds=sc.bounds)
+        t0 = time.perf_counter()
+        cmd = planner.command(ctx)
+        step_ms.append((time.perf_counter() - t0) * 1e3)
+        if limits:
+            v, w, vy = _apply_limits(cmd, state, robot, dt)
+        else:
+            v, w, vy = float(cmd.v), float(cmd.w), float(cmd.vy) if robot.model == "omni" else 0.0
+        x1, y1, th1 = step_pose(robot.model, state.x, state.y, state.theta, v, w, dt, vy)
+        new_pos = np.array([float(x1), float(y1)])
+        t_next = (k + 1) * dt
+        movers_next = env.movers(t_next)
+        gap = env.moving_gap(pos, new_pos, movers_now, movers_next)
+        moving_hit[k] = gap < 0
+        moving_clear[k] = gap
+        if stop_on_collision:
+            static_hit, _ = env.static_check(np.array([pos, new_pos]))
+            if moving_hit[k] or static_hit[0]:
+                collisions += 1
+                status = "collision"
+        elif moving_hit[k]:
+            collisions += 1  # running count for progress reports; recounted exactly below
+        state = RobotState(float(x1), float(y1), float(th1), v, w, vy)
+        pos, t, movers_now = new_pos, t_next, movers_next
+        rows.append([t, state.x, state.y, state.theta, v, w])
+        vys.append(vy)
+        if status == "collision":
+            break
+        if env.sense(pos):
+            nav.on_new_obstacles(env.believed_world(), pos, t)
+        if progress:
+            progress(t, state, {"to_goal": float(np.hypot(*(pos - sc.goal))), "collisions": collisions,
+                                "subgoal": subgoal, "command": cmd})
+    else:
+        if np.hypot(*(pos - sc.goal)) <= sc.goal_tolerance:
+            status = "reached"
+
+    traj = np.array(rows)
+    # static collisions of every period at once (exact rule), merged with the moving ones
+    n = len(traj) - 1
+    static_hit, static_clear = env.static_check(traj[:, 1:3])
+    hit = static_hit | moving_hit[:n]
+    collisions = int(hit.sum())
+    min_clear = float(min(static_clear.min(initial=np.inf), moving_clear[:n].min(initial=np.inf)))
+    if not np.isfinite(min_clear):  # no period driven: clearance of the start pose
+        min_clear = float(env.true_clearance(traj[0, 1:3])) - env.radius
+    return _result(sc, traj, np.array(vys), step_ms, collisions, min_clear, status, nav, global_planner,
+                   local_name, refine, seed)
+
+
+def _result(sc: Scenario, traj: np.ndarray, vys: np.ndarray, step_ms, collisions: int, min_clear: float, status: str,
+            nav: Navigator, global_planner, local_name, refine, seed) -> SimResult:
+    dt = sc.dt
+    # velocities include the robot at rest before the first period
+    v = traj[:, 4]
+    w = traj[:, 5]
+    dv = np.hypot(np.diff(v), np.diff(vys)) if sc.robot.model == "omni" else np.abs(np.diff(v))
+    acc = dv / dt
+    signed_acc = np.diff(v) / dt
+    jerk = np.abs(np.diff(signed_acc)) / dt if len(signed_acc) > 1 else np.zeros(0)
+    length = float(np.hypot(*np.diff(traj[:, 1:3], axis=0).T).sum()) if len(traj) > 1 else 0.0
+    steps = len(traj) - 1
+    reached = status == "reached"
+    words = {"reached": "reached the goal", "timeout": f"time limit {sc.time_limit:g} s reached",
+             "stuck": "stuck after using every re-plan", "collision": "stopped at the first collision"}
+    msg = f"{words[status]} after {traj[-1, 0]:.1f} s"
+    if collisions:
+        msg += f"; {collisions} period(s) in collision"
+    if nav.switches:
+        msg += f"; {nav.switches} path switch(es)"
+    extra = [m for m in nav.messages]
+    if extra:
+        msg += "; " + "; ".join(extra[:6])
+    return SimResult(reached=reached, collisions=int(collisions), time_s=float(traj[-1, 0]), path_length=length,
+                     min_clearance=float(min_clear) if np.isfinite(min_clear) else float("inf"),
+                     max_abs_accel=float(acc.max()) if len(acc) else 0.0,
+                     max_abs_ang_accel=float((np.abs(np.diff(w)) / dt).max()) if len(w) > 1 else 0.0,
+                     steps=steps, mean_step_ms=float(np.mean(step_ms)) if step_ms else 0.0, trajectory=traj,
+                     status=status, message=msg, global_planner=nav.global_planner, local_planner=str(local_name),
+                     refine=None if refine in (None, "none") else refine, global_path=nav.path,
+                     seed=int(seed) if isinstance(seed, (int, np.integer)) else None, replans=nav.replans,
+                     max_abs_jerk=float(jerk.max()) if len(jerk) else 0.0)

@@ -1,0 +1,723 @@
+"""Scenarios: the known map, what the robot does not know yet, what moves, and the robot.
+
+A scenario file (YAML) has the keys of DESIGN.md; angles are degrees in the file and
+radians in memory, lengths metres, times seconds::
+
+    map: maps/office.map          # path relative to this file (or absolute), a shipped map
+                                  # name (optplan.world.maps.names()), or an inline list of 0/1 rows
+    resolution: 1.0               # cell size for inline rows and plain 0/1 files
+    robot: {model: unicycle, radius: 0.2, v_max: 1.0, w_max_deg: 30,
+            a_max: 0.3, alpha_max_deg: 50, jerk_max: null}
+    start: [0.5, 0.5, 45]         # x, y, heading in degrees (heading optional, default 0)
+    goal: [19.5, 19.5]
+    sensor_range: 3.0
+    dt: 0.1
+    time_limit: 300
+    unknown_obstacles:            # not in the map the global planner sees
+      - {cells: [[5, 6], [5, 7]]}
+      - {circle: [12.0, 8.0, 0.5]}
+    dynamic_obstacles:
+      - {radius: 0.3, waypoints: [[3, 10], [15, 10]], speed: 0.5, loop: true}
+      - {radius: 0.6, start: [20, 5], velocity: [-0.6, 0.0]}
+
+Only ``map``, ``start`` and ``goal`` are required; the others default to
+``resolution`` of the map, ``RobotSpec()``, ``sensor_range: 3``, ``dt: 0.1``,
+``time_limit: 300`` and no obstacles.
+
+Optional keys added by optplan (all validated like the rest):
+
+* ``name``, ``description``: free text (``description`` says which paper experiment a
+  shipped scenario stands in for and how it was made).
+* ``goal_tolerance``: distance (m) from the goal centre that counts as reached (0.3).
+* ``dynamic_obstacles[i].loop``: ``true`` (default) drives the waypoint polygon closed,
+  back to the first waypoint and round again (two waypoints: back and forth);
+  ``false`` stops at the last waypoint. ``phase`` (m, default 0) is the distance along
+  the polygon already driven at ``t = 0``.
+* ``dynamic_obstacles[i].at_border`` for constant-velocity obstacles: ``bounce``
+  (default; reflect off the map border shrunk by the obstacle radius), ``stop`` (halt
+  where the disc first touches the border) or ``pass`` (leave the map).
+* ``random_obstacles: {count, size, keep_away}``: ``count`` unknown square blocks of
+  ``size`` x ``size`` cells (circle worlds: discs of diameter ``size`` m), drawn from the
+  run's seed on cells of the known map's shortest path at least ``keep_away`` m
+  (default 2) from start and goal; draws that would leave the goal unreachable for
+  the robot's footprint are redrawn. This is hou2024 §4.4 "random obstacles".
+* ``random_dynamic: {count, radius, speed: [lo, hi], length: [lo, hi], keep_away}``:
+  ``count`` obstacles drawn from the seed, each driving back and forth along a straight
+  segment of the given length range that crosses the known map's shortest path (at
+  least ``keep_away`` m, default 3, from start and goal) at a random angle of 60-120
+  degrees, with a random phase; segments are kept free of known obstacles by the
+  obstacle radius.
+
+Seed-dependent parts are realised by :meth:`Scenario.realize` (``op.simulate`` calls
+it with its ``seed``), so the same scenario file and seed always give the same world.
+Malformed files raise :class:`ScenarioError` naming the key and what to write instead.
+"""
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..errors import MapFormatError, OptplanError, ScenarioError
+from .robot import FILE_KEYS, RobotSpec
+
+SCENARIOS_DIR = Path(__file__).resolve().parent.parent / "data" / "scenarios"
+
+TOP_KEYS = ("map", "resolution", "robot", "start", "goal", "sensor_range", "dt", "time_limit",
+            "unknown_obstacles", "dynamic_obstacles", "name", "description", "goal_tolerance",
+            "random_obstacles", "random_dynamic")
+REQUIRED = ("map", "start", "goal")
+BORDER_MODES = ("bounce", "stop", "pass")
+
+
+# ----------------------------------------------------------------- value checks
+def _where(ctx: str) -> str:
+    return f"scenario {ctx}" if ctx else "scenario"
+
+
+def _number(value, key: str, *, positive: bool = False, non_negative: bool = False) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise ScenarioError(f"{key} must be a number, got {value!r}")
+    v = float(value)
+    if not math.isfinite(v):
+        raise ScenarioError(f"{key} must be a finite number, got {value!r}")
+    if positive and v <= 0:
+        raise ScenarioError(f"{key} must be > 0, got {value!r}")
+    if non_negative and v < 0:
+        raise ScenarioError(f"{key} must be >= 0, got {value!r}")
+    return v
+
+
+def _vector(value, key: str, lengths: tuple[int, ...] = (2,)) -> np.ndarray:
+    if not isinstance(value, (list, tuple, np.ndarray)) or len(value) not in lengths:
+        want = " or ".join(str(n) for n in lengths)
+        raise ScenarioError(f"{key} must be a list of {want} numbers, got {value!r}")
+    return np.array([_number(v, f"{key}[{i}]") for i, v in enumerate(value)], dtype=float)
+
+
+def _points(value, key: str, min_len: int = 1) -> np.ndarray:
+    if not isinstance(value, (list, tuple)) or len(value) < min_len:
+        raise ScenarioError(f"{key} must be a list of at least {min_len} [x, y] pairs, got {value!r}")
+    return np.array([_vector(p, f"{key}[{i}]") for i, p in enumerate(value)], dtype=float).reshape(-1, 2)
+
+
+def _mapping(value, key: str, allowed: tuple[str, ...]) -> dict:
+    if not isinstance(value, dict):
+        raise ScenarioError(f"{key} must be a mapping with keys {', '.join(allowed)}, got {value!r}")
+    unknown = sorted(set(map(str, value)) - set(allowed))
+    if unknown:
+        raise ScenarioError(f"unknown key(s) {unknown} in {key}; known: {', '.join(allowed)}")
+    return value
+
+
+def _range(value, key: str) -> tuple[float, float]:
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        v = _number(value, key, non_negative=True)
+        return (v, v)
+    lo, hi = _vector(value, key)
+    if lo < 0 or hi < lo:
+        raise ScenarioError(f"{key} must be [low, high] with 0 <= low <= high, got {value!r}")
+    return (float(lo), float(hi))
+
+
+# ------------------------------------------------------------- moving obstacles
+@dataclass
+class DynamicObstacle:
+    """A disc that moves along a waypoint polygon or at a constant velocity.
+
+    Attributes:
+        radius: metres.
+        waypoints: ``(k, 2)`` polygon (metres) for waypoint movers, else ``None``.
+        speed: m/s along the polygon.
+        loop: drive the polygon closed and repeat (``False``: stop at the last waypoint).
+        phase: metres along the polygon already driven at ``t = 0``.
+        start: ``(2,)`` position at ``t = 0`` of a constant-velocity mover, else ``None``.
+        velocity: ``(2,)`` m/s of a constant-velocity mover.
+        at_border: ``bounce``, ``stop`` or ``pass`` (constant-velocity movers).
+    """
+
+    radius: float
+    waypoints: np.ndarray | None = None
+    speed: float = 0.0
+    loop: bool = True
+    phase: float = 0.0
+    start: np.ndarray | None = None
+    velocity: np.ndarray | None = None
+    at_border: str = "bounce"
+
+    def state(self, t: float, bounds: tuple[float, float, float, float]) -> tuple[np.ndarray, np.ndarray]:
+        """Position ``(2,)`` (m) and velocity ``(2,)`` (m/s) at time ``t`` (s), in closed form."""
+        if self.waypoints is not None:
+            return self._along_polygon(t)
+        return self._constant_velocity(t, bounds)
+
+    def _along_polygon(self, t: float) -> tuple[np.ndarray, np.ndarray]:
+        P = self.waypoints
+        if len(P) == 1 or self.speed == 0:
+            return P[0].copy(), np.zeros(2)
+        if self.loop:
+            P = np.vstack([P, P[:1]])
+        seg = np.diff(P, axis=0)
+        lengths = np.hypot(seg[:, 0], seg[:, 1])
+        cum = np.concatenate([[0.0], np.cumsum(lengths)])
+        total = cum[-1]
+        s = self.phase + self.speed * t
+        if self.loop:
+            s = s % total
+        elif s >= total:
+            return P[-1].copy(), np.zeros(2)
+        i = int(np.clip(np.searchsorted(cum, s, side="right") - 1, 0, len(seg) - 1))
+        while lengths[i] == 0 and i < len(seg) - 1:  # repeated waypoint: skip the empty leg
+            i += 1
+        u = seg[i] / lengths[i] if lengths[i] > 0 else np.zeros(2)
+        return P[i] + u * (s - cum[i]), u * self.speed
+
+    def _constant_velocity(self, t: float, bounds) -> tuple[np.ndarray, np.ndarray]:
+        p0, v = self.start, self.velocity
+        if self.at_border == "pass":
+            return p0 + v * t, v.copy()
+        lo = np.array(bounds[:2]) + self.radius
+        hi = np.array(bounds[2:]) - self.radius
+        if self.at_border == "stop":
+            # the first time either coordinate reaches its limit
+            with np.errstate(divide="ignore", invalid="ignore"):
+                t_hit = np.where(v > 0, (hi - p0) / v, np.where(v < 0, (lo - p0) / v, np.inf))
+            t_stop = max(float(np.min(t_hit)), 0.0)
+            if t >= t_stop:
+                return p0 + v * t_stop, np.zeros(2)
+            return p0 + v * t, v.copy()
+        # bounce: each coordinate is a triangle wave between lo and hi
+        span = hi - lo
+        u = p0 + v * t - lo
+        period = 2 * span
+        s = np.mod(u, np.where(period > 0, period, 1.0))
+        back = s > span
+        pos = lo + np.where(back, period - s, s)
+        vel = np.where(back, -v, v)
+        return pos, vel
+
+
+# ----------------------------------------------------------------------- scenario
+@dataclass
+class Scenario:
+    """Everything a closed-loop run needs (see the module docstring for the file format).
+
+    Attributes:
+        world: the known map (GridMap or CircleWorld) the global planner sees.
+        robot: footprint and limits.
+        start: ``(3,)`` pose ``(x, y, theta)`` in metres and radians.
+        goal: ``(2,)`` metres.
+        sensor_range: distance (m) within which unknown obstacles and movers are sensed.
+        dt: control and simulation period, seconds.
+        time_limit: seconds of simulated time before a run counts as a timeout.
+        unknown_cells: ``(m, 2)`` integer cells ``(ix, iy)`` blocked but missing from ``world``.
+        unknown_circles: ``(k, 3)`` discs ``(x, y, r)`` missing from ``world``.
+        dynamic: moving obstacles.
+        goal_tolerance: metres.
+        name, description: free text.
+        random_obstacles, random_dynamic: seed-dependent parts (``None`` when absent);
+            :meth:`realize` turns them into unknown and moving obstacles.
+        source: the file it was read from, if any.
+    """
+
+    world: Any
+    robot: RobotSpec
+    start: np.ndarray
+    goal: np.ndarray
+    sensor_range: float = 3.0
+    dt: float = 0.1
+    time_limit: float = 300.0
+    unknown_cells: np.ndarray = field(default_factory=lambda: np.zeros((0, 2), dtype=np.int64))
+    unknown_circles: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    dynamic: list[DynamicObstacle] = field(default_factory=list)
+    goal_tolerance: float = 0.3
+    name: str = ""
+    description: str = ""
+    random_obstacles: dict | None = None
+    random_dynamic: dict | None = None
+    source: str = ""
+
+    def __post_init__(self) -> None:
+        self.start = np.asarray(self.start, dtype=float).reshape(-1)
+        if self.start.shape == (2,):
+            self.start = np.append(self.start, 0.0)
+        self.goal = np.asarray(self.goal, dtype=float).reshape(-1)
+        self.unknown_cells = np.asarray(self.unknown_cells, dtype=np.int64).reshape(-1, 2)
+        self.unknown_circles = np.asarray(self.unknown_circles, dtype=float).reshape(-1, 3)
+        validate(self)
+
+    @property
+    def is_grid(self) -> bool:
+        return hasattr(self.world, "occ")
+
+    @property
+    def bounds(self) -> tuple[float, float, float, float]:
+        return tuple(float(b) for b in self.world.bounds)
+
+    def true_world(self):
+        """The static world as it really is: the known map plus the unknown cells (grids)
+        or discs (circle worlds, without the planning safety margin). Unknown discs on a
+        grid are not included; see :func:`static_clearance`."""
+        return _true_world(self)
+
+    def realize(self, seed=0) -> "Scenario":
+        """A copy whose random obstacles (``random_obstacles``, ``random_dynamic``) are
+        drawn from ``seed`` and added as ordinary unknown / moving obstacles."""
+        if not self.random_obstacles and not self.random_dynamic:
+            return self
+        from ..rng import as_generator
+
+        rng = as_generator(seed)
+        cells, circles, dynamic = self.unknown_cells, self.unknown_circles, list(self.dynamic)
+        if self.random_obstacles:
+            new_cells, new_circles = _draw_random_obstacles(self, self.random_obstacles, rng)
+            cells = np.vstack([cells, new_cells]) if len(new_cells) else cells
+            circles = np.vstack([circles, new_circles]) if len(new_circles) else circles
+        if self.random_dynamic:
+            dynamic += _draw_random_movers(self, self.random_dynamic, rng)
+        return replace(self, unknown_cells=cells, unknown_circles=circles, dynamic=dynamic,
+                       random_obstacles=None, random_dynamic=None)
+
+
+# ------------------------------------------------------------------ true world
+def _true_world(sc: Scenario):
+    from .circles import CircleWorld
+
+    if sc.is_grid:
+        if not len(sc.unknown_cells):
+            return sc.world
+        from .grid import GridMap
+
+        occ = sc.world.occ.copy()
+        occ[sc.unknown_cells[:, 1], sc.unknown_cells[:, 0]] = True
+        return GridMap(occ, sc.world.resolution, sc.world.origin, f"{sc.world.name}+unknown")
+    circles = np.vstack([sc.world.circles, sc.unknown_circles]) if len(sc.unknown_circles) else sc.world.circles
+    return CircleWorld(sc.world.bounds, circles, 0.0, sc.world.name)
+
+
+def circle_distance(points, circles) -> np.ndarray:
+    """Signed distance (m) from points ``(..., 2)`` to the nearest of ``circles`` ``(k, 3)``
+    (``inf`` when there are none)."""
+    p = np.asarray(points, dtype=float)
+    c = np.asarray(circles, dtype=float).reshape(-1, 3)
+    if not len(c):
+        return np.full(p.shape[:-1], np.inf)
+    d = np.hypot(p[..., None, 0] - c[:, 0], p[..., None, 1] - c[:, 1]) - c[:, 2]
+    return d.min(axis=-1)
+
+
+def static_clearance(sc: Scenario, points) -> np.ndarray:
+    """Exact signed distance (m) from points to the true static world (known map,
+    unknown cells and unknown discs, and the map border)."""
+    d = np.asarray(sc.true_world().clearance(points), dtype=float)
+    if sc.is_grid and len(sc.unknown_circles):
+        d = np.minimum(d, circle_distance(points, sc.unknown_circles))
+    return d
+
+
+# ------------------------------------------------------------------ validation
+def validate(sc: Scenario) -> None:
+    """Check a scenario's values and geometry, raising ScenarioError with the fix."""
+    if not hasattr(sc.world, "bounds") or not hasattr(sc.world, "segments_free"):
+        raise ScenarioError(f"scenario world must be a GridMap or CircleWorld, got {type(sc.world).__name__}")
+    if not isinstance(sc.robot, RobotSpec):
+        raise ScenarioError(f"scenario robot must be a RobotSpec, got {type(sc.robot).__name__}")
+    if sc.start.shape != (3,) or not np.all(np.isfinite(sc.start)):
+        raise ScenarioError(f"start must be [x, y] or [x, y, heading_deg] with finite numbers, got {sc.start!r}")
+    if sc.goal.shape != (2,) or not np.all(np.isfinite(sc.goal)):
+        raise ScenarioError(f"goal must be [x, y] with finite numbers, got {sc.goal!r}")
+    for key in ("sensor_range", "dt", "time_limit", "goal_tolerance"):
+        _number(getattr(sc, key), key, positive=True)
+    if sc.dt > sc.time_limit:
+        raise ScenarioError(f"dt ({sc.dt:g} s) must not exceed time_limit ({sc.time_limit:g} s)")
+    if sc.time_limit / sc.dt > 10_000_000:
+        raise ScenarioError(f"time_limit / dt = {sc.time_limit / sc.dt:.3g} steps is too many; raise dt or lower time_limit")
+    xmin, ymin, xmax, ymax = sc.bounds
+    if len(sc.unknown_cells):
+        if not sc.is_grid:
+            raise ScenarioError("unknown_obstacles 'cells' need a grid map; on a circle world use {circle: [x, y, r]}")
+        bad = ~sc.world.in_map(sc.unknown_cells)
+        if np.any(bad):
+            c = sc.unknown_cells[np.argmax(bad)]
+            raise ScenarioError(f"unknown obstacle cell {c.tolist()} is outside the {sc.world.width}x{sc.world.height} map")
+    if len(sc.unknown_circles) and (not np.all(np.isfinite(sc.unknown_circles)) or np.any(sc.unknown_circles[:, 2] <= 0)):
+        raise ScenarioError("unknown obstacle circles must be [x, y, r] with finite centre and r > 0")
+    r = sc.robot.radius
+    for what, p in (("start", sc.start[:2]), ("goal", sc.goal)):
+        if not (xmin <= p[0] <= xmax and ymin <= p[1] <= ymax):
+            raise ScenarioError(f"{what} ({p[0]:g}, {p[1]:g}) is outside the map bounds "
+                                f"x in [{xmin:g}, {xmax:g}], y in [{ymin:g}, {ymax:g}]")
+        known = float(sc.world.clearance(p))
+        if known < r:
+            raise ScenarioError(f"{what} ({p[0]:g}, {p[1]:g}) is blocked or closer than the robot radius {r:g} m "
+                                f"to an obstacle of the map (clearance {known:.3g} m); move it into free space")
+        true = float(static_clearance(sc, p))
+        if true < r:
+            raise ScenarioError(f"an unknown obstacle overlaps the robot at the {what} ({p[0]:g}, {p[1]:g}) "
+                                f"(clearance {true:.3g} m < radius {r:g} m); move the obstacle or the {what}")
+    for i, ob in enumerate(sc.dynamic):
+        _check_mover(ob, i)
+        pos, _ = ob.state(0.0, sc.bounds)
+        gap = float(np.hypot(*(pos - sc.start[:2]))) - ob.radius - r
+        if gap < 0:
+            raise ScenarioError(f"dynamic obstacle {i} at ({pos[0]:g}, {pos[1]:g}) overlaps the robot's start "
+                                f"(gap {gap:.3g} m); move it away by at least {-gap:.3g} m")
+
+
+def _check_mover(ob: DynamicObstacle, i: int) -> None:
+    key = f"dynamic_obstacles[{i}]"
+    _number(ob.radius, f"{key}.radius", positive=True)
+    if (ob.waypoints is None) == (ob.start is None):
+        raise ScenarioError(f"{key} needs either waypoints (+ speed) or start (+ velocity)")
+    if ob.waypoints is not None:
+        _number(ob.speed, f"{key}.speed", non_negative=True)
+        _number(ob.phase, f"{key}.phase", non_negative=True)
+    else:
+        if ob.velocity is None or np.shape(ob.velocity) != (2,) or not np.all(np.isfinite(ob.velocity)):
+            raise ScenarioError(f"{key}.velocity must be [vx, vy] in m/s")
+        if ob.at_border not in BORDER_MODES:
+            raise ScenarioError(f"{key}.at_border must be one of {', '.join(BORDER_MODES)}, got {ob.at_border!r}")
+
+
+# --------------------------------------------------------------------- reading
+def _read_map(spec, resolution, base_dir: Path | None):
+    from .grid import GridMap
+    from .loaders import load_map
+
+    if isinstance(spec, list):
+        try:
+            rows = np.array(spec)
+            if rows.ndim != 2 or not np.all(np.isin(rows, (0, 1))):
+                raise ValueError
+        except ValueError:
+            raise ScenarioError("an inline map must be a list of equal-length rows of 0/1 values (top row first)") from None
+        return GridMap.from_rows(rows.astype(bool), 1.0 if resolution is None else resolution, name="inline")
+    if not isinstance(spec, (str, os.PathLike)):
+        raise ScenarioError(f"map must be a file path, a shipped map name or a list of 0/1 rows, got {spec!r}")
+    p = Path(spec)
+    if not p.is_absolute() and base_dir is not None and (base_dir / p).exists():
+        p = base_dir / p
+    try:
+        world = load_map(p if p.exists() else spec)
+    except MapFormatError as exc:
+        raise ScenarioError(f"map {spec!r}: {exc}") from None
+    if resolution is not None and hasattr(world, "occ") and resolution != world.resolution:
+        if world.resolution != 1.0:
+            raise ScenarioError(f"map {spec!r} has its own resolution {world.resolution:g} m; "
+                                f"remove 'resolution: {resolution:g}' from the scenario or make them agree")
+        world = GridMap(world.occ, resolution, world.origin, world.name)
+    if resolution is not None and not hasattr(world, "occ"):
+        raise ScenarioError("'resolution' applies to grid maps only; remove it for a circle world")
+    return world
+
+
+def _read_unknown(items, world) -> tuple[np.ndarray, np.ndarray]:
+    if items is None:
+        return np.zeros((0, 2), np.int64), np.zeros((0, 3))
+    if not isinstance(items, list):
+        raise ScenarioError("unknown_obstacles must be a list of {cells: [[ix, iy], ...]} or {circle: [x, y, r]}")
+    cells, circles = [], []
+    for i, item in enumerate(items):
+        key = f"unknown_obstacles[{i}]"
+        item = _mapping(item, key, ("cells", "circle"))
+        if len(item) != 1:
+            raise ScenarioError(f"{key} must have exactly one of 'cells' or 'circle'")
+        if "cells" in item:
+            pts = _points(item["cells"], f"{key}.cells")
+            if not np.all(pts == np.round(pts)):
+                raise ScenarioError(f"{key}.cells must be integer cell indices [ix, iy]")
+            cells.append(pts.astype(np.int64))
+        else:
+            c = _vector(item["circle"], f"{key}.circle", (3,))
+            if c[2] <= 0:
+                raise ScenarioError(f"{key}.circle radius must be > 0, got {c[2]:g}")
+            circles.append(c)
+    return (np.vstack(cells) if cells else np.zeros((0, 2), np.int64),
+            np.vstack(circles) if circles else np.zeros((0, 3)))
+
+
+def _read_movers(items) -> list[DynamicObstacle]:
+    if items is None:
+        return []
+    if not isinstance(items, list):
+        raise ScenarioError("dynamic_obstacles must be a list of mappings")
+    out = []
+    for i, item in enumerate(items):
+        key = f"dynamic_obstacles[{i}]"
+        item = _mapping(item, key, ("radius", "waypoints", "speed", "loop", "phase", "start", "velocity", "at_border"))
+        if "radius" not in item:
+            raise ScenarioError(f"{key} is missing 'radius' (metres)")
+        radius = _number(item["radius"], f"{key}.radius", positive=True)
+        if "waypoints" in item:
+            extra = {"start", "velocity", "at_border"} & set(item)
+            if extra:
+                raise ScenarioError(f"{key} mixes waypoints with {sorted(extra)}; use waypoints+speed or start+velocity")
+            if "speed" not in item:
+                raise ScenarioError(f"{key} has waypoints but no 'speed' (m/s)")
+            loop = item.get("loop", True)
+            if not isinstance(loop, bool):
+                raise ScenarioError(f"{key}.loop must be true or false, got {loop!r}")
+            out.append(DynamicObstacle(radius, waypoints=_points(item["waypoints"], f"{key}.waypoints"),
+                                       speed=_number(item["speed"], f"{key}.speed", non_negative=True), loop=loop,
+                                       phase=_number(item.get("phase", 0.0), f"{key}.phase", non_negative=True)))
+        elif "start" in item:
+            extra = {"speed", "loop", "phase"} & set(item)
+            if extra:
+                raise ScenarioError(f"{key} mixes start/velocity with {sorted(extra)}")
+            if "velocity" not in item:
+                raise ScenarioError(f"{key} has a start but no 'velocity' [vx, vy] (m/s)")
+            mode = item.get("at_border", "bounce")
+            if mode not in BORDER_MODES:
+                raise ScenarioError(f"{key}.at_border must be one of {', '.join(BORDER_MODES)}, got {mode!r}")
+            out.append(DynamicObstacle(radius, start=_vector(item["start"], f"{key}.start"),
+                                       velocity=_vector(item["velocity"], f"{key}.velocity"), at_border=mode))
+        else:
+            raise ScenarioError(f"{key} needs 'waypoints' + 'speed' or 'start' + 'velocity'")
+    return out
+
+
+def _read_random(spec, key: str, allowed: dict[str, Any]) -> dict | None:
+    if spec is None:
+        return None
+    spec = dict(_mapping(spec, key, tuple(allowed)))
+    if "count" not in spec:
+        raise ScenarioError(f"{key} is missing 'count'")
+    out = dict(allowed)
+    out.update(spec)
+    c = out["count"]
+    if isinstance(c, bool) or not isinstance(c, int) or c < 0:
+        raise ScenarioError(f"{key}.count must be a non-negative integer, got {c!r}")
+    for k, v in out.items():
+        if k == "count":
+            continue
+        if isinstance(allowed[k], tuple):
+            out[k] = _range(v, f"{key}.{k}")
+        else:
+            out[k] = _number(v, f"{key}.{k}", positive=k in ("size", "radius"), non_negative=True)
+    return out
+
+
+def scenario_from_dict(data: dict, base_dir: str | os.PathLike | None = None, source: str = "") -> Scenario:
+    """Build a :class:`Scenario` from the parsed YAML mapping (``base_dir`` resolves a relative map path)."""
+    if not isinstance(data, dict):
+        raise ScenarioError(f"a scenario must be a mapping of keys ({', '.join(REQUIRED)} required), got {type(data).__name__}")
+    unknown = sorted(set(map(str, data)) - set(TOP_KEYS))
+    if unknown:
+        raise ScenarioError(f"unknown scenario key(s) {unknown}; known: {', '.join(TOP_KEYS)}")
+    missing = [k for k in REQUIRED if k not in data]
+    if missing:
+        raise ScenarioError(f"scenario is missing required key(s) {missing}; see DESIGN.md 'Scenario YAML'")
+    res = data.get("resolution")
+    if res is not None:
+        res = _number(res, "resolution", positive=True)
+    world = _read_map(data["map"], res, Path(base_dir) if base_dir is not None else None)
+    robot_spec = data.get("robot", {}) or {}
+    if not isinstance(robot_spec, dict):
+        raise ScenarioError(f"robot must be a mapping with keys {', '.join(FILE_KEYS)}, got {robot_spec!r}")
+    bad = sorted(set(map(str, robot_spec)) - set(FILE_KEYS))
+    if bad:
+        raise ScenarioError(f"unknown robot key(s) {bad}; known: {', '.join(FILE_KEYS)}")
+    for k, v in robot_spec.items():
+        if k == "model" or (k == "jerk_max" and v is None):
+            continue
+        _number(v, f"robot.{k}")
+    try:
+        robot = RobotSpec.from_dict(robot_spec)
+    except OptplanError as exc:
+        raise ScenarioError(f"robot: {exc}") from None
+    start = _vector(data["start"], "start", (2, 3))
+    if len(start) == 3:
+        start[2] = math.radians(start[2])
+    goal = _vector(data["goal"], "goal")
+    cells, circles = _read_unknown(data.get("unknown_obstacles"), world)
+    kwargs = {}
+    for key in ("sensor_range", "dt", "time_limit", "goal_tolerance"):
+        if key in data:
+            kwargs[key] = _number(data[key], key, positive=True)
+    for key in ("name", "description"):
+        if key in data:
+            if not isinstance(data[key], str):
+                raise ScenarioError(f"{key} must be text, got {data[key]!r}")
+            kwargs[key] = data[key].strip()
+    random_obstacles = _read_random(data.get("random_obstacles"), "random_obstacles",
+                                    {"count": 0, "size": 1.0, "keep_away": 2.0})
+    random_dynamic = _read_random(data.get("random_dynamic"), "random_dynamic",
+                                  {"count": 0, "radius": 0.3, "speed": (0.3, 0.6), "length": (3.0, 8.0),
+                                   "keep_away": 3.0})
+    return Scenario(world, robot, start, goal, unknown_cells=cells, unknown_circles=circles,
+                    dynamic=_read_movers(data.get("dynamic_obstacles")), random_obstacles=random_obstacles,
+                    random_dynamic=random_dynamic, source=source, **kwargs)
+
+
+def scenario_names() -> list[str]:
+    """Names of the scenarios shipped in ``optplan/data/scenarios``."""
+    if not SCENARIOS_DIR.is_dir():
+        return []
+    return sorted(p.stem for p in SCENARIOS_DIR.glob("*.yaml"))
+
+
+def load_scenario(path_or_dict) -> Scenario:
+    """Read a scenario from a YAML file, a shipped scenario name, or an already parsed mapping.
+
+    Raises:
+        ScenarioError: the file is missing or malformed (the message names the key).
+    """
+    import yaml
+
+    if isinstance(path_or_dict, Scenario):
+        return path_or_dict
+    if isinstance(path_or_dict, dict):
+        return scenario_from_dict(path_or_dict)
+    if not isinstance(path_or_dict, (str, os.PathLike)):
+        raise ScenarioError(f"load_scenario needs a file path, a shipped name or a dict, got {type(path_or_dict).__name__}")
+    p = Path(path_or_dict)
+    if not p.is_file():
+        shipped = SCENARIOS_DIR / f"{p.name}" if p.suffix == ".yaml" else SCENARIOS_DIR / f"{p.name}.yaml"
+        if not shipped.is_file():
+            raise ScenarioError(f"scenario file {path_or_dict} does not exist "
+                                f"(shipped scenarios: {', '.join(scenario_names()) or 'none'})")
+        p = shipped
+    try:
+        data = yaml.safe_load(p.read_text())
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ScenarioError(f"cannot read scenario file {p}: {exc}") from None
+    except yaml.YAMLError as exc:
+        raise ScenarioError(f"scenario file {p} is not valid YAML: {str(exc).splitlines()[0]}") from None
+    if data is None:
+        raise ScenarioError(f"scenario file {p} is empty")
+    sc = scenario_from_dict(data, base_dir=p.parent, source=str(p))
+    if not sc.name:
+        sc.name = p.stem
+    return sc
+
+
+# ------------------------------------------------------------- random parts
+def _reference_path(sc: Scenario) -> np.ndarray:
+    """The known map's shortest path for the robot's footprint (dense polyline)."""
+    from ..solvers.graph import shortest_path
+
+    method = "astar" if sc.is_grid else "visibility"
+    try:
+        res = shortest_path(sc.world, sc.start[:2], sc.goal, method=method, clearance=sc.robot.radius)
+    except OptplanError:
+        res = shortest_path(sc.world, sc.start[:2], sc.goal, method=method)
+    P = np.vstack([sc.start[:2], res.path, sc.goal])
+    seg = np.diff(P, axis=0)
+    n = np.maximum(np.ceil(np.hypot(seg[:, 0], seg[:, 1]) / 0.25).astype(int), 1)
+    dense = [P[i] + seg[i] * (np.arange(n[i])[:, None] / n[i]) for i in range(len(seg))]
+    return np.vstack(dense + [P[-1:]])
+
+
+def _reachable(sc: Scenario, cells: np.ndarray, circles: np.ndarray) -> bool:
+    from ..solvers.graph import shortest_path
+
+    trial = replace(sc, unknown_cells=np.vstack([sc.unknown_cells, cells]) if len(cells) else sc.unknown_cells,
+                    unknown_circles=np.vstack([sc.unknown_circles, circles]) if len(circles) else sc.unknown_circles,
+                    random_obstacles=None, random_dynamic=None)
+    world = trial.true_world()
+    if sc.is_grid and len(trial.unknown_circles):
+        return True  # discs on a grid: accepted without a reachability test
+    try:
+        shortest_path(world, sc.start[:2], sc.goal, method="astar" if sc.is_grid else "visibility",
+                      clearance=sc.robot.radius)
+    except OptplanError:
+        return False
+    return True
+
+
+def _draw_random_obstacles(sc: Scenario, spec: dict, rng) -> tuple[np.ndarray, np.ndarray]:
+    count, size, keep = int(spec["count"]), float(spec["size"]), float(spec["keep_away"])
+    if count == 0:
+        return np.zeros((0, 2), np.int64), np.zeros((0, 3))
+    path = _reference_path(sc)
+    far = (np.hypot(*(path - sc.start[:2]).T) >= keep) & (np.hypot(*(path - sc.goal).T) >= keep)
+    candidates = path[far]
+    if not len(candidates):
+        raise ScenarioError(f"random_obstacles: no point of the shortest path is {keep:g} m from start and goal; "
+                            "lower keep_away")
+    for _ in range(200):
+        picks = candidates[rng.choice(len(candidates), size=count, replace=len(candidates) < count)]
+        if sc.is_grid:
+            k = max(int(round(size)), 1)
+            corner = sc.world.cell_of(picks) - (k - 1) // 2
+            offs = np.stack(np.meshgrid(np.arange(k), np.arange(k)), -1).reshape(-1, 2)
+            cells = np.unique((corner[:, None, :] + offs[None]).reshape(-1, 2), axis=0)
+            cells = cells[sc.world.in_map(cells)]
+            cells = cells[~sc.world.occ[cells[:, 1], cells[:, 0]]]
+            trial = replace(sc, unknown_cells=np.vstack([sc.unknown_cells, cells]), random_obstacles=None,
+                            random_dynamic=None) if len(cells) else None
+            if trial is None:
+                continue
+            try:
+                validate(trial)
+            except ScenarioError:
+                continue
+            if _reachable(sc, cells, np.zeros((0, 3))):
+                return cells, np.zeros((0, 3))
+        else:
+            circles = np.column_stack([picks, np.full(count, size / 2)])
+            try:
+                validate(replace(sc, unknown_circles=np.vstack([sc.unknown_circles, circles]),
+                                 random_obstacles=None, random_dynamic=None))
+            except ScenarioError:
+                continue
+            if _reachable(sc, np.zeros((0, 2), np.int64), circles):
+                return np.zeros((0, 2), np.int64), circles
+    raise ScenarioError("random_obstacles: no draw in 200 tries left the goal reachable; lower count or size")
+
+
+def _point_segment_distance(p, a, b) -> float:
+    ab = b - a
+    L2 = float(ab @ ab)
+    t = 0.0 if L2 == 0 else float(np.clip((p - a) @ ab / L2, 0.0, 1.0))
+    return float(np.hypot(*(p - (a + t * ab))))
+
+
+def _draw_random_movers(sc: Scenario, spec: dict, rng) -> list[DynamicObstacle]:
+    count, radius, keep = int(spec["count"]), float(spec["radius"]), float(spec["keep_away"])
+    if count == 0:
+        return []
+    path = _reference_path(sc)
+    far = (np.hypot(*(path - sc.start[:2]).T) >= keep) & (np.hypot(*(path - sc.goal).T) >= keep)
+    idx = np.nonzero(far)[0]
+    if not len(idx):
+        raise ScenarioError(f"random_dynamic: no point of the shortest path is {keep:g} m from start and goal; "
+                            "lower keep_away")
+    world = sc.world
+    out: list[DynamicObstacle] = []
+    tries = 0
+    while len(out) < count:
+        tries += 1
+        if tries > 500 * count:
+            raise ScenarioError("random_dynamic: could not place the moving obstacles in free space; "
+                                "lower count, radius or length")
+        i = idx[rng.integers(len(idx))]
+        j = min(i + 1, len(path) - 1)
+        tangent = path[j] - path[max(j - 1, 0)]
+        ang = math.atan2(tangent[1], tangent[0]) + math.radians(rng.uniform(60, 120)) * rng.choice([-1, 1])
+        u = np.array([math.cos(ang), math.sin(ang)])
+        half = rng.uniform(*spec["length"]) / 2
+        a, b = path[i] - half * u, path[i] + half * u
+        # shorten each half until it keeps the radius from known obstacles and the border
+        for end in ("a", "b"):
+            for _ in range(20):
+                p = a if end == "a" else b
+                if bool(world.segments_free(path[i], p, radius)):
+                    break
+                p = path[i] + 0.8 * (p - path[i])
+                a, b = (p, b) if end == "a" else (a, p)
+        if not bool(world.segments_free(a, b, radius)) or np.hypot(*(b - a)) < 1.0:
+            continue
+        # the mover must never touch the robot waiting at the start or arrived at the goal
+        near = radius + sc.robot.radius + 0.5
+        if min(_point_segment_distance(sc.start[:2], a, b), _point_segment_distance(sc.goal, a, b)) < near:
+            continue
+        speed = rng.uniform(*spec["speed"])
+        ob = DynamicObstacle(radius, waypoints=np.round(np.array([a, b]), 3), speed=round(float(speed), 3), loop=True,
+                             phase=round(float(rng.uniform(0, 2 * np.hypot(*(b - a)))), 3))
+        out.append(ob)
+    return out
