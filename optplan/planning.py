@@ -8,8 +8,19 @@ import numpy as np
 from .errors import ParameterError, UnknownAlgorithmError
 from .registry import GRAPH_METHODS, algorithms
 from .results import PlanResult
+from .world.queries import check_start_goal
 
 REFINE_MODES = (None, "none", "casadi", "qp")
+
+
+def _checked_clearance(clearance) -> float:
+    try:
+        c = float(clearance)
+    except (TypeError, ValueError):
+        c = float("nan")
+    if not np.isfinite(c) or c < 0:
+        raise ParameterError(f"clearance must be a finite number >= 0 metres, got {clearance!r}")
+    return c
 
 
 def plan(world, start, goal, algorithm: str = "astar", refine: str | None = None, seed: int | None = 0,
@@ -28,12 +39,18 @@ def plan(world, start, goal, algorithm: str = "astar", refine: str | None = None
 
     Returns:
         A :class:`PlanResult`; ``feasible`` is the verdict of the exact ``validate_path``.
+
+    Raises:
+        InfeasibleQueryError: start/goal outside the map, blocked, equal, or unreachable.
+        UnknownAlgorithmError: ``algorithm`` is not registered.
+        ParameterError: a parameter is out of range, NaN or of the wrong type.
     """
     if not isinstance(algorithm, str):
         raise UnknownAlgorithmError(f"algorithm must be a name string, got {algorithm!r}")
     name = algorithm.lower()
     if refine not in REFINE_MODES:
         raise ParameterError(f"refine must be one of none, casadi, qp; got {refine!r}")
+    start, goal = check_start_goal(world, start, goal, _checked_clearance(clearance))
     if name in GRAPH_METHODS:
         from .solvers.graph import shortest_path
 

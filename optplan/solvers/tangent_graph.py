@@ -19,6 +19,7 @@ from scipy.sparse.csgraph import dijkstra
 
 from ..errors import InfeasibleQueryError
 from .result import make_plan_result
+from ..world.queries import check_start_goal
 
 _EPS = 1e-9
 
@@ -183,8 +184,7 @@ def tangent_shortest_path(world, start, goal, arc_step_deg: float = 2.0):
 def plan_tangent(world, start, goal, clearance: float = 0.0):
     """``shortest_path(circle_world, ..., method="visibility")``: exact optimum among circles."""
     t0 = time.perf_counter()
-    s = world.check_query_point(start, "start", clearance)
-    g = world.check_query_point(goal, "goal", clearance)
+    s, g = check_start_goal(world, start, goal, clearance)
     if clearance > 0:
         from ..world.circles import CircleWorld
 

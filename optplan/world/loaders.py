@@ -23,7 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import MapFormatError
+from ..errors import MapFormatError, ParameterError
 from .grid import GridMap
 
 MAX_CELLS = 50_000_000  # refuse maps larger than this (about 7000 x 7000)
@@ -220,7 +220,12 @@ def _read_pgm(path: Path) -> np.ndarray:
         vals = data[pos:].split()
         if len(vals) != w * h:
             raise MapFormatError(f"{path}: PGM says {w} x {h} pixels but holds {len(vals)} values")
-        img = np.array([int(v) for v in vals]).reshape(h, w)
+        try:
+            img = np.array([int(v) for v in vals], dtype=np.int64).reshape(h, w)
+        except ValueError:
+            raise MapFormatError(f"{path}: P2 PGM pixel values must be non-negative integers") from None
+    if img.min() < 0 or img.max() > maxval:
+        raise MapFormatError(f"{path}: PGM pixel values must lie in 0..{maxval} (the header's maxval)")
     return img.astype(np.int64), maxval
 
 
@@ -294,7 +299,8 @@ def load_map(path: str | os.PathLike) -> GridMap:
             optplan (``optplan.world.maps.names()``) are accepted too.
 
     Raises:
-        MapFormatError: missing, empty, truncated, binary or malformed file.
+        MapFormatError: missing, empty, truncated, binary or malformed file, or a map
+            with no free cell.
     """
     p = Path(path)
     if not p.exists():
@@ -309,7 +315,14 @@ def load_map(path: str | os.PathLike) -> GridMap:
     loader = _LOADERS.get(p.suffix.lower())
     if loader is None:
         raise MapFormatError(f"{p}: unknown map format {p.suffix!r}; use one of {', '.join(sorted(_LOADERS))}")
-    return loader(p)
+    try:
+        world = loader(p)
+    except ParameterError as exc:  # e.g. a resolution of 0 in the file: the file is at fault
+        raise MapFormatError(f"{p}: {exc}") from None
+    if isinstance(world, GridMap) and world.occ.all():
+        raise MapFormatError(f"{p}: every cell of this {world.width} x {world.height} map is blocked; "
+                             "nothing can be planned on it (is the map inverted? 0 = free, 1 = blocked)")
+    return world
 
 
 def save_map(grid: GridMap, path: str | os.PathLike) -> Path:

@@ -12,6 +12,7 @@ import numpy as np
 
 from ...errors import ParameterError, UnknownAlgorithmError
 from ...results import PlanResult
+from ...world.queries import check_start_goal
 from ..result import make_plan_result
 from .astar import grid_search, octile
 from .visibility import convex_corners, visibility_path
@@ -38,7 +39,7 @@ def shortest_path(world, start, goal, method: str = "astar", *, corner_cutting: 
             (conservative: the result is feasible but may be longer than necessary).
 
     Raises:
-        InfeasibleQueryError: start/goal outside the map, blocked, or unreachable.
+        InfeasibleQueryError: start/goal outside the map, blocked, equal, or unreachable.
         UnknownAlgorithmError: unknown ``method``.
     """
     if method not in METHODS:
@@ -50,8 +51,7 @@ def shortest_path(world, start, goal, method: str = "astar", *, corner_cutting: 
         from ..tangent_graph import plan_tangent
 
         return plan_tangent(world, start, goal, clearance)
-    s = world.check_query_point(start, "start", clearance)
-    g = world.check_query_point(goal, "goal", clearance)
+    s, g = check_start_goal(world, start, goal, clearance)
     if method == "visibility":
         search_world = world.inflate(clearance) if clearance > 0 else world
         if points == "centres":
