@@ -133,9 +133,19 @@ class OsqpCorridorQP:
         X0 = corridor.points if x0 is None else np.asarray(x0, float)
         self.solver.warm_start(x=np.concatenate([X0[:, 0], X0[:, 1]]),
                                y=np.zeros(len(l)) if y0 is None else y0)
-        res = self.solver.solve()
+        res = self.solver.solve(raise_error=False)
+        polished = res.info.status_polish == 1
+        if res.info.status_val == 1 and not polished:
+            # polishing can fail (degenerate active sets: neighbouring pieces share nearly the
+            # same half-plane); then tighten the tolerances and continue from this solution,
+            # so the constraints hold to ~1e-8 m, well inside the cushion
+            self.solver.update_settings(eps_abs=1e-9, eps_rel=1e-9)
+            res2 = self.solver.solve(raise_error=False)
+            self.solver.update_settings(eps_abs=OSQP_SETTINGS["eps_abs"], eps_rel=OSQP_SETTINGS["eps_rel"])
+            if res2.info.status_val == 1:
+                res, polished = res2, res2.info.status_polish == 1
         dt = time.perf_counter() - t
-        status = str(res.info.status)
+        status = str(res.info.status) + ("" if polished else " (not polished)")
         ok = res.info.status_val == 1   # OSQP_SOLVED (not "solved inaccurate")
         z = res.x if res.x is not None else np.full(2 * self.N, np.nan)
         X = np.stack([z[:self.N], z[self.N:]], axis=1)
