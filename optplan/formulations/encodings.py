@@ -231,20 +231,38 @@ class ColumnNodes(PathEncoding):
 
         Computed from the same world coordinates :meth:`decode` produces, so a
         table sum equals ``terms.length`` of the decoded path."""
+        return np.hypot(*self._segment_deltas())
+
+    def segment_headings(self) -> np.ndarray:
+        """Heading (radians, ``atan2(dy, dx)``) of every possible segment, in the flat layout;
+        computed once per encoding from the same coordinates as :meth:`segment_lengths`."""
+        h = getattr(self, "_headings", None)
+        if h is None:
+            dx, dy = self._segment_deltas()
+            h = self._headings = np.arctan2(dy, dx)
+        return h
+
+    def _segment_deltas(self) -> tuple[np.ndarray, np.ndarray]:
         grid, H = self.world, self.world.height
         res, (ox, oy) = grid.resolution, grid.origin
         ys = (np.arange(H) + 0.5) * res + oy
         xs = (self.columns + 0.5) * res + ox
-        first = np.hypot(xs[0] - self.start[0], ys - self.start[1])
-        last = np.hypot(self.goal[0] - xs[-1], self.goal[1] - ys)
-        dy = ys[None, :] - ys[:, None]                          # (r1, r2): ys[r2] - ys[r1]
-        inner = np.hypot(np.diff(xs)[:, None, None], dy[None, :, :])
-        return np.concatenate([first, inner.reshape(-1), last])
+        d = self.dim
+        dx = np.concatenate([np.full(H, xs[0] - self.start[0]),
+                             np.repeat(np.diff(xs), H * H), np.full(H, self.goal[0] - xs[-1])])
+        dy_inner = np.broadcast_to(ys[None, :] - ys[:, None], (d - 1, H, H)).reshape(-1)  # (r1, r2): ys[r2] - ys[r1]
+        dy = np.concatenate([ys - self.start[1], dy_inner, self.goal[1] - ys])
+        return dx, dy
 
     def feasible_transitions(self, clearance: float = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Boolean masks of collision-free moves: ``first[r]``, ``inner[j, r1, r2]``,
         ``last[r]``, pruned backwards so that every allowed move can still reach
         the goal (a dynamic programme over the columns)."""
+        key = ("column_transitions", float(clearance), self.columns.tobytes(),
+               np.concatenate([self.start, self.goal]).tobytes())
+        cache = self.world._cache
+        if key in cache:
+            return cache[key]
         t = self.segment_tables(clearance)
         first, inner, last = t["first"] == 0, t["inner"] == 0, t["last"] == 0
         alive = last.copy()                       # rows of the last column that reach the goal
@@ -252,7 +270,8 @@ class ColumnNodes(PathEncoding):
         for j in range(self.dim - 2, -1, -1):
             pruned[j] = inner[j] & alive[None, :]
             alive = pruned[j].any(axis=1)
-        return first & alive, pruned, last
+        cache[key] = (first & alive, pruned, last)  # fixed per map: GA operators reuse it every generation
+        return cache[key]
 
     def sample_feasible(self, n: int, rng: np.random.Generator, clearance: float = 0.0,
                         spread: float = 2.0) -> np.ndarray:

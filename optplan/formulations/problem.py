@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import ParameterError
+from ..world.metrics import turn_angles_deg
 from . import terms
 from .encodings import PathEncoding
 from .presets import FitnessPreset, get_preset
@@ -44,15 +45,23 @@ class PathProblem:
         if not np.isfinite(c) or c < 0:
             raise ParameterError(f"clearance must be a finite number >= 0 metres, got {self.clearance!r}")
         self.clearance = c
-        from ..world.fields import distance_function
-
-        self._distance = distance_function(self.encoding.world)
         pen = self.preset.collision_penalty
         if pen == "goal_product":
             world = self.encoding.world
             tx, ty = world.cell_of(self.encoding.goal) + 1 if hasattr(world, "occ") else self.encoding.goal
             pen = float(tx * ty)
         self._collision_penalty = float(pen)
+
+    @property
+    def _distance(self):
+        """Signed distance callable of the world (built on first use: sampling the
+        field of a large grid takes a while and many presets never need it)."""
+        fn = getattr(self, "_distance_fn", None)
+        if fn is None:
+            from ..world.fields import distance_function
+
+            fn = self._distance_fn = distance_function(self.encoding.world)
+        return fn
 
     # ------------------------------------------------------------------ pieces
     @property
@@ -80,16 +89,19 @@ class PathProblem:
     def turn_terms(self, paths: np.ndarray) -> np.ndarray | None:
         """Weighted terms of consecutive segment pairs (turn angle, count, cost), ``(n,)``;
         ``None`` when the preset has none."""
-        p = self.preset
         if not self._has_turn_terms:
             return None
+        return self._weighted_turns(turn_angles_deg(paths))
+
+    def _weighted_turns(self, ang_deg: np.ndarray) -> np.ndarray:
+        p = self.preset
         f = 0.0
         if p.turn_angle:
-            f = f + p.turn_angle * terms.turn_angle(paths)
+            f = f + p.turn_angle * terms.turn_angle_of_angles(ang_deg)
         if p.turn_count:
-            f = f + p.turn_count * terms.turn_count(paths)
+            f = f + p.turn_count * terms.turn_count_of_angles(ang_deg)
         if p.turn_cost:
-            f = f + p.turn_cost * terms.turn_cost_quantised(paths)
+            f = f + p.turn_cost * terms.turn_cost_of_angles(ang_deg)
         return f
 
     # ------------------------------------------------------------ solver view
@@ -158,7 +170,8 @@ class PathProblem:
             f = np.add.reduce(fused[0].take(idx), axis=1)
             v = np.add.reduce(fused[1].take(idx), axis=1)
             if self._has_turn_terms:
-                f = f + self.turn_terms(self.decode(X))
+                # segment headings are tabulated too: turn terms without decoding paths
+                f = f + self._weighted_turns(terms.heading_changes_deg(enc.segment_headings().take(idx)))
             return f, v
         paths = self.decode(X)
         self.nfev += len(paths)

@@ -17,9 +17,40 @@ def length(paths: np.ndarray) -> np.ndarray:
     return path_length(paths)
 
 
+# Turn terms are functions of the absolute heading changes at the interior
+# vertices (degrees, ``(n, N-2)``); the ``*_of_angles`` forms let encodings that
+# tabulate segment headings skip decoding the paths.
+
+def heading_changes_deg(heading: np.ndarray) -> np.ndarray:
+    """Absolute change between consecutive segment headings (radians in), degrees out,
+    wrapped to [0, 180] (the same rule as ``optplan.world.metrics.turn_angles_deg``)."""
+    turn = np.diff(heading, axis=-1)
+    turn = (turn + np.pi) % (2 * np.pi) - np.pi
+    return np.abs(np.degrees(turn))
+
+
+def turn_angle_of_angles(ang_deg: np.ndarray) -> np.ndarray:
+    """Sum of absolute heading changes in radians (li2023 eq 2, theta)."""
+    return np.radians(ang_deg).sum(axis=-1)
+
+
+def turn_count_of_angles(ang_deg: np.ndarray, tol_deg: float = 1e-6) -> np.ndarray:
+    """Number of turning points (li2023 eq 2, the partial-derivative symbol)."""
+    return (ang_deg > tol_deg).sum(axis=-1).astype(float)
+
+
+def turn_cost_of_angles(ang_deg: np.ndarray) -> np.ndarray:
+    """yuan2021 eq 12: ``m1 * pi/4 + m2 * pi/2`` for m1 turns of up to 45 degrees and
+    m2 sharper turns. On the 8-connected grid this is exactly the paper's count of
+    45- and 90-degree turns; off the grid each turn is charged to its class."""
+    small = (ang_deg > 1e-6) & (ang_deg <= 45.0 + 1e-9)
+    sharp = ang_deg > 45.0 + 1e-9
+    return small.sum(axis=-1) * (np.pi / 4) + sharp.sum(axis=-1) * (np.pi / 2)
+
+
 def turn_angle(paths: np.ndarray) -> np.ndarray:
     """Sum of absolute heading changes in radians (li2023 eq 2, theta)."""
-    return np.radians(turn_angles_deg(paths)).sum(axis=-1)
+    return turn_angle_of_angles(turn_angles_deg(paths))
 
 
 def turn_count(paths: np.ndarray, tol_deg: float = 1e-6) -> np.ndarray:
@@ -28,13 +59,8 @@ def turn_count(paths: np.ndarray, tol_deg: float = 1e-6) -> np.ndarray:
 
 
 def turn_cost_quantised(paths: np.ndarray) -> np.ndarray:
-    """yuan2021 eq 12: ``m1 * pi/4 + m2 * pi/2`` for m1 turns of up to 45 degrees and
-    m2 sharper turns. On the 8-connected grid this is exactly the paper's count of
-    45- and 90-degree turns; off the grid each turn is charged to its class."""
-    ang = turn_angles_deg(paths)
-    small = (ang > 1e-6) & (ang <= 45.0 + 1e-9)
-    sharp = ang > 45.0 + 1e-9
-    return small.sum(axis=-1) * (np.pi / 4) + sharp.sum(axis=-1) * (np.pi / 2)
+    """yuan2021 eq 12 on decoded paths (see :func:`turn_cost_of_angles`)."""
+    return turn_cost_of_angles(turn_angles_deg(paths))
 
 
 def collisions(world, paths: np.ndarray, clearance: float = 0.0) -> np.ndarray:
