@@ -11,6 +11,9 @@ from .results import PlanResult
 from .world.queries import check_start_goal
 
 REFINE_MODES = (None, "none", "casadi", "qp")
+# planners that exist only on occupancy grids, and why
+GRID_ONLY = {"aco": "ACO walks the grid's cell graph", "iga": "IGA evolves sequences of grid cells",
+             "astar": "A* searches the grid's cell graph", "dijkstra": "Dijkstra searches the grid's cell graph"}
 
 
 def _checked_clearance(clearance) -> float:
@@ -51,6 +54,9 @@ def plan(world, start, goal, algorithm: str = "astar", refine: str | None = None
     if refine not in REFINE_MODES:
         raise ParameterError(f"refine must be one of none, casadi, qp; got {refine!r}")
     start, goal = check_start_goal(world, start, goal, _checked_clearance(clearance))
+    if name in GRID_ONLY and not hasattr(world, "occ"):
+        raise ParameterError(f"{name!r} needs a grid map ({GRID_ONLY[name]}); on a circle world use "
+                             "'visibility' or a metaheuristic such as 'pso', 'ipso' or 'ga'")
     if name in GRAPH_METHODS:
         from .solvers.graph import shortest_path
 
