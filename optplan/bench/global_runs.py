@@ -20,6 +20,7 @@ class RunSet:
 
     algorithm: str
     results: list[PlanResult] = field(default_factory=list)
+    failed: int = 0  # runs that raised instead of returning a result (benchmark runner)
 
     @property
     def feasible(self) -> list[PlanResult]:
@@ -63,26 +64,34 @@ def wilcoxon_p(a: np.ndarray, b: np.ndarray) -> float:
     return float(ranksums(a, b).pvalue)
 
 
-def global_table(sets: list[RunSet], optimum: float, reference: str | None = None) -> str:
-    """Markdown: min/mean length, gap of the best and mean to the optimum, turning,
-    time, feasible share, and the rank-sum p-value against ``reference``."""
+def global_table(sets: list[RunSet], optimum: float, reference: str | None = None, fmt: str = "markdown") -> str:
+    """Markdown (or LaTeX with ``fmt="latex"``): min/mean length, gap of the best and mean to
+    the optimum, turning, time, feasible share, and the rank-sum p-value against ``reference``."""
+    return global_table_data(sets, optimum, reference).render(fmt)
+
+
+def global_table_data(sets: list[RunSet], optimum: float, reference: str | None = None):
+    """The :class:`~optplan.bench.tables.Table` behind :func:`global_table`."""
+    from .tables import Table
+
     ref = next((s for s in sets if s.algorithm == reference), None)
-    head = ("| algorithm | min length [m] | mean length [m] | best gap [%] | mean gap [%] | min turn [deg] | "
-            "mean turn [deg] | mean time [s] | feasible | p vs " + (reference or "-") + " |")
-    rows = [head, "|" + "---|" * 10]
+    table = Table(["algorithm", "min length [m]", "mean length [m]", "best gap [%]", "mean gap [%]",
+                   "min turn [deg]", "mean turn [deg]", "mean time [s]", "feasible", "p vs " + (reference or "-")])
     for s in sets:
         L = s.values("length")
         T = s.values("turn_angle_deg")
         t = np.array([r.runtime_s for r in s.results])
+        mean_t = f"{t.mean():.3f}" if len(t) else "-"
+        count = f"{len(L)}/{len(s.results) + s.failed}" + (f" ({s.failed} failed)" if s.failed else "")
         if len(L):
             p = wilcoxon_p(L, ref.values("length")) if ref is not None and s is not ref else float("nan")
-            rows.append(f"| {s.algorithm} | {L.min():.4f} | {L.mean():.4f} | {100 * (L.min() / optimum - 1):.2f} | "
-                        f"{100 * (L.mean() / optimum - 1):.2f} | {T.min():.1f} | {T.mean():.1f} | {t.mean():.3f} | "
-                        f"{len(L)}/{len(s.results)} | {'-' if np.isnan(p) else f'{p:.3g}'} |")
+            table.rows.append([s.algorithm, f"{L.min():.4f}", f"{L.mean():.4f}", f"{100 * (L.min() / optimum - 1):.2f}",
+                               f"{100 * (L.mean() / optimum - 1):.2f}", f"{T.min():.1f}", f"{T.mean():.1f}", mean_t,
+                               count, "-" if np.isnan(p) else f"{p:.3g}"])
         else:
-            rows.append(f"| {s.algorithm} | - | - | - | - | - | - | {t.mean():.3f} | 0/{len(s.results)} | - |")
-    rows.append(f"\nexact optimum (any-angle, same start/goal): {optimum:.4f} m")
-    return "\n".join(rows)
+            table.rows.append([s.algorithm, "-", "-", "-", "-", "-", "-", mean_t, count, "-"])
+    table.notes.append(f"exact optimum (any-angle, same start/goal): {optimum:.4f} m")
+    return table
 
 
 def convergence_iteration(history: np.ndarray, rel_tol: float = 1e-9) -> int:

@@ -38,25 +38,32 @@ def _fmt(x: float) -> str:
     return f"{x:.4e}" if (x != 0 and (abs(x) < 1e-3 or abs(x) >= 1e5)) else f"{x:.4f}"
 
 
-def summary_table(results: Mapping[str, Mapping[str, Sequence[float]]]) -> str:
-    """Markdown: one row per (problem, algorithm) with best/mean/worst/std.
+def summary_table(results: Mapping[str, Mapping[str, Sequence[float]]], fmt: str = "markdown") -> str:
+    """Markdown (or LaTeX with ``fmt="latex"``): one row per (problem, algorithm) with best/mean/worst/std.
 
     ``results[problem][algorithm] = values``.
     """
-    rows = ["| problem | algorithm | best | mean | worst | std |", "|---|---|---|---|---|---|"]
+    from .tables import Table
+
+    table = Table(["problem", "algorithm", "best", "mean", "worst", "std"])
     for prob, algos in results.items():
         for algo, vals in algos.items():
+            if len(vals) == 0:
+                table.rows.append([prob, algo, "-", "-", "-", "-"])
+                continue
             s = summary(vals)
-            rows.append(f"| {prob} | {algo} | {_fmt(s['best'])} | {_fmt(s['mean'])} | {_fmt(s['worst'])} | {_fmt(s['std'])} |")
-    return "\n".join(rows)
+            table.rows.append([prob, algo, _fmt(s["best"]), _fmt(s["mean"]), _fmt(s["worst"]), _fmt(s["std"])])
+    return table.render(fmt)
 
 
 def wilcoxon_table(results: Mapping[str, Mapping[str, Sequence[float]]], reference: str,
-                   alpha: float = 0.05) -> str:
-    """Markdown: p-values of ``reference`` against each other algorithm per problem, and
-    the ``+/=/-`` totals (chen2025 Table 7 layout)."""
+                   alpha: float = 0.05, fmt: str = "markdown") -> str:
+    """Markdown (or LaTeX): p-values of ``reference`` against each other algorithm per problem,
+    and the ``+/=/-`` totals (chen2025 Table 7 layout)."""
+    from .tables import Table
+
     others = [a for a in next(iter(results.values())) if a != reference]
-    rows = ["| problem | " + " | ".join(others) + " |", "|---|" + "---|" * len(others)]
+    table = Table(["problem", *others])
     tally = {a: {"+": 0, "=": 0, "-": 0} for a in others}
     for prob, algos in results.items():
         cells = []
@@ -64,6 +71,6 @@ def wilcoxon_table(results: Mapping[str, Mapping[str, Sequence[float]]], referen
             p, sign = compare(algos[reference], algos[a], alpha)
             tally[a][sign] += 1
             cells.append(f"{p:.3g} ({sign})" if np.isfinite(p) else "-")
-        rows.append(f"| {prob} | " + " | ".join(cells) + " |")
-    rows.append("| +/=/- | " + " | ".join(f"{t['+']}/{t['=']}/{t['-']}" for t in tally.values()) + " |")
-    return "\n".join(rows)
+        table.rows.append([prob, *cells])
+    table.rows.append(["+/=/-", *(f"{t['+']}/{t['=']}/{t['-']}" for t in tally.values())])
+    return table.render(fmt)

@@ -1,0 +1,113 @@
+"""Pictures of a stored experiment: box plots, convergence curves, path overlays (PNG, no screen needed).
+
+The convergence curves are :func:`optplan.viz.convergence.plot_convergence`
+(median and inter-quartile band) and the overlays :func:`optplan.viz.plots.plot_paths`;
+this module picks the data out of the results database.
+"""
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+from typing import Mapping, Sequence
+
+import numpy as np
+
+from .summary import ExperimentResults
+
+
+def _safe(name: str) -> str:
+    return re.sub(r"[^0-9A-Za-z_.+-]", "_", name)
+
+
+def box_plot(groups: Mapping[str, Sequence[float]], filename: str | Path, title: str = "", ylabel: str = "",
+             reference_line: float | None = None) -> Path:
+    """One box per group (median, quartiles, 1.5 IQR whiskers, outliers) with the runs jittered on top;
+    empty groups are shown by name with no box. ``reference_line`` draws e.g. the exact optimum."""
+    from ..viz.plots import _pyplot, save_figure
+
+    plt = _pyplot()
+    names = list(groups)
+    fig, ax = plt.subplots(figsize=(max(4.0, 0.9 * len(names) + 2), 4.2))
+    data = [np.asarray(groups[n], float) for n in names]
+    pos = [i + 1 for i, d in enumerate(data) if len(d)]
+    if pos:
+        ax.boxplot([d for d in data if len(d)], positions=pos, widths=0.55, showfliers=True)
+    rng = np.random.default_rng(0)  # jitter only; fixed so the picture is reproducible
+    for i, d in enumerate(data):
+        if len(d):
+            ax.plot(i + 1 + rng.uniform(-0.12, 0.12, len(d)), d, ".", alpha=0.5, ms=4)
+    if reference_line is not None:
+        ax.axhline(reference_line, ls="--", lw=1, color="0.4", label="exact optimum")
+        ax.legend(fontsize=7)
+    ax.set_xticks(range(1, len(names) + 1))
+    ax.set_xticklabels(names, rotation=30, ha="right", fontsize=8)
+    ax.set_xlim(0.4, len(names) + 0.6)
+    ax.set_ylabel(ylabel)
+    return save_figure(fig, filename, title)
+
+
+def experiment_plots(res: ExperimentResults, out_dir: str | Path, metric: str | None = None) -> list[Path]:
+    """Per target: a box plot of ``metric`` (successful runs), convergence curves (when runs have a
+    history) and an overlay of each group's best path (plan) or last trajectory (simulate)."""
+    from ..viz.convergence import plot_convergence
+
+    out_dir = Path(out_dir)
+    spec = res.spec
+    metric = metric or spec.metric
+    files: list[Path] = []
+    for t in spec.targets:
+        groups = res.groups(t.name)
+        names = {g: res.group_name(*g) for g in groups}
+        ref_line = None
+        if spec.kind == "plan" and metric == "length":
+            from .summary import exact_optimum_of
+
+            ref_line = exact_optimum_of(t.spec)
+        vals = {names[g]: res.values(recs, metric) for g, recs in groups.items()}
+        if any(len(v) for v in vals.values()):
+            files.append(box_plot(vals, out_dir / f"{_safe(spec.name)}_{_safe(t.name)}_box.png",
+                                  title=f"{t.name}: {metric}", ylabel=metric, reference_line=ref_line))
+        histories, paths = {}, {}
+        for g, recs in groups.items():
+            ok = [r for r in recs if res.successful(r)] or [r for r in recs if r.key in res.rows
+                                                             and res.rows[r.key]["status"] == "ok"]
+            tr = res.traces([r.key for r in ok])
+            hs = [np.asarray([np.nan if h is None else h for h in tr[r.key]["history"]], float)
+                  for r in ok if len(tr.get(r.key, {}).get("history", [])) > 1]
+            hs = [h for h in hs if np.isfinite(h).all()]
+            if hs:
+                histories[names[g]] = hs
+            if ok and spec.kind in ("plan", "simulate"):
+                best = min(ok, key=lambda r: float(res.rows[r.key].get(metric) or np.inf))
+                trace = tr.get(best.key, {})
+                if spec.kind == "plan" and trace.get("path"):
+                    paths[names[g]] = np.asarray(trace["path"], float)
+                elif trace.get("trajectory"):
+                    paths[names[g]] = np.asarray(trace["trajectory"], float)[:, 1:3]
+        if histories:
+            positive = all((h > 0).all() for hs in histories.values() for h in hs)
+            files.append(plot_convergence(histories, out_dir / f"{_safe(spec.name)}_{_safe(t.name)}_convergence.png",
+                                          title=f"{t.name}: best value per iteration", log=positive))
+        if paths:
+            world = _world_of(spec.kind, t.spec)
+            if world is not None:
+                from ..viz.plots import plot_paths
+
+                files.append(plot_paths(world, paths, out_dir / f"{_safe(spec.name)}_{_safe(t.name)}_paths.png",
+                                        title=f"{t.name}: best run of each"))
+    return files
+
+
+def _world_of(kind: str, target_spec: Mapping):
+    if kind == "plan":
+        from .runner import _plan_target
+
+        return _plan_target(json.dumps(dict(target_spec), sort_keys=True))[0]
+    try:
+        from ..world.scenario import load_scenario
+
+        sc = load_scenario(target_spec["scenario"])
+    except Exception:  # no scenario layer or no drawable map: skip the overlay, keep the other plots
+        return None
+    return getattr(sc, "grid", None) or getattr(sc, "world", None) or getattr(sc, "map", None)

@@ -1,0 +1,253 @@
+"""The papers' table layouts, filled from stored runs.
+
+Each shipped spec names its layout with ``report:``; the layouts print what the
+example scripts in ``examples/`` print (the same helpers make the tables), so
+``optplan reproduce PAPER`` and ``python examples/PAPER.py`` agree run for run.
+A layout is ``layout(results, fmt, plots_dir) -> str``.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+
+from .global_runs import convergence_iteration, global_table
+from .stats import summary_table, wilcoxon_table
+from .summary import ExperimentResults, exact_optimum_of, format_summary
+from .tables import Table
+
+
+def _ref_label(res: ExperimentResults) -> str | None:
+    ref = res.spec.reference
+    return ref.get("algorithm") if isinstance(ref, dict) else ref
+
+
+def _notes(res: ExperimentResults) -> list[str]:
+    out = [res.spec.notes.strip()] if res.spec.notes.strip() else []
+    if res.missing:
+        out.append(f"({res.missing} of {len(res.records)} runs are not in the database; rerun to complete)")
+    return out
+
+
+def _path_overlays(res: ExperimentResults, plots_dir: Path | None) -> list[str]:
+    if plots_dir is None:
+        return []
+    from .plots import experiment_plots
+
+    files = experiment_plots(res, plots_dir)
+    return [f"plots: {len(files)} files in {plots_dir}/"] if files else []
+
+
+def global_tables(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path | None = None,
+                  notes: bool = True) -> str:
+    """One :func:`global_table` per map (hou2024 Tables 2-3, chen2025 Tables 9-11 layout)."""
+    out = [f"## {res.spec.formatted_title()}\n"]
+    for t in res.spec.targets:
+        out.append(f"### {t.name}\n")
+        out.append(global_table(res.run_sets(t.name), exact_optimum_of(t.spec), reference=_ref_label(res), fmt=fmt))
+        out.append("")
+    if notes:
+        out += _notes(res) + _path_overlays(res, plots_dir)
+    return "\n".join(out).rstrip("\n") + "\n"
+
+
+def _tail(res: ExperimentResults, plots_dir: Path | None) -> str:
+    lines = _notes(res) + _path_overlays(res, plots_dir)
+    return ("\n" + "\n".join(lines) + "\n") if lines else ""
+
+
+def chen2025_paths(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path | None = None) -> str:
+    """chen2025 Tables 9-11 (one table per map) and Table 8 (A* against the best MSIAR-GWO path)."""
+    from ..planning import plan
+    from .runner import _plan_target
+    import json
+
+    text = global_tables(res, fmt, notes=False).rstrip("\n")
+    ref = _ref_label(res) or res.spec.labels[0]
+    table = Table(["map", "A* (8-connected) [m]", f"{ref.upper()} best [m]", "exact any-angle optimum [m]"],
+                  caption="chen2025 Table 8 analog")
+    for t in res.spec.targets:
+        world, s, g = _plan_target(json.dumps(dict(t.spec), sort_keys=True))
+        astar = plan(world, s, g, algorithm="astar")
+        sets = {rs.algorithm: rs for rs in res.run_sets(t.name)}
+        best = min((r.length for r in sets[ref].feasible), default=float("nan")) if ref in sets else float("nan")
+        table.rows.append([t.name, f"{astar.length:.4f}", f"{best:.4f}", f"{exact_optimum_of(t.spec):.4f}"])
+    return (f"{text}\n\n## chen2025 Table 8 analog: A* vs {ref.upper()} (best of runs)\n\n"
+            f"{table.render(fmt)}\n" + _tail(res, plots_dir))
+
+
+def functions(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path | None = None) -> str:
+    """chen2025 Tables 4-6 (best/mean/worst/std of F1-F18) and Table 7 (rank-sum p-values, +/=/-)."""
+    from .runner import _function_target
+    import json
+
+    spec = res.spec
+    ref = _ref_label(res) or spec.labels[0]
+    results, histories = {}, {}
+    for t in spec.targets:
+        results[t.name], histories[t.name] = {}, {}
+        for (label, _, _), recs in res.groups(t.name).items():
+            results[t.name][label] = list(res.values(recs, "f"))
+            tr = res.traces([r.key for r in recs if r.key in res.rows])
+            histories[t.name][label] = [np.asarray(tr[k]["history"], float) for k in tr if "history" in tr[k]]
+    optima = {t.name: _function_target(json.dumps(dict(t.spec), sort_keys=True)).f_opt for t in spec.targets}
+    out = [f"## {spec.formatted_title()}\n", summary_table(results, fmt=fmt),
+           "\nknown optima: " + ", ".join(f"{n}={v:.6g}" for n, v in optima.items()),
+           f"\n## chen2025 Table 7 analog: Wilcoxon rank-sum p-values of {ref} against each algorithm\n",
+           wilcoxon_table(results, ref, alpha=spec.alpha, fmt=fmt),
+           f"\n(+: {ref} significantly better at alpha {spec.alpha}, -: significantly worse, =: no difference)"]
+    out += _notes(res)
+    if plots_dir is not None:
+        from ..viz.convergence import plot_convergence
+
+        Path(plots_dir).mkdir(parents=True, exist_ok=True)
+        for name, h in histories.items():
+            if all(len(v) for v in h.values()):
+                plot_convergence(h, Path(plots_dir) / f"convergence_{name}.png",
+                                 title=f"{name} (shifted where applicable)", log=name not in ("F8", "F17", "F18"))
+        out.append(f"convergence plots in {plots_dir}/")
+    return "\n".join(out) + "\n"
+
+
+def yang2023_global(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path | None = None) -> str:
+    """yang2023 Tables 1-2 (global tables) and Table 3 (median converged value and iteration)."""
+    text = global_tables(res, fmt, notes=False).rstrip("\n")
+    table = Table(["environment", "algorithm", "median converged fitness", "median convergence iteration"])
+    for t in res.spec.targets:
+        for s in res.run_sets(t.name):
+            fin = [r.history[-1] for r in s.results if len(r.history)]
+            its = [convergence_iteration(r.history) for r in s.results if len(r.history)]
+            if fin:
+                table.rows.append([t.name, s.algorithm, f"{np.median(fin):.4f}", f"{np.median(its):.0f}"])
+    return f"{text}\n\n## yang2023 Table 3 analog: convergence\n\n{table.render(fmt)}\n" + _tail(res, plots_dir)
+
+
+def yuan2021_turns(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path | None = None) -> str:
+    """yuan2021 Table 2: the global table plus the number of turns of the feasible paths."""
+    lines = [global_tables(res, fmt, notes=False).rstrip("\n"), ""]
+    for t in res.spec.targets:
+        for s in res.run_sets(t.name):
+            turns = [r.n_turns for r in s.feasible]
+            if turns:
+                lines.append(f"{s.algorithm}: turns min {min(turns)}, mean {sum(turns) / len(turns):.1f}")
+    return "\n".join(lines) + "\n" + _tail(res, plots_dir)
+
+
+def li2023_global(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path | None = None) -> str:
+    """li2023 Table 1 (TGA vs IGA: length, time, key points, reductions), Table 2 (A* vs IGA) and
+    the per-map global tables."""
+    import json
+
+    from ..planning import plan
+    from ..world.postprocess import remove_collinear
+    from .runner import _plan_target
+
+    def key_points(r) -> int:
+        return max(len(r.path) - 2, 0)
+
+    labels = res.spec.labels
+    base, improved = (labels + labels)[:2] if len(labels) < 2 else labels[:2]
+    t1 = Table(["map", "algorithm", "mean length [m]", "gap to optimum [%]", "mean time [s]", "mean key points",
+                "length reduction [%]", "time reduction [%]", "key point reduction [%]"])
+    t2 = Table(["map", "A* length [m]", "A* key points", "A* time [s]", f"{improved.upper()} mean length [m]",
+                f"{improved.upper()} key points", f"{improved.upper()} time [s]", "optimum [m]"])
+    details = []
+    for t in res.spec.targets:
+        opt = exact_optimum_of(t.spec)
+        sets = {s.algorithm: s for s in res.run_sets(t.name)}
+        stats = {}
+        for a in (base, improved):
+            rs = sets[a]
+            L = rs.values("length")
+            stats[a] = (L.mean() if len(L) else np.nan,
+                        np.mean([r.runtime_s for r in rs.results]) if rs.results else np.nan,
+                        np.mean([key_points(r) for r in rs.feasible]) if rs.feasible else np.nan)
+        for a in (base, improved):
+            Lm, tm, km = stats[a]
+            red = ["", "", ""]
+            if a == improved and a != base:
+                b = stats[base]
+                red = [f"{100 * (1 - Lm / b[0]):.1f}", f"{100 * (1 - tm / b[1]):.1f}", f"{100 * (1 - km / b[2]):.1f}"]
+            t1.rows.append([t.name, a, f"{Lm:.3f}", f"{100 * (Lm / opt - 1):.2f}", f"{tm:.3f}", f"{km:.1f}", *red])
+        world, s, g = _plan_target(json.dumps(dict(t.spec), sort_keys=True))
+        astar = plan(world, s, g, algorithm="astar")
+        iga = sets[improved]
+        t2.rows.append([t.name, f"{astar.length:.3f}", str(len(remove_collinear(astar.path)) - 2),
+                        f"{astar.runtime_s:.4f}", f"{iga.values('length').mean():.3f}",
+                        f"{np.mean([key_points(r) for r in iga.feasible]):.1f}",
+                        f"{np.mean([r.runtime_s for r in iga.results]):.3f}", f"{opt:.3f}"])
+        details.append((t.name, opt, list(sets.values())))
+    out = [f"## {res.spec.formatted_title()}\n", t1.render(fmt), f"\n## li2023 Table 2 analog: A* vs "
+           f"{improved.upper()}\n", t2.render(fmt), f"\n## Per-map detail (Wilcoxon rank-sum of lengths against "
+           f"{base})\n"]
+    for name, opt, sets in details:
+        out += [f"### {name}\n", global_table(sets, opt, reference=base, fmt=fmt), ""]
+    return "\n".join(out + _notes(res) + _path_overlays(res, plots_dir)).rstrip("\n") + "\n"
+
+
+def closed_loop(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path | None = None) -> str:
+    """Closed-loop runs (``op.simulate``): per scenario and pipeline, goal reached, collisions,
+    time, distance, clearance and smoothness, with the rank-sum p-value of the time to goal."""
+    from .stats import compare
+
+    spec = res.spec
+    out = [f"## {spec.formatted_title()}\n"]
+    for t in spec.targets:
+        groups = res.groups(t.name)
+        table = Table(["pipeline", "runs", "failed", "reached", "collision-free", "mean time [s]",
+                       "mean distance [m]", "min clearance [m]", "max |a| [m/s^2]", "max |alpha| [rad/s^2]",
+                       "mean step [ms]", "p time vs reference"])
+        for g, recs in groups.items():
+            rows = [res.rows[r.key] for r in recs if r.key in res.rows and res.rows[r.key]["status"] == "ok"]
+            stored, failed, ok = res.counts(recs)
+
+            def col(name, agg=np.mean, rows=rows):
+                v = [float(r[name]) for r in rows if r.get(name) is not None]
+                return f"{agg(v):.3f}" if v else "-"
+
+            ref = res.reference_group(g)
+            p = "-"
+            if ref is not None and ref != g and ref in groups:
+                pv, sign = compare(res.values(groups[ref], "time_s"), res.values(recs, "time_s"), spec.alpha)
+                p = "-" if not np.isfinite(pv) else f"{pv:.3g} ({sign})"
+            table.rows.append([res.group_name(*g) + (f" ({g[2]})" if len(spec.local_planners) == 1 and g[2] else ""),
+                               f"{stored}/{len(recs)}", str(failed),
+                               f"{sum(bool(r.get('reached')) for r in rows)}/{stored}",
+                               f"{sum(not r.get('collisions') for r in rows)}/{stored}", col("time_s"),
+                               col("path_length"), col("min_clearance", np.min), col("max_abs_accel", np.max),
+                               col("max_abs_ang_accel", np.max), col("mean_step_ms"), p])
+        errors = {res.rows[r.key]["error"] for recs in groups.values() for r in recs
+                  if r.key in res.rows and res.rows[r.key]["status"] != "ok"}
+        table.notes += [f"failed: {e}" for e in sorted(e for e in errors if e)][:3]
+        out += [f"### {t.name}\n", table.render(fmt), ""]
+    return "\n".join(out + _notes(res) + _path_overlays(res, plots_dir)).rstrip("\n") + "\n"
+
+
+def summary_layout(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path | None = None) -> str:
+    """The generic summary (:func:`optplan.bench.summary.format_summary`)."""
+    notes = [res.spec.notes.strip()] if res.spec.notes.strip() else []
+    return "\n".join([format_summary(res, fmt)] + notes + _path_overlays(res, plots_dir)) + "\n"
+
+
+LAYOUTS: dict[str, Callable[..., str]] = {
+    "summary": summary_layout,
+    "global": global_tables,
+    "chen2025-paths": chen2025_paths,
+    "functions": functions,
+    "yang2023-global": yang2023_global,
+    "yuan2021-turns": yuan2021_turns,
+    "li2023-global": li2023_global,
+    "closed-loop": closed_loop,
+}
+
+
+def render_report(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path | None = None,
+                  layout: str | None = None) -> str:
+    """The tables of ``res`` in its spec's layout (``report:`` key) or in ``layout``."""
+    from ..errors import ParameterError
+
+    name = layout or res.spec.report
+    if name not in LAYOUTS:
+        raise ParameterError(f"unknown report layout {name!r}; known: {', '.join(LAYOUTS)}")
+    return LAYOUTS[name](res, fmt, plots_dir)

@@ -1,0 +1,396 @@
+"""Execute run records in parallel and store each result as it finishes.
+
+Executors:
+
+* ``"local"`` (default): a pool of worker processes (``concurrent.futures`` with
+  the forkserver start method where the platform has it, spawn elsewhere);
+  ``workers=1`` runs in this process, which avoids the start-up cost for small grids.
+* ``"dask://HOST:PORT"`` (or ``"tcp://HOST:PORT"``): the Dask distributed
+  scheduler at that address; its workers need optplan installed.
+* ``"dask-local"``: a Dask ``LocalCluster`` of ``workers`` processes on this machine.
+* a ``distributed.Client`` object (Python API only).
+
+Every run carries its own seed, so a run gives the same numbers whichever
+executor ran it (wall times differ). Only this (parent) process writes the
+results database; a run that raises is stored as ``failed`` with its message
+and the others continue. Runs whose key is already stored are skipped, which is
+how an interrupted experiment resumes.
+"""
+from __future__ import annotations
+
+import functools
+import json
+import os
+import socket
+import sys
+import time
+from dataclasses import dataclass
+from typing import Any, Callable, Iterable, Mapping
+
+from ..errors import ParameterError
+
+EXECUTORS_HELP = "local | dask://HOST:PORT | dask-local"
+
+
+# ------------------------------------------------------------------- one run (worker side)
+@functools.lru_cache(maxsize=32)
+def _plan_target(target_json: str):
+    import numpy as np
+
+    t = json.loads(target_json)
+    if "paper_map" in t:
+        from ..world.papermaps import paper_map
+
+        return paper_map(t["paper_map"])
+    from ..world.loaders import load_map
+
+    return load_map(t["map"]), np.array(t["start"], float), np.array(t["goal"], float)
+
+
+@functools.lru_cache(maxsize=32)
+def _function_target(target_json: str):
+    from ..formulations.functions import get_function
+
+    t = json.loads(target_json)
+    return get_function(t["function"], shifted=bool(t.get("shifted")), dim=t.get("dim"))
+
+
+def _run_plan(rec) -> tuple[Any, dict]:
+    from ..planning import plan
+
+    world, start, goal = _plan_target(json.dumps(rec.target_spec, sort_keys=True))
+    res = plan(world, start, goal, algorithm=rec.algorithm, refine=rec.refine, seed=rec.seed, **rec.params)
+    return res, {}
+
+
+def _run_optimize(rec) -> tuple[Any, dict]:
+    from ..solvers.metaheuristics import optimize
+
+    F = _function_target(json.dumps(rec.target_spec, sort_keys=True))
+    res = optimize(F, F.bounds, algorithm=rec.algorithm, seed=rec.seed, **rec.params)
+    return res, {"f_error": float(res.f - F.f_opt), "f_opt": float(F.f_opt)}
+
+
+def _run_simulate(rec) -> tuple[Any, dict]:
+    try:
+        from ..sim import simulate
+        from ..world.scenario import load_scenario
+    except ImportError as exc:
+        raise NotImplementedError(f"closed-loop runs need op.simulate and op.load_scenario, which this version of "
+                                  f"optplan does not have ({exc})") from None
+    scenario = load_scenario(rec.target_spec["scenario"])
+    res = simulate(scenario, global_planner=rec.algorithm, local_planner=rec.local_planner, refine=rec.refine,
+                   seed=rec.seed, **rec.params)
+    extra = {"success": bool(res.reached and res.collisions == 0)}
+    return res, extra
+
+
+def warm_up() -> None:
+    """Import what the solvers import lazily, so that no run's ``runtime_s`` includes one-time
+    module loading (scipy.spatial alone takes ~0.5 s); called once per worker process."""
+    import importlib
+
+    for mod in ("scipy.spatial", "scipy.interpolate", "scipy.stats", "optplan.planning", "optplan.solvers.paths",
+                "optplan.solvers.metaheuristics", "optplan.formulations.functions", "optplan.world.papermaps"):
+        try:
+            importlib.import_module(mod)
+        except ImportError:  # a layer missing in this version: its runs report it themselves
+            pass
+
+
+_RUNNERS: dict[str, Callable] = {"plan": _run_plan, "optimize": _run_optimize, "simulate": _run_simulate}
+
+
+def execute_run(record: Mapping[str, Any]) -> dict[str, Any]:
+    """Run one record (a ``RunRecord.to_dict()``) and return its outcome.
+
+    The outcome is ``{"key", "status": "ok"|"failed", "error", "metrics": {scalar
+    fields of the result}, "traces": {array fields}, "wall_s", "worker"}``; an
+    exception inside the run becomes ``status="failed"`` with its message.
+    """
+    from .spec import RunRecord
+    from .store import TRACE_COLUMNS
+
+    t0 = time.perf_counter()
+    worker = f"{socket.gethostname()}:{os.getpid()}"
+    key = record.get("key")
+    try:
+        rec = RunRecord.from_dict(record)
+        result, extra = _RUNNERS[rec.kind](rec)
+        d = result.to_dict()
+        metrics = {k: v for k, v in d.items() if v is None or isinstance(v, (bool, int, float, str))}
+        metrics.update(extra)
+        traces = {k: v for k, v in d.items() if k in TRACE_COLUMNS and v is not None}
+        return {"key": key, "status": "ok", "error": None, "metrics": metrics, "traces": traces,
+                "wall_s": time.perf_counter() - t0, "worker": worker}
+    except Exception as exc:  # recorded, never fatal: the other runs continue
+        msg = str(exc).strip().splitlines()[0] if str(exc).strip() else ""
+        return {"key": key, "status": "failed", "error": f"{type(exc).__name__}: {msg}"[:2000], "metrics": {},
+                "traces": {}, "wall_s": time.perf_counter() - t0, "worker": worker}
+
+
+# ------------------------------------------------------------------- progress bar
+def _hms(seconds: float) -> str:
+    s = int(round(seconds))
+    return f"{s // 3600}:{s // 60 % 60:02d}:{s % 60:02d}" if s >= 3600 else f"{s // 60}:{s % 60:02d}"
+
+
+class Progress:
+    """A one-line progress bar on stderr: runs done, failures, elapsed time and ETA.
+
+    On a terminal the line redraws in place; otherwise (logs, pipes) a line is
+    printed at every tenth of the work and at the end.
+    """
+
+    def __init__(self, total: int, label: str = "", stream=None, enabled: bool = True, width: int = 24):
+        self.total, self.label, self.width = total, label, width
+        self.stream = stream if stream is not None else sys.stderr
+        self.enabled = enabled and total > 0
+        self.done = self.failed = 0
+        self.t0 = time.perf_counter()
+        self._last_draw = 0.0
+        self._last_tenth = -1
+        self.tty = bool(getattr(self.stream, "isatty", lambda: False)())
+
+    def line(self) -> str:
+        frac = self.done / self.total if self.total else 1.0
+        fill = int(round(frac * self.width))
+        elapsed = time.perf_counter() - self.t0
+        eta = elapsed / self.done * (self.total - self.done) if self.done else float("nan")
+        eta_s = _hms(eta) if self.done else "?"
+        head = f"{self.label} " if self.label else ""
+        return (f"{head}[{'#' * fill}{'.' * (self.width - fill)}] {self.done}/{self.total} runs, "
+                f"{self.failed} failed, {_hms(elapsed)} elapsed, ETA {eta_s}")
+
+    def update(self, failed: bool = False) -> None:
+        self.done += 1
+        self.failed += int(bool(failed))
+        if not self.enabled:
+            return
+        now = time.perf_counter()
+        if self.tty:
+            if now - self._last_draw > 0.1 or self.done == self.total:
+                print("\r" + self.line(), end="", file=self.stream, flush=True)
+                self._last_draw = now
+        else:
+            tenth = int(10 * self.done / self.total)
+            if tenth != self._last_tenth:
+                print(self.line(), file=self.stream, flush=True)
+                self._last_tenth = tenth
+
+    def close(self) -> None:
+        if self.enabled and self.tty:
+            print(file=self.stream, flush=True)
+
+
+# ------------------------------------------------------------------- executors
+@dataclass
+class RunReport:
+    """What one call of :func:`run_records` did."""
+
+    total: int
+    skipped: int
+    ran: int = 0
+    failed: int = 0
+    wall_s: float = 0.0
+    interrupted: bool = False
+
+    def describe(self) -> str:
+        s = (f"{self.total} runs: {self.skipped} already in the database, {self.ran} ran "
+             f"({self.failed} failed) in {self.wall_s:.1f} s")
+        return s + (" (interrupted; rerun to resume)" if self.interrupted else "")
+
+
+def parse_executor(executor: Any) -> tuple[str, Any]:
+    """``("local", None)``, ``("dask-local", None)``, ``("dask", address)`` or ``("client", client)``."""
+    if executor is None or executor == "local":
+        return "local", None
+    if isinstance(executor, str):
+        if executor == "dask-local":
+            return "dask-local", None
+        for prefix, scheme in (("dask://", "tcp://"), ("tcp://", "tcp://"), ("tls://", "tls://")):
+            if executor.startswith(prefix):
+                address = executor[len(prefix):]
+                if ":" not in address:
+                    raise ParameterError(f"executor {executor!r} needs a port: dask://HOST:PORT")
+                return "dask", scheme + address
+        raise ParameterError(f"unknown executor {executor!r}; use {EXECUTORS_HELP}")
+    if hasattr(executor, "submit") and hasattr(executor, "scheduler_info"):
+        return "client", executor
+    raise ParameterError(f"executor must be a string ({EXECUTORS_HELP}) or a distributed.Client, got {executor!r}")
+
+
+def run_records(records: Iterable, store, executor: Any = "local", workers: int | None = None,
+                progress: bool = True, retry_failed: bool = False, label: str = "",
+                on_result: Callable[[Mapping, Mapping], None] | None = None) -> RunReport:
+    """Execute ``records`` (RunRecords) not yet in ``store`` and write each outcome as it arrives.
+
+    Args:
+        records: the runs (``ExperimentSpec.expand()``); duplicates by key run once.
+        store: a :class:`~optplan.bench.store.ResultStore`.
+        executor: see the module docstring.
+        workers: processes for ``"local"`` / ``"dask-local"`` (default: CPU count); 1 runs in-process.
+        progress: draw the progress bar on stderr.
+        retry_failed: run again the runs stored as failed (default: skip them like finished ones).
+        label: text in front of the progress bar.
+        on_result: ``callback(record_dict, outcome)`` after each stored run.
+
+    Returns:
+        A :class:`RunReport`. On KeyboardInterrupt the runs already stored stay
+        stored and the interrupt propagates.
+    """
+    unique = {}
+    for r in records:
+        unique.setdefault(r.key, r)
+    done = store.done_keys(unique, include_failed=not retry_failed)
+    todo = [r.to_dict() for k, r in unique.items() if k not in done]
+    report = RunReport(total=len(unique), skipped=len(unique) - len(todo))
+    if workers is not None and (not isinstance(workers, int) or workers < 1):
+        raise ParameterError(f"workers must be a positive integer, got {workers!r}")
+    kind, target = parse_executor(executor)
+    if not todo:
+        return report
+    bar = Progress(len(todo), label=label, enabled=progress)
+    t0 = time.perf_counter()
+
+    def record(rec: Mapping, outcome: Mapping) -> None:
+        store.write(rec, outcome)
+        report.ran += 1
+        report.failed += outcome["status"] != "ok"
+        bar.update(outcome["status"] != "ok")
+        if on_result is not None:
+            on_result(rec, outcome)
+
+    try:
+        if kind == "local":
+            n = workers or os.cpu_count() or 1
+            if n == 1 or len(todo) == 1:
+                warm_up()
+                for rec in todo:
+                    record(rec, execute_run(rec))
+            else:
+                _run_process_pool(todo, min(n, len(todo)), record)
+        else:
+            _run_dask(todo, kind, target, workers, record)
+    except KeyboardInterrupt:
+        report.interrupted = True
+        raise
+    finally:
+        bar.close()
+        report.wall_s = time.perf_counter() - t0
+    return report
+
+
+def _failed(rec: Mapping, message: str) -> dict[str, Any]:
+    return {"key": rec["key"], "status": "failed", "error": message, "metrics": {}, "traces": {}, "wall_s": None,
+            "worker": None}
+
+
+def _pool_context():
+    import multiprocessing as mp
+
+    return mp.get_context("forkserver" if "forkserver" in mp.get_all_start_methods() else "spawn")
+
+
+def _run_process_pool(todo: list[dict], workers: int, record: Callable) -> None:
+    """A process pool with at most ``2 * workers`` runs in flight.
+
+    A worker that dies hard (segfault, out of memory) breaks the pool; the runs
+    that were in flight become suspects and are run again one at a time on a
+    fresh pool, so only the run that kills its worker is stored as failed.
+    """
+    from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+    from concurrent.futures.process import BrokenProcessPool
+
+    queue = list(reversed(todo))
+    suspects: list[dict] = []
+    while queue or suspects:
+        pool = ProcessPoolExecutor(max_workers=workers, mp_context=_pool_context(), initializer=warm_up)
+        in_flight: dict = {}
+        broken = alone = False
+        try:
+            while in_flight or (not broken and (queue or suspects)):
+                if not broken:
+                    if suspects and not in_flight:
+                        rec = suspects.pop()
+                        in_flight[pool.submit(execute_run, rec)] = rec
+                        alone = True
+                    elif not suspects:
+                        while queue and len(in_flight) < 2 * workers:
+                            rec = queue.pop()
+                            in_flight[pool.submit(execute_run, rec)] = rec
+                        alone = False
+                finished, _ = wait(in_flight, return_when=FIRST_COMPLETED)
+                for fut in finished:
+                    rec = in_flight.pop(fut)
+                    try:
+                        outcome = fut.result()
+                    except BrokenProcessPool:
+                        broken = True
+                        if alone:
+                            record(rec, _failed(rec, "the worker process died while running this run "
+                                                     "(crash or out of memory)"))
+                        else:
+                            suspects.append(rec)
+                        continue
+                    except Exception as exc:  # pickling problems and the like
+                        outcome = _failed(rec, f"{type(exc).__name__}: {exc}")
+                    record(rec, outcome)
+        except BaseException:
+            pool.shutdown(wait=False, cancel_futures=True)
+            raise
+        pool.shutdown(wait=not broken, cancel_futures=True)
+
+
+def _run_dask(todo: list[dict], kind: str, target: Any, workers: int | None, record: Callable) -> None:
+    try:
+        from distributed import Client, LocalCluster, as_completed
+    except ImportError:
+        raise ParameterError("the Dask executors need dask[distributed]: pip install 'optplan[dask]'") from None
+    cluster = None
+    if kind == "client":
+        client, own_client = target, False
+    elif kind == "dask-local":
+        cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
+                               dashboard_address=None)
+        client, own_client = Client(cluster), True
+    else:
+        try:
+            client, own_client = Client(target, timeout=30), True
+        except (OSError, TimeoutError) as exc:
+            raise ParameterError(f"cannot reach the Dask scheduler at {target} ({exc}); start one with "
+                                 f"'dask scheduler' and 'dask worker {target}', or use --executor local") from None
+    try:
+        client.run(warm_up)
+        n_workers = max(1, len(client.scheduler_info().get("workers", {})) or (workers or 1))
+        window = 4 * n_workers
+        queue = list(reversed(todo))
+        by_future = {}
+
+        def submit():
+            rec = queue.pop()
+            fut = client.submit(execute_run, rec, key=f"optplan-run-{rec['key']}", pure=False)
+            by_future[fut] = rec
+            return fut
+
+        initial = [submit() for _ in range(min(window, len(queue)))]
+        ac = as_completed(initial)
+        try:
+            for fut in ac:
+                rec = by_future.pop(fut)
+                try:
+                    outcome = fut.result()
+                except Exception as exc:  # a worker lost or the task could not be shipped
+                    outcome = _failed(rec, f"dask: {type(exc).__name__}: {exc}")
+                record(rec, outcome)
+                fut.release()
+                if queue:
+                    ac.add(submit())
+        except BaseException:
+            client.cancel(list(by_future))
+            raise
+    finally:
+        if own_client:
+            client.close()
+        if cluster is not None:
+            cluster.close()

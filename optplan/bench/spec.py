@@ -1,0 +1,485 @@
+"""Experiment specs: a YAML grid of targets x algorithms x refine modes x local planners x seeds.
+
+A spec describes one experiment; :func:`load_spec` checks it and
+:meth:`ExperimentSpec.expand` turns it into independent :class:`RunRecord` s, each
+fully described (what to load, which solver with which parameters, which seed)
+so that any process on any machine can execute it, and each with a stable
+``key`` (a hash of everything that determines its result) under which the
+results database stores it. Three kinds of run exist:
+
+* ``plan``: ``op.plan`` on a map (a paper map name, or ``{map, start, goal}``);
+* ``simulate``: ``op.simulate`` on a scenario (closed loop: global planner,
+  optional refinement, local planner);
+* ``optimize``: ``op.optimize`` on a benchmark function F1-F18 (chen2025 §4.1).
+
+Example (the keys are described in ``optplan/data/specs/README.md``)::
+
+    name: chen2025_paths
+    kind: plan
+    maps: [chen2025_20, chen2025_30]
+    algorithms: [msiar-gwo, gwo, {name: aro, params: {pop: 40}}]
+    params: {pop: 30, iters: 500}        # shared by every algorithm
+    runs: 20                             # seeds 0..19 (or  seeds: [3, 5, 8])
+    reference: msiar-gwo                 # the statistics compare everything against it
+    quick: {runs: 3, params: {iters: 60}, maps: [chen2025_20]}
+"""
+from __future__ import annotations
+
+import copy
+import hashlib
+import json
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any, Mapping
+
+from ..errors import ParameterError, ScenarioError, UnknownAlgorithmError
+
+SPECS_DIR = Path(__file__).resolve().parent.parent / "data" / "specs"
+
+KINDS = ("plan", "simulate", "optimize")
+TARGET_KEY = {"plan": "maps", "simulate": "scenarios", "optimize": "functions"}
+DEFAULT_METRIC = {"plan": "length", "simulate": "time_s", "optimize": "f"}
+REFINE_NAMES = ("none", "casadi", "qp")
+
+TOP_KEYS = {"name", "title", "paper", "part", "report", "kind", "maps", "scenarios", "functions", "shifted", "dim",
+            "algorithms", "params", "refine", "local_planners", "runs", "seed", "seeds", "reference", "metric",
+            "alpha", "quick", "notes"}
+QUICK_KEYS = {"runs", "params", "maps", "scenarios", "functions", "algorithms", "refine", "local_planners", "seeds",
+              "title"}
+ALGO_KEYS = {"name", "label", "params", "runs"}
+MAP_KEYS = {"name", "map", "start", "goal"}
+
+
+# ----------------------------------------------------------------------------- records
+@dataclass(frozen=True)
+class RunRecord:
+    """One independent run, fully described (JSON-serialisable via :meth:`to_dict`).
+
+    Attributes:
+        experiment: name of the spec it came from (informational, not part of ``key``).
+        kind: ``"plan"``, ``"simulate"`` or ``"optimize"``.
+        target: short name of the map, scenario or function (table rows use it).
+        target_spec: everything needed to load the target, e.g. ``{"paper_map": "chen2025_20"}``.
+        algorithm: registry name of the (global) solver.
+        label: the name the tables show (several labels may share one algorithm).
+        refine: ``None``, ``"casadi"`` or ``"qp"``.
+        local_planner: local planner name (``simulate`` runs), else ``None``.
+        seed: the run's own seed.
+        params: keyword arguments for the solver (``pop``, ``iters``, ``max_evals``, ...).
+    """
+
+    experiment: str
+    kind: str
+    target: str
+    target_spec: Mapping[str, Any]
+    algorithm: str
+    label: str
+    refine: str | None
+    local_planner: str | None
+    seed: int
+    params: Mapping[str, Any] = field(default_factory=dict)
+
+    @property
+    def key(self) -> str:
+        """Stable identifier: the same run description always gives the same key.
+
+        Labels and the experiment name are presentation and are left out, so two
+        specs that ask for the same run share its stored result.
+        """
+        ident = {"kind": self.kind, "target": dict(self.target_spec), "algorithm": self.algorithm,
+                 "refine": self.refine, "local_planner": self.local_planner, "seed": self.seed,
+                 "params": dict(self.params)}
+        blob = json.dumps(ident, sort_keys=True, separators=(",", ":"), default=str)
+        return hashlib.sha256(blob.encode()).hexdigest()[:20]
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"experiment": self.experiment, "kind": self.kind, "target": self.target,
+                "target_spec": dict(self.target_spec), "algorithm": self.algorithm, "label": self.label,
+                "refine": self.refine, "local_planner": self.local_planner, "seed": self.seed,
+                "params": dict(self.params), "key": self.key}
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, Any]) -> "RunRecord":
+        return cls(d["experiment"], d["kind"], d["target"], dict(d["target_spec"]), d["algorithm"], d["label"],
+                   d["refine"], d["local_planner"], int(d["seed"]), dict(d["params"]))
+
+
+@dataclass(frozen=True)
+class AlgorithmSpec:
+    """One algorithm entry: registry ``name``, table ``label``, merged ``params``, optional own ``runs``."""
+
+    name: str
+    label: str
+    params: Mapping[str, Any]
+    runs: int | None = None
+
+
+@dataclass(frozen=True)
+class TargetSpec:
+    """One map, scenario or function: a short ``name`` and what identifies it."""
+
+    name: str
+    spec: Mapping[str, Any]
+
+
+@dataclass
+class ExperimentSpec:
+    """A checked experiment spec (see the module docstring for the YAML keys)."""
+
+    name: str
+    kind: str
+    targets: list[TargetSpec]
+    algorithms: list[AlgorithmSpec]
+    refine: list[str | None]
+    local_planners: list[str | None]
+    seeds: list[int]
+    reference: str | dict | None
+    metric: str
+    alpha: float = 0.05
+    title: str = ""
+    paper: str | None = None
+    part: str | None = None
+    report: str = "summary"
+    notes: str = ""
+    params: Mapping[str, Any] = field(default_factory=dict)
+    source: Path | None = None
+
+    @property
+    def runs(self) -> int:
+        return len(self.seeds)
+
+    @property
+    def labels(self) -> list[str]:
+        return [a.label for a in self.algorithms]
+
+    def formatted_title(self) -> str:
+        """``title`` with ``{runs}`` and the shared parameters (``{pop}``, ``{iters}``, ...) filled in."""
+        values = {"runs": self.runs, "name": self.name, **{k: v for k, v in self.params.items()}}
+        try:
+            return self.title.format(**values) if self.title else self.name
+        except (KeyError, IndexError, ValueError):
+            return self.title
+
+    def expand(self) -> list[RunRecord]:
+        """Every run of the grid, in a fixed order (target, algorithm, refine, local planner, seed)."""
+        out = []
+        for t in self.targets:
+            for a in self.algorithms:
+                seeds = self.seeds if a.runs is None else [self.seeds[0] + k for k in range(a.runs)]
+                for r in self.refine:
+                    for lp in self.local_planners:
+                        for s in seeds:
+                            out.append(RunRecord(self.name, self.kind, t.name, dict(t.spec), a.name, a.label, r, lp,
+                                                 int(s), dict(a.params)))
+        return out
+
+
+# ----------------------------------------------------------------------------- loading
+def spec_path(name_or_path: str | Path) -> Path:
+    """Resolve a spec file: an existing path, or the stem of a shipped spec in ``optplan/data/specs``."""
+    p = Path(name_or_path)
+    if p.is_file():
+        return p
+    for cand in (SPECS_DIR / f"{name_or_path}.yaml", SPECS_DIR / str(name_or_path)):
+        if cand.is_file():
+            return cand
+    shipped = ", ".join(shipped_specs()) or "none"
+    raise ScenarioError(f"spec file {str(name_or_path)!r} not found; give a path to a YAML file or the name of a "
+                        f"shipped spec ({shipped})")
+
+
+def shipped_specs(paper: str | None = None) -> list[str]:
+    """Names of the specs shipped in ``optplan/data/specs`` (optionally only one paper's)."""
+    if not SPECS_DIR.is_dir():
+        return []
+    names = sorted(p.stem for p in SPECS_DIR.glob("*.yaml"))
+    return [n for n in names if paper is None or n.split("_")[0] == paper]
+
+
+def load_spec(source: str | Path | Mapping[str, Any], quick: bool = False, runs: int | None = None) -> ExperimentSpec:
+    """Read and check an experiment spec.
+
+    Args:
+        source: a YAML file path, the name of a shipped spec, or an already-parsed dict.
+        quick: apply the spec's ``quick:`` overrides (fewer runs, smaller budgets).
+        runs: override the number of seeds per (target, algorithm) (after ``quick``).
+
+    Raises:
+        ScenarioError: unreadable file, unknown or missing keys, wrong types.
+        ParameterError: bad values (non-positive runs, negative seeds, unknown reference).
+        UnknownAlgorithmError: an algorithm or local planner name that is not registered.
+    """
+    path = None
+    if isinstance(source, Mapping):
+        raw = copy.deepcopy(dict(source))
+    else:
+        import yaml
+
+        path = spec_path(source)
+        try:
+            raw = yaml.safe_load(path.read_text())
+        except yaml.YAMLError as exc:
+            raise ScenarioError(f"spec {path} is not valid YAML: {exc}") from None
+        if not isinstance(raw, dict):
+            raise ScenarioError(f"spec {path} must be a YAML mapping (name:, kind:, maps:, algorithms:, ...), "
+                                f"got {type(raw).__name__}")
+    where = f"spec {path}" if path else "spec"
+    _check_keys(raw, TOP_KEYS, where)
+    if quick and raw.get("quick"):
+        q = raw["quick"]
+        if not isinstance(q, dict):
+            raise ScenarioError(f"{where}: 'quick' must be a mapping of overrides")
+        _check_keys(q, QUICK_KEYS, f"{where} quick:")
+        for k, v in q.items():
+            if k == "params":
+                raw["params"] = {**(raw.get("params") or {}), **(v or {})}
+            else:
+                raw[k] = v
+            if k == "seeds":
+                raw.pop("runs", None)
+            if k == "runs":
+                raw.pop("seeds", None)
+    if runs is not None:
+        raw["runs"] = runs
+        raw.pop("seeds", None)
+    return _parse(raw, path, where)
+
+
+def _check_keys(d: Mapping, allowed: set, where: str) -> None:
+    unknown = sorted(set(d) - allowed)
+    if unknown:
+        raise ScenarioError(f"{where}: unknown key(s) {', '.join(map(repr, unknown))}; allowed: "
+                            f"{', '.join(sorted(allowed))}")
+
+
+def _as_list(value, what: str, where: str) -> list:
+    if value is None:
+        return []
+    if isinstance(value, (str, int, float, dict)):
+        return [value]
+    if isinstance(value, list):
+        return value
+    raise ScenarioError(f"{where}: '{what}' must be a list, got {type(value).__name__}")
+
+
+def _parse(raw: dict, path: Path | None, where: str) -> ExperimentSpec:
+    name = str(raw.get("name") or (path.stem if path else "experiment"))
+    kind = raw.get("kind")
+    if kind is None:
+        present = [k for k, key in TARGET_KEY.items() if raw.get(key)]
+        if len(present) != 1:
+            raise ScenarioError(f"{where}: say what to run with 'kind: plan|simulate|optimize' and give its targets "
+                                f"('maps', 'scenarios' or 'functions')")
+        kind = present[0]
+    if kind not in KINDS:
+        raise ScenarioError(f"{where}: kind must be one of {', '.join(KINDS)}, got {kind!r}")
+    for other_kind, key in TARGET_KEY.items():
+        if other_kind != kind and raw.get(key):
+            raise ScenarioError(f"{where}: '{key}' belongs to kind {other_kind!r}, but this spec is kind {kind!r}")
+    base_dir = path.parent if path else Path.cwd()
+    targets = _parse_targets(kind, raw, base_dir, where)
+
+    shared = raw.get("params") or {}
+    if not isinstance(shared, dict):
+        raise ScenarioError(f"{where}: 'params' must be a mapping of keyword arguments, e.g. {{pop: 30, iters: 500}}")
+    _check_params(shared, where)
+    algos = _parse_algorithms(kind, raw.get("algorithms"), shared, where)
+
+    refine = [_refine_name(r, where) for r in _as_list(raw.get("refine", [None]), "refine", where)] or [None]
+    if kind == "optimize" and refine != [None]:
+        raise ScenarioError(f"{where}: 'refine' applies to paths; an optimize spec cannot refine")
+    local = _as_list(raw.get("local_planners"), "local_planners", where)
+    if kind == "simulate":
+        if not local:
+            raise ScenarioError(f"{where}: a simulate spec needs 'local_planners', e.g. [dwa, qp-dwa]")
+        local = [_check_local(lp, where) for lp in local]
+    elif local:
+        raise ScenarioError(f"{where}: 'local_planners' only apply to kind simulate")
+    else:
+        local = [None]
+
+    seeds = _parse_seeds(raw, where)
+    metric = str(raw.get("metric") or DEFAULT_METRIC[kind])
+    alpha = raw.get("alpha", 0.05)
+    if not isinstance(alpha, (int, float)) or not 0 < alpha < 1:
+        raise ParameterError(f"{where}: alpha must be a number in (0, 1), got {alpha!r}")
+    reference = raw.get("reference")
+    labels = [a.label for a in algos]
+    ref_label = reference.get("algorithm") if isinstance(reference, dict) else reference
+    if ref_label is not None and ref_label not in labels:
+        raise ParameterError(f"{where}: reference {ref_label!r} is not one of the algorithm labels "
+                             f"({', '.join(labels)})")
+    if isinstance(reference, dict):
+        _check_keys(reference, {"algorithm", "refine", "local_planner"}, f"{where} reference:")
+        reference = {"algorithm": ref_label, "refine": _refine_name(reference.get("refine"), where),
+                     "local_planner": reference.get("local_planner")}
+    return ExperimentSpec(
+        name=name, kind=kind, targets=targets, algorithms=algos, refine=refine, local_planners=local, seeds=seeds,
+        reference=reference, metric=metric, alpha=float(alpha), title=str(raw.get("title") or ""),
+        paper=raw.get("paper"), part=raw.get("part"), report=str(raw.get("report") or "summary"),
+        notes=str(raw.get("notes") or ""), params=dict(shared), source=path)
+
+
+def _parse_targets(kind: str, raw: dict, base_dir: Path, where: str) -> list[TargetSpec]:
+    key = TARGET_KEY[kind]
+    items = _as_list(raw.get(key), key, where)
+    if not items:
+        raise ScenarioError(f"{where}: no '{key}' given; list at least one")
+    out = []
+    if kind == "plan":
+        from ..world.papermaps import catalogue
+
+        cat = catalogue()
+        for it in items:
+            if isinstance(it, str):
+                if it not in cat:
+                    raise ScenarioError(f"{where}: unknown paper map {it!r}; use a name from "
+                                        f"optplan/data/maps/paper_maps.yaml ({', '.join(sorted(cat))}) or "
+                                        f"{{name:, map: FILE, start: [x, y], goal: [x, y]}}")
+                out.append(TargetSpec(it, {"paper_map": it}))
+            elif isinstance(it, dict):
+                _check_keys(it, MAP_KEYS, f"{where} map entry")
+                if "map" not in it or "start" not in it or "goal" not in it:
+                    raise ScenarioError(f"{where}: a map entry needs 'map', 'start' and 'goal', got {it}")
+                start, goal = _point(it["start"], "start", where), _point(it["goal"], "goal", where)
+                m = str(it["map"])
+                resolved = base_dir / m
+                m = str(resolved.resolve()) if resolved.exists() else m  # else a shipped map name
+                nm = str(it.get("name") or Path(m).stem)
+                out.append(TargetSpec(nm, {"map": m, "start": start, "goal": goal}))
+            else:
+                raise ScenarioError(f"{where}: a map is a paper map name or a mapping, got {it!r}")
+    elif kind == "simulate":
+        for it in items:
+            if not isinstance(it, str):
+                raise ScenarioError(f"{where}: a scenario is a shipped scenario name or a YAML file path, got {it!r}")
+            resolved = base_dir / it
+            sc = str(resolved.resolve()) if resolved.is_file() else it
+            out.append(TargetSpec(Path(it).stem if it.endswith((".yaml", ".yml")) else it, {"scenario": sc}))
+    else:
+        from ..formulations.functions import NAMES
+
+        shifted = bool(raw.get("shifted", False))
+        dim = raw.get("dim")
+        if dim is not None and (not isinstance(dim, int) or dim < 1):
+            raise ParameterError(f"{where}: dim must be a positive integer, got {dim!r}")
+        for it in items:
+            fname = str(it).upper()
+            if fname not in NAMES:
+                raise ScenarioError(f"{where}: unknown benchmark function {it!r}; known: {', '.join(NAMES)}")
+            out.append(TargetSpec(fname, {"function": fname, "shifted": shifted, "dim": dim}))
+    names = [t.name for t in out]
+    if len(set(names)) != len(names):
+        raise ScenarioError(f"{where}: target names repeat ({', '.join(names)}); give each map entry a 'name'")
+    return out
+
+
+def _point(v, what: str, where: str) -> list[float]:
+    if not isinstance(v, (list, tuple)) or len(v) < 2 or not all(isinstance(c, (int, float)) for c in v[:2]):
+        raise ScenarioError(f"{where}: {what} must be [x, y] in metres, got {v!r}")
+    return [float(v[0]), float(v[1])]
+
+
+def _check_params(params: Mapping, where: str) -> None:
+    for k, v in params.items():
+        if k in ("seed", "algorithm", "refine", "local_planner", "global_planner"):
+            raise ScenarioError(f"{where}: {k!r} is set by the spec grid ('seeds', 'algorithms', 'refine', "
+                                f"'local_planners'), not by 'params'")
+        if k in ("pop", "iters", "max_evals") and v is not None and (not isinstance(v, int) or isinstance(v, bool)
+                                                                     or v < 1):
+            raise ParameterError(f"{where}: {k} must be a positive integer (or null), got {v!r}")
+        try:
+            json.dumps(v)
+        except TypeError:
+            raise ScenarioError(f"{where}: parameter {k!r} must be plain YAML data, got {v!r}") from None
+
+
+def _known_algorithms(kind: str) -> list[str]:
+    if kind == "optimize":
+        from ..solvers.metaheuristics import algorithm_names
+
+        return list(algorithm_names())
+    from ..registry import GRAPH_METHODS
+    from ..solvers.paths import algorithm_names
+
+    return sorted(set(GRAPH_METHODS) | set(algorithm_names()))
+
+
+def _parse_algorithms(kind: str, items, shared: Mapping, where: str) -> list[AlgorithmSpec]:
+    items = _as_list(items, "algorithms", where)
+    if not items:
+        raise ScenarioError(f"{where}: no 'algorithms' given; list at least one (see 'optplan algorithms')")
+    known = _known_algorithms(kind)
+    out = []
+    for it in items:
+        if isinstance(it, str):
+            it = {"name": it}
+        if not isinstance(it, dict) or "name" not in it:
+            raise ScenarioError(f"{where}: an algorithm is a name or {{name:, label:, params:, runs:}}, got {it!r}")
+        _check_keys(it, ALGO_KEYS, f"{where} algorithm {it.get('name')!r}")
+        nm = str(it["name"]).lower()
+        if nm not in known:
+            raise UnknownAlgorithmError(f"{where}: unknown algorithm {it['name']!r} for kind {kind}; known: "
+                                        f"{', '.join(known)}")
+        own = it.get("params") or {}
+        if not isinstance(own, dict):
+            raise ScenarioError(f"{where}: params of {nm!r} must be a mapping")
+        _check_params(own, where)
+        runs = it.get("runs")
+        if runs is not None and (not isinstance(runs, int) or isinstance(runs, bool) or runs < 1):
+            raise ParameterError(f"{where}: runs of {nm!r} must be a positive integer, got {runs!r}")
+        out.append(AlgorithmSpec(nm, str(it.get("label") or nm), {**shared, **own}, runs))
+    labels = [a.label for a in out]
+    if len(set(labels)) != len(labels):
+        raise ScenarioError(f"{where}: algorithm labels repeat ({', '.join(labels)}); give repeated algorithms "
+                            f"distinct 'label's")
+    return out
+
+
+def _refine_name(r, where: str) -> str | None:
+    if r is None or r is False or r == "none":
+        return None
+    if r not in REFINE_NAMES:
+        raise ParameterError(f"{where}: refine must be one of {', '.join(REFINE_NAMES)}, got {r!r}")
+    return str(r)
+
+
+def _check_local(lp, where: str) -> str:
+    if not isinstance(lp, str):
+        raise ScenarioError(f"{where}: a local planner is a name, got {lp!r}")
+    try:
+        from ..local import algorithm_names
+    except ImportError:  # the local layer is not built in this version: the run reports it
+        return lp.lower()
+    names = list(algorithm_names())
+    if names and lp.lower() not in names:
+        raise UnknownAlgorithmError(f"{where}: unknown local planner {lp!r}; known: {', '.join(names)}")
+    return lp.lower()
+
+
+def _parse_seeds(raw: dict, where: str) -> list[int]:
+    if "seeds" in raw and raw["seeds"] is not None:
+        seeds = _as_list(raw["seeds"], "seeds", where)
+        if not seeds or not all(isinstance(s, int) and not isinstance(s, bool) and s >= 0 for s in seeds):
+            raise ParameterError(f"{where}: seeds must be a non-empty list of non-negative integers, got {seeds!r}")
+        if len(set(seeds)) != len(seeds):
+            raise ParameterError(f"{where}: seeds repeat: {seeds!r}")
+        return [int(s) for s in seeds]
+    runs = raw.get("runs", 1)
+    seed0 = raw.get("seed", 0)
+    if not isinstance(runs, int) or isinstance(runs, bool) or runs < 1:
+        raise ParameterError(f"{where}: runs must be a positive integer, got {runs!r}")
+    if not isinstance(seed0, int) or isinstance(seed0, bool) or seed0 < 0:
+        raise ParameterError(f"{where}: seed (the first run's seed) must be a non-negative integer, got {seed0!r}")
+    return list(range(seed0, seed0 + runs))
+
+
+def with_runs(spec: ExperimentSpec, runs: int) -> ExperimentSpec:
+    """A copy of ``spec`` with ``runs`` seeds starting at its first seed."""
+    if runs < 1:
+        raise ParameterError(f"runs must be a positive integer, got {runs}")
+    return replace(spec, seeds=[spec.seeds[0] + k for k in range(runs)])
+
+
+__all__ = ["RunRecord", "ExperimentSpec", "AlgorithmSpec", "TargetSpec", "load_spec", "spec_path",
+           "shipped_specs", "with_runs", "SPECS_DIR", "KINDS"]

@@ -1,0 +1,178 @@
+"""Results database: one SQLite row per run, written by the parent process as runs finish.
+
+Table ``runs`` has the run's identity (``key``, experiment, kind, target,
+algorithm, label, refine, local planner, seed), its status (``ok`` or ``failed``
+with the error message), each solver parameter as a ``param_<name>`` column and
+each scalar metric of the result (``length``, ``feasible``, ``f``, ``reached``,
+``time_s``, ...) as a column of its own; columns are added when a new parameter
+or metric first appears. Table ``traces`` holds the arrays (convergence
+history, path, trajectory) as JSON, keyed like ``runs``, so that ``runs``
+stays light for queries and CSV export.
+
+The database runs in WAL mode and each run is committed in its own
+transaction, so a killed process loses at most the runs that were in flight;
+:meth:`ResultStore.done_keys` is what a rerun skips.
+"""
+from __future__ import annotations
+
+import csv
+import json
+import re
+import sqlite3
+import time
+from pathlib import Path
+from typing import Any, Iterable, Mapping
+
+from ..errors import ParameterError
+
+IDENTITY_COLUMNS = (
+    ("key", "TEXT PRIMARY KEY"), ("experiment", "TEXT"), ("kind", "TEXT"), ("target", "TEXT"),
+    ("algorithm", "TEXT"), ("label", "TEXT"), ("refine", "TEXT"), ("local_planner", "TEXT"), ("seed", "INTEGER"),
+    ("status", "TEXT"), ("error", "TEXT"), ("wall_s", "REAL"), ("worker", "TEXT"), ("finished_at", "TEXT"),
+    ("optplan_version", "TEXT"), ("params", "TEXT"), ("target_spec", "TEXT"),
+)
+IDENTITY = tuple(c for c, _ in IDENTITY_COLUMNS)
+TRACE_COLUMNS = ("history", "history_nfev", "path", "global_path", "trajectory", "x")
+# result fields that repeat the identity columns under another name
+_SKIP_METRICS = {"algorithm", "seed", "global_planner", "local_planner", "refine"}
+
+
+def column_name(name: str, prefix: str = "") -> str:
+    """A safe SQL column name for a parameter or metric name."""
+    col = prefix + re.sub(r"[^0-9a-zA-Z_]", "_", str(name)).lower()
+    return col if not col[0].isdigit() else "_" + col
+
+
+def _sql_type(value: Any) -> str:
+    if isinstance(value, bool) or isinstance(value, int):
+        return "INTEGER"
+    if isinstance(value, float):
+        return "REAL"
+    return "TEXT"
+
+
+def _sql_value(value: Any) -> Any:
+    if value is None or isinstance(value, (bool, int, float, str)):
+        return value
+    return json.dumps(value)
+
+
+class ResultStore:
+    """SQLite results of runs; ``path=":memory:"`` keeps them in memory.
+
+    Only one process (the runner's parent) writes; readers may open the same
+    file at any time (WAL mode).
+    """
+
+    def __init__(self, path: str | Path = ":memory:"):
+        self.path = str(path)
+        if self.path != ":memory:":
+            parent = Path(self.path).parent
+            if not parent.is_dir():
+                raise ParameterError(f"results database folder {parent} does not exist; create it or pick another "
+                                     f"--db path")
+        try:
+            self.conn = sqlite3.connect(self.path, timeout=60, isolation_level=None)
+            self.conn.row_factory = sqlite3.Row
+            if self.path != ":memory:":
+                self.conn.execute("PRAGMA journal_mode=WAL")
+                self.conn.execute("PRAGMA synchronous=NORMAL")
+            cols = ", ".join(f"{c} {t}" for c, t in IDENTITY_COLUMNS)
+            self.conn.execute(f"CREATE TABLE IF NOT EXISTS runs ({cols})")
+            tcols = ", ".join(f"{c} TEXT" for c in TRACE_COLUMNS)
+            self.conn.execute(f"CREATE TABLE IF NOT EXISTS traces (key TEXT PRIMARY KEY, {tcols})")
+        except sqlite3.DatabaseError as exc:
+            raise ParameterError(f"cannot use {self.path} as a results database ({exc}); pass another --db file") \
+                from None
+        self._columns = {r["name"] for r in self.conn.execute("PRAGMA table_info(runs)")}
+
+    # ------------------------------------------------------------------ writing
+    def _ensure_column(self, col: str, value: Any) -> None:
+        if col not in self._columns:
+            self.conn.execute(f'ALTER TABLE runs ADD COLUMN "{col}" {_sql_type(value)}')
+            self._columns.add(col)
+
+    def write(self, record: Mapping[str, Any], outcome: Mapping[str, Any]) -> None:
+        """Store one finished run (``record`` from ``RunRecord.to_dict``, ``outcome`` from the runner)
+        in its own transaction; a second write of the same key replaces the first."""
+        from .. import __version__
+
+        row: dict[str, Any] = {
+            "key": record["key"], "experiment": record["experiment"], "kind": record["kind"],
+            "target": record["target"], "algorithm": record["algorithm"], "label": record["label"],
+            "refine": record["refine"], "local_planner": record["local_planner"], "seed": record["seed"],
+            "status": outcome["status"], "error": outcome.get("error"), "wall_s": outcome.get("wall_s"),
+            "worker": outcome.get("worker"), "finished_at": time.strftime("%Y-%m-%dT%H:%M:%S"),
+            "optplan_version": __version__, "params": json.dumps(record["params"], sort_keys=True),
+            "target_spec": json.dumps(record["target_spec"], sort_keys=True),
+        }
+        for k, v in record["params"].items():
+            row[column_name(k, "param_")] = _sql_value(v)
+        for k, v in (outcome.get("metrics") or {}).items():
+            if k not in _SKIP_METRICS and k not in IDENTITY:
+                row[column_name(k)] = _sql_value(v)
+        traces = {k: json.dumps(v) for k, v in (outcome.get("traces") or {}).items() if k in TRACE_COLUMNS}
+        self.conn.execute("BEGIN IMMEDIATE")
+        try:
+            for col, v in row.items():
+                self._ensure_column(col, v)
+            names = ", ".join(f'"{c}"' for c in row)
+            marks = ", ".join("?" for _ in row)
+            self.conn.execute(f"INSERT OR REPLACE INTO runs ({names}) VALUES ({marks})", list(row.values()))
+            tnames = ", ".join(["key", *traces])
+            tmarks = ", ".join("?" for _ in range(len(traces) + 1))
+            self.conn.execute(f"INSERT OR REPLACE INTO traces ({tnames}) VALUES ({tmarks})",
+                              [record["key"], *traces.values()])
+            self.conn.execute("COMMIT")
+        except BaseException:
+            self.conn.execute("ROLLBACK")
+            raise
+
+    # ------------------------------------------------------------------ reading
+    def done_keys(self, keys: Iterable[str] | None = None, include_failed: bool = True) -> set[str]:
+        """Keys already stored (those a rerun skips); failed runs count unless ``include_failed`` is False."""
+        cond = "" if include_failed else " WHERE status = 'ok'"
+        have = {r[0] for r in self.conn.execute(f"SELECT key FROM runs{cond}")}
+        return have if keys is None else have & set(keys)
+
+    def rows(self, keys: Iterable[str] | None = None) -> dict[str, dict[str, Any]]:
+        """``{key: row dict}`` for ``keys`` (all rows when ``None``)."""
+        return {r["key"]: dict(r) for r in self._select("runs", keys)}
+
+    def traces(self, keys: Iterable[str]) -> dict[str, dict[str, Any]]:
+        """``{key: {history: [...], path: [...], ...}}`` (missing arrays are absent)."""
+        return {r["key"]: {c: json.loads(r[c]) for c in TRACE_COLUMNS if r[c] is not None}
+                for r in self._select("traces", keys)}
+
+    def _select(self, table: str, keys: Iterable[str] | None) -> list[sqlite3.Row]:
+        if keys is None:
+            return list(self.conn.execute(f"SELECT * FROM {table}"))
+        keys = list(dict.fromkeys(keys))
+        out = []
+        for i in range(0, len(keys), 500):  # stay under SQLite's bound-parameter limit
+            chunk = keys[i:i + 500]
+            out += self.conn.execute(f"SELECT * FROM {table} WHERE key IN ({', '.join('?' * len(chunk))})", chunk)
+        return out
+
+    def count(self) -> int:
+        return int(self.conn.execute("SELECT COUNT(*) FROM runs").fetchone()[0])
+
+    def to_csv(self, filename: str | Path, keys: Iterable[str] | None = None) -> int:
+        """Write the ``runs`` rows (no arrays) to ``filename``; returns the number of rows."""
+        rows = self.rows(keys)
+        cols = [c for c in (r["name"] for r in self.conn.execute("PRAGMA table_info(runs)"))]
+        with open(filename, "w", newline="") as fh:
+            w = csv.writer(fh)
+            w.writerow(cols)
+            for r in rows.values():
+                w.writerow(["" if r[c] is None else r[c] for c in cols])
+        return len(rows)
+
+    def close(self) -> None:
+        self.conn.close()
+
+    def __enter__(self) -> "ResultStore":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()

@@ -1,0 +1,244 @@
+"""Summaries of a stored experiment: groups, min/mean/max/std, rank-sum tests, tables.
+
+Results are selected by the run keys of the spec's expansion (not by experiment
+name), so a database shared by several specs, or filled by an earlier
+interrupted run, gives each spec exactly its own runs.
+
+A group is one (target, algorithm label, refine mode, local planner). Only
+*successful* runs enter the statistics: a feasible path (``plan``), a goal
+reached without collision (``simulate``), any finished run (``optimize``).
+Failed and infeasible runs are counted in the tables, never averaged in.
+"""
+from __future__ import annotations
+
+import functools
+import json
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from .spec import ExperimentSpec, RunRecord
+from .stats import compare, summary
+from .tables import Table
+
+GroupKey = tuple  # (label, refine, local_planner)
+
+
+@dataclass
+class ExperimentResults:
+    """The stored rows of one spec, with helpers to group them."""
+
+    spec: ExperimentSpec
+    records: list[RunRecord]
+    rows: dict[str, dict[str, Any]]
+    store: Any = None
+    _traces: dict[str, dict] = field(default_factory=dict)
+
+    @property
+    def missing(self) -> int:
+        """Runs of the spec with no stored row yet."""
+        return sum(r.key not in self.rows for r in self.records)
+
+    def traces(self, keys) -> dict[str, dict]:
+        want = [k for k in keys if k not in self._traces]
+        if want and self.store is not None:
+            self._traces.update(self.store.traces(want))
+        return {k: self._traces.get(k, {}) for k in keys}
+
+    def group_name(self, label: str, refine: str | None, local: str | None) -> str:
+        """``label``, plus ``+refine`` / ``/local`` when the spec varies them."""
+        name = label
+        if len(self.spec.refine) > 1:
+            name += f"+{refine or 'none'}"
+        if len(self.spec.local_planners) > 1:
+            name += f"/{local}"
+        return name
+
+    def groups(self, target: str) -> dict[GroupKey, list[RunRecord]]:
+        """Records of one target by (label, refine, local planner), in spec order."""
+        out: dict[GroupKey, list[RunRecord]] = {}
+        for r in self.records:
+            if r.target == target:
+                out.setdefault((r.label, r.refine, r.local_planner), []).append(r)
+        return out
+
+    def row(self, rec: RunRecord) -> dict[str, Any] | None:
+        return self.rows.get(rec.key)
+
+    def successful(self, rec: RunRecord) -> bool:
+        row = self.rows.get(rec.key)
+        if row is None or row["status"] != "ok":
+            return False
+        if self.spec.kind == "plan":
+            return bool(row.get("feasible"))
+        if self.spec.kind == "simulate":
+            return bool(row.get("reached")) and not row.get("collisions")
+        return True
+
+    def values(self, recs: list[RunRecord], metric: str | None = None, successful_only: bool = True) -> np.ndarray:
+        """``metric`` of the (successful) runs among ``recs`` (NULLs dropped)."""
+        metric = metric or self.spec.metric
+        vals = []
+        for r in recs:
+            row = self.rows.get(r.key)
+            if row is None or row["status"] != "ok" or (successful_only and not self.successful(r)):
+                continue
+            v = row.get(metric)
+            if v is not None:
+                vals.append(float(v))
+        return np.asarray(vals, dtype=float)
+
+    def counts(self, recs: list[RunRecord]) -> tuple[int, int, int]:
+        """(stored runs, failed runs, successful runs) among ``recs``."""
+        stored = [r for r in recs if r.key in self.rows]
+        failed = sum(self.rows[r.key]["status"] != "ok" for r in stored)
+        return len(stored), failed, sum(self.successful(r) for r in stored)
+
+    def reference_group(self, group: GroupKey) -> GroupKey | None:
+        """The group ``group`` is compared against (same refine/local unless the spec pins them)."""
+        ref = self.spec.reference
+        if ref is None:
+            return None
+        if isinstance(ref, dict):
+            return (ref["algorithm"], ref.get("refine"), ref.get("local_planner") or group[2])
+        return (ref, group[1], group[2])
+
+    # ------------------------------------------------------------------ plan results as RunSets
+    def run_sets(self, target: str):
+        """``[RunSet]`` of one target with :class:`PlanResult` s rebuilt from the database (plan specs)."""
+        from ..results import PlanResult
+        from .global_runs import RunSet
+
+        sets = []
+        for (label, refine, local), recs in self.groups(target).items():
+            rs = RunSet(self.group_name(label, refine, local))
+            tr = self.traces([r.key for r in recs if r.key in self.rows])
+            for r in recs:
+                row = self.rows.get(r.key)
+                if row is None:
+                    continue
+                if row["status"] != "ok":
+                    rs.failed += 1
+                    continue
+                t = tr.get(r.key, {})
+                rs.results.append(PlanResult(
+                    algorithm=r.algorithm, path=np.asarray(t.get("path", np.zeros((0, 2))), float).reshape(-1, 2),
+                    feasible=bool(row.get("feasible")), length=_num(row.get("length")),
+                    turn_angle_deg=_num(row.get("turn_angle_deg")), n_turns=int(row.get("n_turns") or 0),
+                    min_clearance=_num(row.get("min_clearance")), runtime_s=_num(row.get("runtime_s")),
+                    history=np.asarray([np.nan if h is None else h for h in t.get("history", [])], float),
+                    refined=bool(row.get("refined")), seed=r.seed, message=row.get("message") or "",
+                    nfev=int(row.get("nfev") or 0)))
+            sets.append(rs)
+        return sets
+
+
+def _num(v) -> float:
+    return float("inf") if v is None else float(v)
+
+
+def load_results(spec: ExperimentSpec, store) -> ExperimentResults:
+    """The rows stored for ``spec``'s runs."""
+    records = spec.expand()
+    return ExperimentResults(spec, records, store.rows([r.key for r in records]), store)
+
+
+@functools.lru_cache(maxsize=64)
+def _exact_optimum(target_json: str) -> float:
+    from .global_runs import exact_optimum
+    from .runner import _plan_target
+
+    world, start, goal = _plan_target(target_json)
+    return exact_optimum(world, start, goal)
+
+
+def exact_optimum_of(target_spec) -> float:
+    """Length (metres) of the exact any-angle optimum of a plan target, cached per process."""
+    return _exact_optimum(json.dumps(dict(target_spec), sort_keys=True))
+
+
+def _fmt(x: float) -> str:
+    return f"{x:.4e}" if (x != 0 and (abs(x) < 1e-3 or abs(x) >= 1e5)) else f"{x:.4f}"
+
+
+def summary_tables(res: ExperimentResults, metric: str | None = None) -> list[Table]:
+    """One table per target: runs, failures, successes, best/mean/worst/std of ``metric`` over the
+    successful runs, the gap to the exact optimum (plan specs, metric ``length``), and the
+    rank-sum p-value and ``+/=/-`` sign against the reference; plus a tally table."""
+    spec = res.spec
+    metric = metric or spec.metric
+    with_gap = spec.kind == "plan" and metric == "length"
+    tally: dict[str, dict[str, int]] = {}
+    tables = []
+    for target in spec.targets:
+        groups = res.groups(target.name)
+        head = ["algorithm", "runs", "failed", "success", f"best {metric}", f"mean {metric}", f"worst {metric}",
+                f"std {metric}"]
+        optimum = None
+        if with_gap:
+            optimum = exact_optimum_of(target.spec)
+            head += ["best gap [%]", "mean gap [%]"]
+        if spec.reference is not None:
+            head += ["p vs reference", "sign"]
+        table = Table(head, caption=f"{spec.name}: {target.name}")
+        for g, recs in groups.items():
+            name = res.group_name(*g)
+            stored, failed, ok = res.counts(recs)
+            vals = res.values(recs, metric)
+            cells = [name, f"{stored}/{len(recs)}", str(failed), f"{ok}/{stored}"]
+            if len(vals):
+                s = summary(vals)
+                cells += [_fmt(s["best"]), _fmt(s["mean"]), _fmt(s["worst"]), _fmt(s["std"])]
+            else:
+                cells += ["-"] * 4
+            if with_gap:
+                cells += ([f"{100 * (vals.min() / optimum - 1):.2f}", f"{100 * (vals.mean() / optimum - 1):.2f}"]
+                          if len(vals) else ["-", "-"])
+            ref = res.reference_group(g)
+            if ref is not None:
+                if ref == g or ref not in groups:
+                    cells += ["-", "ref" if ref == g else "-"]
+                else:
+                    # chen2025 Table 7 convention: '+' means the reference is significantly better
+                    p, sign = compare(res.values(groups[ref], metric), vals, spec.alpha)
+                    cells += ["-" if not np.isfinite(p) else f"{p:.3g}", sign]
+                    tally.setdefault(name, {"+": 0, "=": 0, "-": 0})[sign] += 1
+            table.rows.append(cells)
+        if optimum is not None:
+            table.notes.append(f"exact optimum (any-angle, same start/goal): {optimum:.4f} m")
+        if spec.kind == "optimize":
+            from .runner import _function_target
+
+            F = _function_target(json.dumps(dict(target.spec), sort_keys=True))
+            table.notes.append(f"known optimum of {target.name}: {F.f_opt:.6g}")
+        tables.append(table)
+    if tally:
+        t = Table(["algorithm vs reference", "+", "=", "-"],
+                  caption=f"{spec.name}: Wilcoxon rank-sum tally against the reference at alpha {spec.alpha}")
+        for name, c in tally.items():
+            t.rows.append([name, str(c["+"]), str(c["="]), str(c["-"])])
+        t.notes.append(f"+: the reference ({_ref_text(spec)}) is significantly better at alpha {spec.alpha}; "
+                       f"-: significantly worse; =: no significant difference (targets counted; {metric}, minimised)")
+        tables.append(t)
+    return tables
+
+
+def _ref_text(spec: ExperimentSpec) -> str:
+    ref = spec.reference
+    if isinstance(ref, dict):
+        return ", ".join(f"{k} {v}" for k, v in ref.items() if v is not None)
+    return str(ref)
+
+
+def format_summary(res: ExperimentResults, fmt: str = "markdown", metric: str | None = None) -> str:
+    """All summary tables of one experiment as text, with a line on missing runs."""
+    parts = [f"## {res.spec.formatted_title()}\n"]
+    for t in summary_tables(res, metric):
+        if fmt == "markdown":
+            parts.append(f"### {t.caption.split(': ', 1)[-1]}\n\n{t.markdown()}\n")
+        else:
+            parts.append(t.latex() + "\n")
+    if res.missing:
+        parts.append(f"({res.missing} of {len(res.records)} runs are not in the database yet; rerun to complete)")
+    return "\n".join(parts)
