@@ -132,9 +132,11 @@ class Navigator:
             P = np.vstack([P, self.goal])
         return P
 
-    def _adopt(self, path: np.ndarray) -> None:
+    def _adopt(self, path: np.ndarray, world=None) -> None:
+        """Follow ``path``; subgoals are extracted against ``world`` (what is known now)."""
         self.path = path
-        self.strategy.reset(path, self.world, self.goal)
+        self.strategy.reset(path, self.world if world is None else world, self.goal)
+        self.route = np.vstack([path[:1], self.strategy.targets])
 
     # --------------------------------------------------------------------- each step
     def subgoal(self, position, velocity, dynamic, static_distance=None) -> np.ndarray:
@@ -142,25 +144,19 @@ class Navigator:
         return self.strategy.select(np.asarray(position, float), np.asarray(velocity, float), dynamic, static_distance)
 
     def path_blocked(self, believed_world, position) -> bool:
-        """Whether the not yet travelled part of the global path (from the point of the
-        path nearest the robot on) collides with what is known now (exact rule, robot
-        radius as clearance)."""
-        P = self._remaining_path(position)
-        if len(P) < 2:
+        """Whether the rest of the route the robot follows (its subgoal chain, from the
+        point of the current leg nearest the robot on) collides with what is known now
+        (exact rule, robot radius as clearance)."""
+        R = self.route
+        i = min(self.strategy.index, len(R) - 2)
+        if i < 0:
             return False
-        return not bool(np.all(believed_world.segments_free(P[:-1], P[1:], self.robot.radius)))
-
-    def _remaining_path(self, position) -> np.ndarray:
-        P = self.path
-        if len(P) < 2:
-            return P
-        a, b = P[:-1], P[1:]
+        a, b = R[i], R[i + 1]
         ab = b - a
-        L2 = np.maximum(np.einsum("ij,ij->i", ab, ab), 1e-12)
-        t = np.clip(np.einsum("ij,ij->i", np.asarray(position) - a, ab) / L2, 0, 1)
-        foot = a + t[:, None] * ab
-        i = int(np.argmin(np.hypot(*(foot - position).T)))
-        return np.vstack([foot[i], P[i + 1:]])
+        L2 = float(ab @ ab)
+        t = 0.0 if L2 == 0 else float(np.clip((np.asarray(position) - a) @ ab / L2, 0.0, 1.0))
+        P = np.vstack([a + t * ab, R[i + 1:]])
+        return not bool(np.all(believed_world.segments_free(P[:-1], P[1:], self.robot.radius)))
 
     def on_new_obstacles(self, believed_world, position, t: float) -> bool:
         """React to newly sensed static obstacles; True when the global path changed."""
@@ -185,7 +181,7 @@ class Navigator:
             return False
         self.switches += 1
         self.replans += 1
-        self._adopt(route)
+        self._adopt(route, believed_world)
         return True
 
     def replan(self, believed_world, position, t: float, why: str) -> bool:
@@ -202,7 +198,7 @@ class Navigator:
             if res.feasible:
                 self.replans += 1
                 self.messages.append(f"t={t:.1f}s: re-planned ({why})")
-                self._adopt(self._with_ends(res.path, position))
+                self._adopt(self._with_ends(res.path, position), believed_world)
                 return True
         self.replans += 1  # count the attempt so a hopeless situation ends
         self.messages.append(f"t={t:.1f}s: re-planning failed ({why})")

@@ -1,0 +1,129 @@
+"""Navigation layer: subgoal strategies, the velocity-obstacle test, path switch, re-planning."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import optplan as op
+from optplan.nav import Navigator, VirtualPointGraph, make_strategy, velocity_obstacle_hits
+from optplan.world.robot import RobotSpec
+
+
+def two_corridor_map() -> op.GridMap:
+    """15x9 room split by a wall with two doors (upper and lower corridor)."""
+    occ = np.zeros((9, 15), dtype=bool)
+    occ[:, 7] = True
+    occ[1, 7] = False   # lower door (7, 1)
+    occ[7, 7] = False   # upper door (7, 7)
+    return op.GridMap(occ)
+
+
+def test_key_and_turning_points_end_at_the_goal_and_advance_in_order():
+    grid = two_corridor_map()
+    path = op.shortest_path(grid, (1.5, 3.5), (13.5, 3.5), clearance=0.2).path
+    goal = np.array([13.5, 3.5])
+    turning = make_strategy("turning_points", 0.2)
+    turning.reset(path, grid, goal)
+    key = make_strategy("key_points", 0.2, switch_radius=0.5)
+    key.reset(path, grid, goal)
+    assert np.allclose(turning.targets[-1], goal) and np.allclose(key.targets[-1], goal)
+    assert 2 <= len(key.targets) < len(turning.targets)
+    # consecutive key points see each other with the robot radius
+    chain = np.vstack([path[:1], key.targets])
+    assert np.all(grid.segments_free(chain[:-1], chain[1:], 0.2))
+    first = key.select(np.array([1.5, 3.5]), np.zeros(2), np.zeros((0, 5)))
+    assert np.allclose(first, key.targets[0])
+    second = key.select(key.targets[0] + 0.1, np.zeros(2), np.zeros((0, 5)))
+    assert np.allclose(second, key.targets[1])
+    goal_only = make_strategy("goal", 0.2)
+    goal_only.reset(path, grid, goal)
+    assert goal_only.targets.tolist() == [goal.tolist()]
+    with pytest.raises(op.UnknownAlgorithmError):
+        make_strategy("wander", 0.2)
+
+
+def test_an_obstructed_stage_target_is_skipped():
+    s = make_strategy("turning_points", 0.2)
+    s.reset(np.array([[0, 0], [2, 0], [2, 2], [4, 2]], float), None, np.array([4.0, 2.0]))
+    blocked_at_2_0 = lambda p: np.hypot(*(np.asarray(p) - (2.0, 0.0)).T) - 0.1  # noqa: E731
+    assert np.allclose(s.select(np.zeros(2), np.zeros(2), np.zeros((0, 5)), blocked_at_2_0), (2, 2))
+
+
+def test_velocity_obstacle_flags_only_collision_courses():
+    obstacles = np.array([
+        [5.0, 0.0, 0.0, 0.0, 0.5],     # dead ahead, still: hit
+        [5.0, 3.0, 0.0, 0.0, 0.5],     # off to the side: miss
+        [0.0, 5.0, 0.0, -1.0, 0.5],    # crossing, meets the robot at (5, 0)? no: it comes down x = 0
+        [-5.0, 0.0, 0.0, 0.0, 0.5],    # behind: miss
+        [5.0, 5.0, 0.0, -1.0, 0.5],    # comes down x = 5 while the robot drives to x = 5: hit
+    ])
+    hits = velocity_obstacle_hits(np.zeros(2), np.array([1.0, 0.0]), obstacles, 0.2)
+    assert hits.tolist() == [True, False, False, False, True]
+
+
+def test_navigation_points_jump_from_i_plus_n_to_i_plus_kn_on_collision_risk():
+    nav = make_strategy("navigation_points", 0.2, spacing=0.25, lookahead_time=1.0, min_lookahead=1.0,
+                        avoid_distance=2.0)
+    path = np.array([[0.0, 0.0], [20.0, 0.0]])
+    nav.reset(path, None, path[-1])
+    pos, vel = np.array([5.0, 0.0]), np.array([1.0, 0.0])
+    calm = nav.select(pos, vel, np.zeros((0, 5)))
+    assert calm == pytest.approx([6.0, 0.0])               # n = 1 m / 0.25 m = 4 points ahead
+    far_mover = np.array([[15.0, 0.0, -1.0, 0.0, 0.5]])
+    assert nav.select(pos, vel, far_mover) == pytest.approx([6.0, 0.0])  # beyond the avoidance distance
+    head_on = np.array([[7.0, 0.0, -1.0, 0.0, 0.5]])
+    jumped = nav.select(pos, vel, head_on)
+    assert nav.last_k >= 2 and jumped[0] >= 5.0 + 2 * 1.0 - 1e-9
+    passing = np.array([[7.0, 1.5, 1.0, 0.0, 0.5]])       # near but moving away in parallel
+    assert nav.select(pos, vel, passing) == pytest.approx([6.0, 0.0])
+
+
+def blocked_upper_corridor(grid: op.GridMap, path: np.ndarray) -> op.GridMap:
+    occ = grid.occ.copy()
+    occ[6:9, 7] = True   # close the upper door region
+    occ[7, 6] = True
+    return op.GridMap(occ)
+
+
+def test_path_switch_finds_the_detour_through_the_other_door():
+    grid = two_corridor_map()
+    start, goal = np.array([1.5, 7.5]), np.array([13.5, 7.5])
+    g = VirtualPointGraph(grid, start, goal, clearance=0.2)
+    first = g.route(grid, start)
+    assert first is not None and bool(op.validate_path(grid, first, 0.2))
+    assert np.max(first[:, 1]) > 6.5 and np.min(first[:, 1]) > 4  # the short way: upper door
+    believed = blocked_upper_corridor(grid, first)
+    g.update(believed)
+    detour = g.route(believed, np.array([3.5, 7.5]))
+    assert detour is not None
+    assert bool(op.validate_path(believed, detour, 0.2))
+    assert np.allclose(detour[0], (3.5, 7.5)) and np.allclose(detour[-1], goal)
+    assert np.min(detour[:, 1]) < 2.5  # goes through the lower door (7, 1)
+
+
+def test_navigator_switches_when_a_sensed_obstacle_blocks_the_path():
+    grid = two_corridor_map()
+    robot = RobotSpec(radius=0.2)
+    nav = Navigator(grid, robot, (1.5, 7.5), (13.5, 7.5), subgoals="turning_points", on_blocked="switch")
+    nav.plan_initial()
+    believed = blocked_upper_corridor(grid, nav.path)
+    assert not nav.on_new_obstacles(grid, np.array([3.5, 7.5]), 1.0)  # nothing new: path still fine
+    assert nav.on_new_obstacles(believed, np.array([3.5, 7.5]), 1.0)
+    assert nav.switches == 1 and nav.replans == 1
+    assert bool(op.validate_path(believed, nav.path, 0.2))
+    assert not nav.path_blocked(believed, np.array([3.5, 7.5]))
+    # with "replan" the same situation is solved by graph search on the believed map
+    nav2 = Navigator(grid, robot, (1.5, 7.5), (13.5, 7.5), on_blocked="replan")
+    nav2.plan_initial()
+    assert nav2.on_new_obstacles(believed, np.array([3.5, 7.5]), 1.0) and nav2.switches == 0
+    assert bool(op.validate_path(believed, nav2.path, 0.2))
+
+
+def test_global_plan_keeps_the_robot_radius_and_extends_to_exact_ends():
+    grid = two_corridor_map()
+    nav = Navigator(grid, RobotSpec(radius=0.3), (1.2, 7.3), (13.5, 7.5))
+    res = nav.plan_initial()
+    assert res.feasible
+    assert np.allclose(nav.path[0], (1.2, 7.3)) and np.allclose(nav.path[-1], (13.5, 7.5))
+    assert bool(op.validate_path(grid, nav.path[1:], 0.3))
+    assert not nav.messages

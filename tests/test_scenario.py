@@ -1,0 +1,175 @@
+"""Scenario files: the DESIGN.md schema, optplan's optional keys, and every error class."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import optplan as op
+from optplan.errors import ScenarioError
+from optplan.world.scenario import DynamicObstacle, load_scenario, scenario_names
+
+ROWS = [
+    [0, 0, 0, 0, 0, 0],
+    [0, 0, 0, 1, 0, 0],
+    [0, 0, 0, 1, 0, 0],
+    [0, 0, 0, 0, 0, 0],
+]  # top row first: the blocked cells are (3, 1) and (3, 2)
+
+
+def base(**over):
+    d = {"map": ROWS, "start": [0.5, 0.5, 90], "goal": [5.5, 3.5]}
+    d.update(over)
+    return d
+
+
+def test_full_design_example_loads_from_a_yaml_file_with_a_relative_map(tmp_path):
+    (tmp_path / "maps").mkdir()
+    (tmp_path / "maps" / "room.txt").write_text("\n".join(" ".join("0" * 20) for _ in range(20)) + "\n")
+    (tmp_path / "s.yaml").write_text("""
+map: maps/room.txt
+resolution: 1.0
+robot: {model: unicycle, radius: 0.2, v_max: 1.0, w_max_deg: 30, a_max: 0.3, alpha_max_deg: 50, jerk_max: null}
+start: [0.5, 0.5, 45]
+goal: [19.5, 19.5]
+sensor_range: 3.0
+dt: 0.1
+time_limit: 300
+unknown_obstacles:
+  - {cells: [[5, 6], [5, 7]]}
+  - {circle: [12.0, 8.0, 0.5]}
+dynamic_obstacles:
+  - {radius: 0.3, waypoints: [[3, 10], [15, 10]], speed: 0.5, loop: true}
+  - {radius: 0.6, start: [19, 5], velocity: [-0.6, 0.0]}
+""")
+    sc = op.load_scenario(tmp_path / "s.yaml")
+    assert sc.world.width == 20 and sc.is_grid
+    assert sc.robot.w_max == pytest.approx(math.radians(30)) and sc.robot.jerk_max is None
+    assert np.allclose(sc.start, [0.5, 0.5, math.radians(45)])
+    assert sc.unknown_cells.tolist() == [[5, 6], [5, 7]]
+    assert sc.unknown_circles.tolist() == [[12.0, 8.0, 0.5]]
+    assert len(sc.dynamic) == 2 and sc.dynamic[1].at_border == "bounce"
+    assert sc.name == "s"
+    # the true world holds the unknown cells, the known one does not
+    assert sc.true_world().occ[6, 5] and not sc.world.occ[6, 5]
+
+
+def test_inline_rows_are_top_row_first_and_take_the_resolution():
+    sc = load_scenario(base(resolution=0.5, start=[0.25, 0.25], goal=[2.75, 1.75]))
+    assert sc.world.resolution == 0.5
+    assert sc.world.occ[1, 3] and sc.world.occ[2, 3] and sc.world.occ.sum() == 2
+    assert sc.start[2] == 0.0  # heading defaults to 0
+
+
+def test_shipped_map_name_and_circle_world():
+    sc = load_scenario({"map": "yang2023_env1", "start": [0.3, 0.3, 45], "goal": [9.7, 9.7],
+                        "unknown_obstacles": [{"circle": [5.0, 0.6, 0.3]}]})
+    assert not sc.is_grid and len(sc.unknown_circles) == 1
+
+
+@pytest.mark.parametrize("name", scenario_names())
+def test_every_shipped_scenario_loads_and_realises(name):
+    sc = load_scenario(name)
+    assert sc.description, f"{name} must say which paper experiment it stands in for"
+    r1, r2 = sc.realize(3), sc.realize(3)
+    assert np.array_equal(r1.unknown_cells, r2.unknown_cells)
+    assert [d.phase for d in r1.dynamic] == [d.phase for d in r2.dynamic]
+
+
+@pytest.mark.parametrize("data,needle", [
+    ({"start": [0.5, 0.5], "goal": [5.5, 3.5]}, "missing required key"),
+    (base(speed=1), "unknown scenario key"),
+    (base(robot={"radius": 0.2, "wheels": 4}), "unknown robot key"),
+    (base(robot={"radius": "big"}), "robot.radius must be a number"),
+    (base(robot={"model": "tank"}), "model must be one of"),
+    (base(start="corner"), "start must be a list"),
+    (base(goal=[1.0]), "goal must be a list of 2"),
+    (base(dt=float("nan")), "dt must be a finite number"),
+    (base(sensor_range=-1.0), "sensor_range must be > 0"),
+    (base(time_limit=True), "time_limit must be a number"),
+    (base(start=[7.0, 0.5]), "outside the map"),
+    (base(goal=[3.5, 2.5]), "goal (3.5, 2.5) is blocked"),
+    (base(start=[2.9, 1.5]), "closer than the robot radius"),
+    (base(unknown_obstacles=[{"cells": [[0, 0]]}]), "unknown obstacle overlaps the robot at the start"),
+    (base(unknown_obstacles=[{"cells": [[9, 9]]}]), "outside the 6x4 map"),
+    (base(unknown_obstacles=[{"cells": [[1.5, 2]]}]), "integer cell indices"),
+    (base(unknown_obstacles=[{"box": [1, 2]}]), "unknown key(s) ['box']"),
+    (base(dynamic_obstacles=[{"radius": 0.3, "start": [0.8, 0.5], "velocity": [0, 0]}]), "overlaps the robot's start"),
+    (base(dynamic_obstacles=[{"radius": 0.3, "waypoints": [[1, 1], [2, 2]]}]), "no 'speed'"),
+    (base(dynamic_obstacles=[{"radius": 0.3, "start": [4, 3], "velocity": [1, 0], "at_border": "wrap"}]), "at_border"),
+    (base(dynamic_obstacles=[{"waypoints": [[1, 1]], "speed": 1}]), "missing 'radius'"),
+    (base(random_obstacles={"size": 1}), "missing 'count'"),
+    (base(map=[[0, 2], [0, 0]]), "list of equal-length rows of 0/1"),
+    (base(map="no_such_map_anywhere"), "does not exist"),
+    ({"map": "yang2023_env1", "start": [0.3, 0.3], "goal": [9.7, 9.7], "unknown_obstacles": [{"cells": [[1, 1]]}]},
+     "need a grid map"),
+])
+def test_malformed_scenarios_raise_scenario_error_naming_the_problem(data, needle):
+    with pytest.raises(ScenarioError) as exc:
+        load_scenario(data)
+    assert needle in str(exc.value)
+
+
+def test_file_errors(tmp_path):
+    with pytest.raises(ScenarioError, match="does not exist"):
+        load_scenario(tmp_path / "missing.yaml")
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("map: [0, 1\nstart: ]")
+    with pytest.raises(ScenarioError, match="not valid YAML"):
+        load_scenario(bad)
+    empty = tmp_path / "empty.yaml"
+    empty.write_text("")
+    with pytest.raises(ScenarioError, match="empty"):
+        load_scenario(empty)
+
+
+def test_cli_reports_a_bad_scenario_in_one_line(tmp_path, capsys):
+    from optplan.cli import main
+
+    f = tmp_path / "s.yaml"
+    f.write_text("map: arena\nstart: [1.5, 37.5]\n")
+    assert main(["simulate", str(f)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("optplan: error:") and "goal" in err and "\n" not in err
+
+
+def test_random_parts_are_drawn_from_the_seed_on_the_path_and_keep_the_goal_reachable():
+    sc = load_scenario({"map": "li2023_11", "start": [0.5, 0.5, 0], "goal": [10.5, 10.5],
+                        "random_obstacles": {"count": 2, "keep_away": 2.0},
+                        "random_dynamic": {"count": 2, "radius": 0.3, "speed": [0.3, 0.5], "length": [3, 5]}})
+    a, b, c = sc.realize(0), sc.realize(0), sc.realize(1)
+    assert a.unknown_cells.tolist() == b.unknown_cells.tolist()
+    assert 1 <= len(a.unknown_cells) <= 2 and a.random_obstacles is None
+    assert len(a.dynamic) == 2
+    assert (a.unknown_cells.tolist() != c.unknown_cells.tolist()
+            or [d.waypoints.tolist() for d in a.dynamic] != [d.waypoints.tolist() for d in c.dynamic])
+    for cell in a.unknown_cells:
+        assert not sc.world.occ[cell[1], cell[0]]
+        centre = sc.world.cell_center(cell)
+        assert min(np.hypot(*(centre - sc.start[:2])), np.hypot(*(centre - sc.goal))) >= 1.5
+    res = op.shortest_path(a.true_world(), sc.start[:2], sc.goal, clearance=sc.robot.radius)
+    assert res.feasible
+    for d in a.dynamic:
+        assert bool(sc.world.segments_free(d.waypoints[0], d.waypoints[1], d.radius))
+
+
+def test_mover_positions_over_time():
+    bounds = (0.0, 0.0, 10.0, 10.0)
+    loop = DynamicObstacle(0.3, waypoints=np.array([[1.0, 1.0], [5.0, 1.0], [5.0, 4.0]]), speed=1.0, loop=True)
+    # perimeter 4 + 3 + 5 = 12 m at 1 m/s
+    for t, want in ((0.0, (1, 1)), (2.0, (3, 1)), (5.5, (5, 2.5)), (7.0 + 2.5, (3, 2.5)), (12.0 + 2.0, (3, 1))):
+        assert np.allclose(loop.state(t, bounds)[0], want), t
+    assert np.allclose(loop.state(5.5, bounds)[1], (0, 1.0))
+    once = DynamicObstacle(0.3, waypoints=np.array([[1.0, 1.0], [3.0, 1.0]]), speed=0.5, loop=False, phase=0.5)
+    assert np.allclose(once.state(1.0, bounds)[0], (2.0, 1.0))
+    assert np.allclose(once.state(50.0, bounds), [(3.0, 1.0), (0.0, 0.0)])
+    bounce = DynamicObstacle(0.5, start=np.array([8.0, 5.0]), velocity=np.array([1.0, 0.0]))
+    # reaches x = 9.5 (border minus radius) at t = 1.5, then comes back
+    assert np.allclose(bounce.state(1.0, bounds)[0], (9.0, 5.0))
+    assert np.allclose(bounce.state(2.5, bounds), [(8.5, 5.0), (-1.0, 0.0)])
+    assert np.allclose(bounce.state(1.5 + 9.0 + 1.0, bounds)[0], (1.5, 5.0))  # bounced off x = 0.5 too
+    stop = DynamicObstacle(0.5, start=np.array([8.0, 5.0]), velocity=np.array([1.0, 1.0]), at_border="stop")
+    assert np.allclose(stop.state(10.0, bounds), [(9.5, 6.5), (0.0, 0.0)])
+    gone = DynamicObstacle(0.5, start=np.array([8.0, 5.0]), velocity=np.array([1.0, 0.0]), at_border="pass")
+    assert np.allclose(gone.state(10.0, bounds)[0], (18.0, 5.0))
