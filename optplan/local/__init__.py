@@ -1,1 +1,50 @@
-"""See DESIGN.md for what this layer holds."""
+"""Local planners: the dynamic window approach and the papers' variants (DESIGN.md layer 4).
+
+``make_local_planner(name, robot, dt, **params)`` builds one of ``algorithm_names()``;
+the closed loop calls ``reset(state, global_path)`` once and ``command(ctx)`` every
+control period (see ``optplan.local.base``).
+
+Modules: ``window`` (dynamic window, admissibility), ``rollout`` (all samples x horizon at
+once), ``critics`` (one cost term per class), ``mechanisms`` (adaptive velocity, velocity
+obstacles, brake-and-wait, initial heading), ``dwa`` (the planner core), ``presets`` (the
+papers' planners as data), ``qp_dwa`` (QP refinement + Ruckig), ``reference`` (a loop-based
+textbook DWA for checking and benchmarking).
+"""
+from __future__ import annotations
+
+from typing import Any
+
+from ..errors import UnknownAlgorithmError
+from ..world.robot import RobotSpec
+from .base import LocalContext, LocalPlanner
+from .dwa import DWAPlanner, Preset, Term
+from .presets import PRESETS
+
+__all__ = ["make_local_planner", "algorithm_names", "LocalContext", "LocalPlanner", "DWAPlanner", "Preset",
+           "Term", "PRESETS"]
+
+
+def algorithm_names() -> list[str]:
+    """Names of the local planners."""
+    return list(PRESETS)
+
+
+def make_local_planner(name: str, robot: RobotSpec, dt: float, **params: Any) -> LocalPlanner:
+    """Build the local planner ``name`` for ``robot`` with control period ``dt`` (s).
+
+    ``params`` override the planner's options (``n_v``, ``n_w``, ``horizon``, ...), its term
+    weights (``weights={...}``) or a term's / mechanism's parameters (see ``DWAPlanner``).
+
+    Raises:
+        UnknownAlgorithmError: ``name`` is not a local planner.
+        ParameterError: a parameter is unknown or out of range.
+    """
+    key = str(name).lower()
+    preset = PRESETS.get(key)
+    if preset is None:
+        raise UnknownAlgorithmError(f"unknown local planner {name!r}; choose one of {', '.join(PRESETS)}")
+    if preset.refine == "qp":
+        from .qp_dwa import QPDWAPlanner
+
+        return QPDWAPlanner(preset, robot, dt, **params)
+    return DWAPlanner(preset, robot, dt, **params)

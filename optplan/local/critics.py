@@ -1,0 +1,273 @@
+"""Cost terms of the DWA evaluation functions, one small class per term (like Nav2's DWB critics).
+
+Every critic maps a :class:`~optplan.local.rollout.Step` to one value per sample.
+``cost = False`` terms are rewards (higher is better, e.g. heading, velocity);
+``cost = True`` terms are penalties (e.g. distance to the global path) and enter the
+evaluation with a minus sign. A critic may also declare samples illegal (``legal``), which
+removes them before the choice, like the papers' "discard the trajectory" rules.
+
+The planner normalises each term over the candidate samples before weighting
+(the papers' sigma in hou2024 eq 31, yuan2021 eq 22-23, yang2023 eq 18), so the raw
+values below keep their physical units (rad, m, m/s, 1/m).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import ClassVar
+
+import numpy as np
+
+from .rollout import Step
+
+
+def wrap_angle(a):
+    """Angle(s) wrapped to ``(-pi, pi]``."""
+    return np.pi - np.mod(np.pi - np.asarray(a, dtype=float), 2.0 * np.pi)
+
+
+def body_direction(v, vy):
+    """Direction of the velocity ``(v, vy)`` in the robot frame, rad (0 when standing)."""
+    v, vy = np.asarray(v, dtype=float), np.asarray(vy, dtype=float)
+    return np.where((v == 0) & (vy == 0), 0.0, np.arctan2(vy, v))
+
+
+def polyline_distance(z: np.ndarray, path: np.ndarray, near: complex | None = None,
+                      reach: float = np.inf) -> np.ndarray:
+    """Distance (m) from complex points ``z`` (any shape) to the polyline ``path`` ``(N, 2)``.
+
+    Only segments within ``reach`` of ``near`` are considered (the part of the path a local
+    trajectory can approach); when none is, the nearest segment is used.
+    """
+    p = np.asarray(path, dtype=float).reshape(-1, 2)
+    pc = p[:, 0] + 1j * p[:, 1]
+    if len(pc) == 1:
+        return np.abs(z - pc[0])
+    a, b = pc[:-1], pc[1:]
+    if near is not None and np.isfinite(reach):
+        ab = b - a
+        L2 = np.maximum(np.abs(ab) ** 2, 1e-18)
+        s = np.clip(((near - a) * np.conj(ab)).real / L2, 0.0, 1.0)
+        d_near = np.abs(near - (a + s * ab))
+        sel = d_near <= reach
+        if not sel.any():
+            sel = d_near == d_near.min()
+        a, b = a[sel], b[sel]
+    out = np.full(np.shape(z), np.inf)
+    for a_i, b_i in zip(a, b):  # a handful of nearby segments, each over all points at once
+        ab = b_i - a_i
+        L2 = max(abs(ab) ** 2, 1e-18)
+        s = np.clip(((z - a_i) * np.conj(ab)).real / L2, 0.0, 1.0)
+        np.minimum(out, np.abs(z - (a_i + s * ab)), out=out)
+    return out
+
+
+class Critic:
+    """One term of the evaluation function (see the module docstring)."""
+
+    name: ClassVar[str] = ""
+    cost: ClassVar[bool] = False
+
+    def score(self, step: Step) -> np.ndarray:  # pragma: no cover - interface
+        raise NotImplementedError
+
+    def legal(self, step: Step) -> np.ndarray | None:
+        """Mask of samples this term allows (``None`` = all)."""
+        return None
+
+
+# ---------------------------------------------------------------- Fox et al. 1997 (dwa)
+@dataclass
+class Heading(Critic):
+    """``heading = pi - |alpha|`` with ``alpha`` the angle between the robot's heading and the
+    direction to the subgoal, both at the end of the trajectory (Fox 1997; yuan2021 §3.3;
+    yang2023 eq 15; li2023 eq 10 ``h``), rad.
+
+    ``one_step_within``: yang2023 §5.2. When the robot is closer than this (m) to the subgoal
+    the angle is taken at the pose after one control period instead of the trajectory end,
+    so that the robot does not circle a nearby target.
+    """
+
+    name: ClassVar[str] = "heading"
+    one_step_within: float | None = None
+
+    def score(self, step: Step) -> np.ndarray:
+        roll = step.roll
+        k = None
+        if self.one_step_within is not None and abs(step.target - roll.z0) < self.one_step_within:
+            k = max(1, int(round(step.ctx.dt / roll.dt)))
+            step.aux["heading_one_step"] = True
+        z = roll.position(k)
+        bearing = np.angle(step.target - z)
+        return np.pi - np.abs(wrap_angle(bearing - roll.heading(k)))
+
+
+@dataclass
+class Clearance(Critic):
+    """Fox's ``dist``: the smallest edge-to-edge distance (m) to any obstacle, static or
+    moving, along the trajectory, capped at ``cap`` (no obstacle close to the trajectory)."""
+
+    name: ClassVar[str] = "clearance"
+    cap: float = 2.0
+
+    def score(self, step: Step) -> np.ndarray:
+        return np.clip(step.gap.min(axis=1), 0.0, self.cap)
+
+
+@dataclass
+class Velocity(Critic):
+    """Fox's ``vel``: the forward speed (m/s; the planar speed for the omni model)."""
+
+    name: ClassVar[str] = "velocity"
+
+    def score(self, step: Step) -> np.ndarray:
+        r = step.roll
+        return r.speed if np.any(r.vy) else r.v
+
+
+# ---------------------------------------------------------------- hou2024 §3.1 (missa-dwa)
+@dataclass
+class PathDeviation(Critic):
+    """hou2024 eq 25 ``Pathdist``: mean distance (m) from ``N`` points of the trajectory to
+    the global path; every ``stride``-th rollout point is used."""
+
+    name: ClassVar[str] = "path_deviation"
+    cost: ClassVar[bool] = True
+    stride: int = 3
+
+    def score(self, step: Step) -> np.ndarray:
+        roll = step.roll
+        pts = roll.z[:, self.stride - 1::self.stride]
+        reach = float(roll.speed.max(initial=0.0) * roll.t[-1]) + 1.0
+        return polyline_distance(pts, step.ctx.global_path, roll.z0, reach).mean(axis=1)
+
+
+@dataclass
+class StaticInverseDistance(Critic):
+    """hou2024 eq 26-27 ``Dist_S``: ``1 / D_s`` with ``D_s`` the smallest distance (m) from the
+    robot centre to a static obstacle along the trajectory; trajectories with
+    ``D_s < factor R`` (``factor`` = 1.15, R the robot radius) are discarded.
+
+    The paper writes the evaluation as one sum to maximise, but ``1/D_s`` grows as the robot
+    gets closer and the companion term ``Pathdist`` is a distance to minimise; we read both
+    as penalties, and the "0" branch of eq 27 as the discard rule."""
+
+    name: ClassVar[str] = "static_inverse"
+    cost: ClassVar[bool] = True
+    factor: float = 1.15
+
+    def _d(self, step: Step) -> np.ndarray:
+        return step.static_gap.min(axis=1) + step.robot.radius
+
+    def score(self, step: Step) -> np.ndarray:
+        return 1.0 / np.maximum(self._d(step), 1e-3)
+
+    def legal(self, step: Step) -> np.ndarray:
+        return self._d(step) >= self.factor * step.robot.radius
+
+
+@dataclass
+class DynamicInverseDistance(Critic):
+    """hou2024 eq 28-30 ``Dist_D``: ``1 / D_d`` with ``D_d`` the smallest edge-to-edge
+    distance (m) to a moving obstacle at the same predicted time; trajectories with
+    ``D_d < factor S`` are discarded, ``S = v dt`` the distance the robot covers in one
+    control period (eq 30) and ``factor`` = 1.15. (Eq 29 repeats ``D_s``; ``D_d`` is meant.)"""
+
+    name: ClassVar[str] = "dynamic_inverse"
+    cost: ClassVar[bool] = True
+    factor: float = 1.15
+
+    def score(self, step: Step) -> np.ndarray:
+        return 1.0 / np.maximum(step.dyn_gap.min(axis=1), 1e-3)
+
+    def legal(self, step: Step) -> np.ndarray:
+        S = step.roll.speed * step.ctx.dt
+        return step.dyn_gap.min(axis=1) >= self.factor * S
+
+
+# ---------------------------------------------------------------- yang2023 §5 (idwa)
+@dataclass
+class BinaryDistance(Critic):
+    """yang2023 eq 16 ``Dist``: 1 when the trajectory keeps the robot centre farther than
+    the obstacles' influence radius ``R`` from every static obstacle, else 0.1, so the robot
+    may pass close to (but not into) obstacles and keeps following the global path.
+    ``R`` = robot radius + ``influence`` (m)."""
+
+    name: ClassVar[str] = "binary_distance"
+    influence: float = 0.1
+
+    def score(self, step: Step) -> np.ndarray:
+        far = step.static_gap.min(axis=1) > self.influence
+        return np.where(far, 1.0, 0.1)
+
+
+@dataclass
+class HeadingChange(Critic):
+    """yang2023 eq 17 ``vh``: how much the trajectory increases the angle ``VA`` between the
+    robot's velocity and the velocity of the mover the velocity-obstacle test flagged
+    (``step.aux["vo_threat"]``), rad. ``VA(t)`` is taken now and ``VA(t+1)`` at the end of the
+    trajectory. When ``VA(t)`` is 0 or pi either turn is equally good, so the change counts by
+    its magnitude. Without a flagged mover the term is 0 for every sample: eq 19's
+    ``lambda = 0`` when the VO predicts no collision (``lambda = 1.5 alpha`` otherwise is the
+    preset's weight)."""
+
+    name: ClassVar[str] = "heading_change"
+    tol: float = 1e-3
+
+    def score(self, step: Step) -> np.ndarray:
+        k = step.aux.get("vo_threat")
+        roll = step.roll
+        if k is None:
+            return np.zeros(roll.n)
+        phi_obs = np.angle(step.mover_vel[k])
+        state = step.ctx.state
+        va_now = abs(wrap_angle(roll.theta0 + body_direction(state.v, state.vy) - phi_obs))
+        va_next = np.abs(wrap_angle(roll.heading() + body_direction(roll.v, roll.vy) - phi_obs))
+        change = va_next - va_now
+        if va_now < self.tol or va_now > np.pi - self.tol:
+            change = np.abs(change)
+        return change
+
+
+# ---------------------------------------------------------------- yuan2021 (ba-dwa)
+@dataclass
+class GlobalPathDistance(Critic):
+    """yuan2021 eq 23 ``gdist``: distance (m) from the trajectory's end to the nearest point
+    of the global path. We measure to the path polyline (the limit of densely spaced nodes)
+    because the navigation layer may pass only the turning points."""
+
+    name: ClassVar[str] = "gdist"
+    cost: ClassVar[bool] = True
+
+    def score(self, step: Step) -> np.ndarray:
+        roll = step.roll
+        reach = float(roll.speed.max(initial=0.0) * roll.t[-1]) + 1.0
+        return polyline_distance(roll.position(), step.ctx.global_path, roll.z0, reach)
+
+
+# ---------------------------------------------------------------- li2023 eq 10 (iga-dwa)
+@dataclass
+class GoalDistance(Critic):
+    """li2023 eq 10 ``d``: distance (m) from the trajectory's end to the subgoal."""
+
+    name: ClassVar[str] = "goal_distance"
+    cost: ClassVar[bool] = True
+
+    def score(self, step: Step) -> np.ndarray:
+        return np.abs(step.target - step.roll.position())
+
+
+@dataclass
+class EndClearance(Critic):
+    """li2023 eq 10 ``o``: edge-to-edge distance (m) from the trajectory's end to the
+    nearest obstacle, capped at ``cap``."""
+
+    name: ClassVar[str] = "end_clearance"
+    cap: float = 2.0
+
+    def score(self, step: Step) -> np.ndarray:
+        return np.clip(np.minimum(step.static_gap[:, -1], step.dyn_gap[:, -1]), 0.0, self.cap)
+
+
+CRITICS: dict[str, type[Critic]] = {c.name: c for c in (
+    Heading, Clearance, Velocity, PathDeviation, StaticInverseDistance, DynamicInverseDistance,
+    BinaryDistance, HeadingChange, GlobalPathDistance, GoalDistance, EndClearance)}

@@ -1,0 +1,274 @@
+"""The dynamic window approach, vectorised over samples x horizon, driven by a preset.
+
+One control step (Fox et al. 1997; the papers' §3 / §5 descriptions):
+
+1. the dynamic window ``V_m ∩ V_d`` (hou2024 eq 20-21), narrowed by the preset's mechanisms;
+2. a preset mechanism may take over for this step (brake-and-wait, initial heading);
+3. an ``n_v x n_w (x n_vy)`` grid of the window is rolled out over the horizon, all at once;
+4. clearance to static obstacles and predicted movers, free distance and admissibility
+   ``V_a`` (eq 22) for every sample;
+5. the preset's cost terms are evaluated, each normalised over the candidates (the
+   papers' sigma: divide by the sum over the candidates, or min-max), weighted and summed;
+   the best admissible, legal sample is commanded.
+
+When critics or filters leave no candidate, their vetoes are relaxed (admissibility is
+kept); when nothing is admissible the robot brakes as hard as the window allows. Both
+are reported in ``Command.info["mode"]``.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Mapping
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..world.robot import Command, RobotSpec, RobotState
+from .base import LocalContext
+from .critics import CRITICS, Critic
+from .mechanisms import MECHANISMS, Mechanism
+from .rollout import Step, assess, rollout
+from .window import Window, dynamic_window, sample_grid
+
+
+@dataclass(frozen=True)
+class Term:
+    """One weighted cost term of a preset: a critic name from ``critics.CRITICS``."""
+
+    critic: str
+    weight: float
+    params: Mapping[str, Any] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class Preset:
+    """A local planner described as data: terms, mechanisms and options.
+
+    Attributes:
+        name: planner name (``make_local_planner`` key).
+        source: where the method comes from (paper, section, equations).
+        terms: the evaluation function.
+        mechanisms: ``(name, params)`` pairs from ``mechanisms.MECHANISMS``.
+        options: overrides of :attr:`DWAPlanner.OPTIONS`.
+        refine: ``None`` or ``"qp"`` (sampling followed by the QP and Ruckig, ``qp_dwa``).
+    """
+
+    name: str
+    source: str
+    terms: tuple[Term, ...]
+    mechanisms: tuple[tuple[str, Mapping[str, Any]], ...] = ()
+    options: Mapping[str, Any] = field(default_factory=dict)
+    refine: str | None = None
+
+
+def _normalise(values: np.ndarray, cand: np.ndarray, how: str) -> np.ndarray:
+    """A term normalised over the candidate samples."""
+    if how == "none":
+        return values
+    v = values[cand]
+    if how == "sum":  # the papers' sigma: each value over the sum (of magnitudes)
+        total = np.abs(v).sum()
+        return values / total if total > 0 and np.isfinite(total) else np.zeros_like(values)
+    lo, hi = v.min(), v.max()  # "minmax": Fox's [0, 1] scaling
+    return (values - lo) / (hi - lo) if hi > lo else np.zeros_like(values)
+
+
+class DWAPlanner:
+    """A dynamic-window local planner configured by a :class:`Preset`.
+
+    Build it with ``optplan.local.make_local_planner(name, robot, dt, **params)``; the
+    options (``OPTIONS``), term weights (``weights={"heading": 1.0}``) and the parameters of
+    a term or mechanism (``heading={"one_step_within": 1.0}``,
+    ``brake_and_wait={"d_s": 1.5}`` or ``brake_and_wait=False`` to drop it) can be overridden.
+    """
+
+    OPTIONS: dict[str, Any] = {
+        "n_v": 11,            # linear speed samples
+        "n_w": 21,            # yaw rate samples
+        "n_vy": 5,            # sideways speed samples (omni presets on an omni robot)
+        "horizon": 3.0,       # prediction period, s (hou2024 §4.4)
+        "rollout_dt": None,   # rollout step, s (None = the control period)
+        "margin": 0.0,        # extra clearance counted as collision, m
+        "reaction": 0.0,      # reaction time in the stopping distance, s (eq 22)
+        "normalise": "sum",   # "sum" | "minmax" | "none"
+        "omni": False,        # sample vy too when the robot is omnidirectional (hou2024 eq 19)
+        "mover_range": 3.0,   # movers provably farther than this (edge to edge) are skipped, m
+    }
+
+    def __init__(self, preset: Preset, robot: RobotSpec, dt: float, **params: Any) -> None:
+        if not isinstance(robot, RobotSpec):
+            raise ParameterError(f"robot must be an optplan RobotSpec, got {type(robot).__name__}")
+        try:
+            self.dt = float(dt)
+        except (TypeError, ValueError):
+            raise ParameterError(f"dt must be a number of seconds, got {dt!r}") from None
+        if not (math.isfinite(self.dt) and self.dt > 0):
+            raise ParameterError(f"dt must be a finite number of seconds > 0, got {dt!r}")
+        self.name = preset.name
+        self.preset = preset
+        self.robot = robot
+        self.initial_heading: float | None = None
+        opts = {**self.OPTIONS, **preset.options}
+        terms = {t.critic: (t.weight, dict(t.params)) for t in preset.terms}
+        mechs = {m: dict(p) for m, p in preset.mechanisms}
+        for key, value in params.items():
+            if key in opts:
+                opts[key] = value
+            elif key == "weights":
+                if not isinstance(value, Mapping) or set(value) - set(terms):
+                    raise ParameterError(f"weights must map term names of {preset.name!r} ({', '.join(terms)}) "
+                                         f"to numbers, got {value!r}")
+                for t, w in value.items():
+                    terms[t] = (w, terms[t][1])
+            elif key in terms:
+                if not isinstance(value, Mapping):
+                    raise ParameterError(f"{key} must be a dict of the term's parameters, got {value!r}")
+                value = dict(value)
+                terms[key] = (value.pop("weight", terms[key][0]), {**terms[key][1], **value})
+            elif key in mechs:
+                if value is False or value is None:
+                    del mechs[key]
+                elif isinstance(value, Mapping):
+                    mechs[key].update(value)
+                else:
+                    raise ParameterError(f"{key} must be a dict of parameters or False, got {value!r}")
+            else:
+                known = sorted(set(opts) | set(terms) | set(mechs) | {"weights"})
+                raise ParameterError(f"unknown parameter {key!r} for local planner {preset.name!r}; "
+                                     f"known: {', '.join(known)}")
+        self.options = self._checked(opts)
+        self.terms: list[tuple[Critic, float]] = []
+        for cname, (w, p) in terms.items():
+            w = self._number(f"weight of {cname}", w, allow_zero=True)
+            self.terms.append((self._build(CRITICS[cname], p, cname), w))
+        self.mechanisms: list[Mechanism] = [self._build(MECHANISMS[m], p, m) for m, p in mechs.items()]
+        self.rollout_dt = self.options["rollout_dt"] or self.dt
+        self.steps = max(1, int(round(self.options["horizon"] / self.rollout_dt)))
+        self.omni = bool(self.options["omni"]) and robot.model == "omni" and robot.vy_max > 0
+        self.last: Command | None = None
+
+    # ------------------------------------------------------------------ set-up helpers
+    @staticmethod
+    def _number(name: str, value: Any, allow_zero: bool = False) -> float:
+        try:
+            x = float(value)
+        except (TypeError, ValueError):
+            raise ParameterError(f"{name} must be a number, got {value!r}") from None
+        if not math.isfinite(x) or x < 0 or (x == 0 and not allow_zero):
+            raise ParameterError(f"{name} must be a finite number {'>= 0' if allow_zero else '> 0'}, got {value!r}")
+        return x
+
+    def _checked(self, o: dict) -> dict:
+        for k in ("n_v", "n_w", "n_vy"):
+            if isinstance(o[k], bool) or not isinstance(o[k], (int, np.integer)) or o[k] < 1:
+                raise ParameterError(f"{k} must be an int >= 1 (number of samples), got {o[k]!r}")
+            o[k] = int(o[k])
+        o["horizon"] = self._number("horizon", o["horizon"])
+        if o["rollout_dt"] is not None:
+            o["rollout_dt"] = self._number("rollout_dt", o["rollout_dt"])
+        for k in ("margin", "reaction", "mover_range"):
+            o[k] = self._number(k, o[k], allow_zero=True)
+        if o["normalise"] not in ("sum", "minmax", "none"):
+            raise ParameterError(f"normalise must be 'sum', 'minmax' or 'none', got {o['normalise']!r}")
+        return o
+
+    @staticmethod
+    def _build(cls, params: dict, what: str):
+        try:
+            return cls(**params)
+        except TypeError as e:
+            raise ParameterError(f"bad parameters for {what}: {params!r} ({e})") from None
+
+    # ------------------------------------------------------------------ protocol
+    def reset(self, state: RobotState, global_path: np.ndarray) -> None:
+        """Forget the previous run (adaptive limits, alignment, previous command)."""
+        self.last = None
+        self.initial_heading = None
+        for m in self.mechanisms:
+            m.reset(self, state, global_path)
+
+    def window(self, ctx: LocalContext) -> Window:
+        """The dynamic window for this step, after the mechanisms' caps."""
+        win = dynamic_window(self.robot, ctx.state, ctx.dt, omni=self.omni)
+        for m in self.mechanisms:
+            win = m.adjust_window(self, ctx, win)
+        return win
+
+    def evaluate(self, ctx: LocalContext, window: Window) -> Step:
+        """Roll out and assess the sample grid of ``window``."""
+        o = self.options
+        lin_v, lin_vy, w = sample_grid(window, o["n_v"], o["n_w"], o["n_vy"] if self.omni else 1)
+        roll = rollout(ctx.state, lin_v, lin_vy, w, self.rollout_dt, self.steps)
+        return assess(ctx, self.robot, roll, margin=o["margin"], reaction=self._reaction(),
+                      mover_range=o["mover_range"])
+
+    def _reaction(self) -> float:
+        return self.options["reaction"]
+
+    def choose(self, step: Step) -> tuple[int | None, dict]:
+        """Index of the best candidate sample (``None`` if none is admissible) and diagnostics."""
+        legal = np.ones(step.roll.n, dtype=bool)
+        for m in self.mechanisms:
+            keep = m.filter(self, step)
+            if keep is not None:
+                legal &= keep
+        for critic, _ in self.terms:
+            ok = critic.legal(step)
+            if ok is not None:
+                legal &= ok
+        cand = step.admissible & legal
+        mode = "sample"
+        if not cand.any():
+            cand = step.admissible
+            mode = "sample-relaxed"  # the critics' vetoes left nothing: keep admissibility only
+        if not cand.any():
+            return None, {"mode": "brake-no-admissible"}
+        total = np.zeros(step.roll.n)
+        how = self.options["normalise"]
+        for critic, weight in self.terms:
+            if weight == 0:
+                continue
+            n = _normalise(critic.score(step), cand, how)
+            total += -weight * n if critic.cost else weight * n
+        total[~cand] = -np.inf
+        best = int(np.argmax(total))
+        return best, {"mode": mode, "index": best, "score": float(total[best]), "n_candidates": int(cand.sum()),
+                      "free_distance": float(step.free_distance[best])}
+
+    def command(self, ctx: LocalContext) -> Command:
+        """The velocity command for the next control period."""
+        if abs(ctx.dt - self.dt) > 1e-9:
+            raise ParameterError(f"the context's dt ({ctx.dt:g} s) differs from the planner's ({self.dt:g} s); "
+                                 "build the planner with the simulation's control period")
+        win = self.window(ctx)
+        info: dict[str, Any] = {"planner": self.name}
+        step = None
+        for m in self.mechanisms:
+            took = m.override(self, ctx, win)
+            if took is not None:
+                v, w, extra = took
+                u = win.clip(v, w, 0.0)
+                info.update(extra)
+                break
+        else:
+            step = self.evaluate(ctx, win)
+            best, extra = self.choose(step)
+            info.update(extra)
+            info["n_samples"] = step.roll.n
+            if step.aux.get("vo_threat") is not None:
+                info["vo_threat"] = step.aux["vo_threat"]
+            if best is None:
+                u = win.clip(0.0, 0.0, 0.0)  # brake as hard as the window allows
+            else:
+                r = step.roll
+                u = (float(r.v[best]), float(r.w[best]), float(r.vy[best]))
+        u = self.finish(ctx, win, u, step, info)
+        cmd = Command(v=u[0], w=u[1], vy=u[2], info=info)
+        self.last = cmd
+        return cmd
+
+    def finish(self, ctx: LocalContext, window: Window, u: tuple[float, float, float], step: Step | None,
+               info: dict) -> tuple[float, float, float]:
+        """Last stage of a step (``qp-dwa`` refines and limits the command here)."""
+        return u

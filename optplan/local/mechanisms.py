@@ -1,0 +1,235 @@
+"""Parts of the papers' DWA variants that are not cost terms.
+
+Each mechanism hooks into one place of the control step:
+
+* ``adjust_window``: narrows the dynamic window (hou2024's adaptive velocity, eq 23-24);
+* ``override``: replaces the sampled choice by a fixed manoeuvre for this step
+  (li2023's brake-and-wait, §5.4, and initial heading, eq 11);
+* ``filter``: removes samples and reports findings to the cost terms through
+  ``step.aux`` (yang2023's velocity-obstacle test, eq 12-14).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, ClassVar
+
+import numpy as np
+
+from ..world.robot import RobotState
+from .base import LocalContext
+from .critics import body_direction, wrap_angle
+from .rollout import Step
+from .window import Window
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .dwa import DWAPlanner
+
+
+class Mechanism:
+    """A hook into the control step (see the module docstring). Hooks default to no-ops."""
+
+    name: ClassVar[str] = ""
+
+    def reset(self, planner: "DWAPlanner", state: RobotState, global_path: np.ndarray) -> None:
+        """Forget the previous run."""
+
+    def adjust_window(self, planner: "DWAPlanner", ctx: LocalContext, window: Window) -> Window:
+        return window
+
+    def override(self, planner: "DWAPlanner", ctx: LocalContext, window: Window) -> tuple[float, float, dict] | None:
+        """``(v_desired, w_desired, info)`` to clip into the window instead of sampling, or ``None``."""
+        return None
+
+    def filter(self, planner: "DWAPlanner", step: Step) -> np.ndarray | None:
+        """Mask of samples to keep (``None`` = all)."""
+        return None
+
+
+@dataclass
+class AdaptiveVelocity(Mechanism):
+    """hou2024 §3.1.3, eq 23-24: caps on the linear and angular speed that follow how much
+    of the surroundings is navigable.
+
+    ``phi_path`` (the "navigable area") is measured as the free fraction of a fixed polar
+    grid of points within ``look_ahead`` metres of the robot (a point is free when the robot
+    could stand there without touching a static obstacle or a sensed mover); ``phi_max`` = 1.
+
+    * eq 23: ``v_r(t+1) = v_r(t) + k_v (phi(t+1) - phi(t)) / phi_max * v_max`` - the cap falls
+      as the surroundings close in. It starts at ``v_max * phi(0)`` (so with ``k_v`` = 1 it
+      stays ``v_max * phi``) and never drops below ``v_floor * v_max``.
+    * eq 24: ``w_r(t+1) = w_max - k_w v_r(t) / v_max * w_r(t)`` - slower driving allows faster
+      turning; the fixed point is ``w_max / (1 + k_w v_r / v_max)``.
+
+    The paper gives no values for ``k_v``, ``k_w``; 1.0 and 0.5 are our choices.
+    """
+
+    name: ClassVar[str] = "adaptive_velocity"
+    k_v: float = 1.0
+    k_w: float = 0.5
+    look_ahead: float = 3.0
+    v_floor: float = 0.2
+    rings: int = 6
+    rays: int = 24
+    v_r: float | None = field(default=None, init=False)
+    w_r: float | None = field(default=None, init=False)
+    phi: float | None = field(default=None, init=False)
+
+    def reset(self, planner, state, global_path) -> None:
+        self.v_r = self.w_r = self.phi = None
+
+    def navigable_fraction(self, planner: "DWAPlanner", ctx: LocalContext) -> float:
+        r = self.look_ahead * np.arange(1, self.rings + 1) / self.rings
+        a = 2 * np.pi * np.arange(self.rays) / self.rays
+        z = complex(ctx.state.x, ctx.state.y) + np.multiply.outer(r, np.exp(1j * a)).ravel()
+        R = planner.robot.radius
+        free = np.asarray(ctx.static_distance(z.view(np.float64).reshape(-1, 2))) > R
+        for x, y, _, _, rad in np.asarray(ctx.dynamic, dtype=float).reshape(-1, 5):
+            free &= np.abs(z - complex(x, y)) > rad + R
+        return float(free.mean())
+
+    def adjust_window(self, planner, ctx, window) -> Window:
+        robot = planner.robot
+        phi = self.navigable_fraction(planner, ctx)
+        if self.v_r is None:
+            self.v_r, self.w_r = robot.v_max * phi, robot.w_max
+        else:
+            v_prev = self.v_r
+            self.v_r = self.v_r + self.k_v * (phi - self.phi) * robot.v_max  # eq 23
+            self.w_r = robot.w_max - self.k_w * v_prev / robot.v_max * self.w_r  # eq 24
+        self.phi = phi
+        self.v_r = float(np.clip(self.v_r, self.v_floor * robot.v_max, robot.v_max))
+        self.w_r = float(np.clip(self.w_r, 0.0, robot.w_max))
+        return window.capped(v_hi=self.v_r, w_abs=self.w_r)
+
+
+@dataclass
+class VelocityObstacle(Mechanism):
+    """yang2023 §5.1, eq 12-14: the relative collision cone of each sensed mover.
+
+    For a sample's velocity ``V_rob`` (its speed along the mean heading of the first control
+    period) and a mover's ``V_obs``, the relative velocity is ``V_r = V_rob - V_obs``
+    (eq 12); the ray ``P_r + V_r t, t >= 0`` (eq 13) entering the mover's disc enlarged by the
+    robot radius (eq 14) means a predicted collision, and the sample is rejected.
+    ``horizon`` (s) truncates the ray (``None`` = the paper's infinite ray).
+
+    The same test on the robot's current velocity gives eq 19's "is collision": the mover
+    with the earliest predicted contact is stored in ``step.aux["vo_threat"]`` for the
+    ``vh`` term (eq 17), which is zero when nothing is flagged.
+    """
+
+    name: ClassVar[str] = "velocity_obstacle"
+    horizon: float | None = None
+    margin: float = 0.0
+
+    def _contact_time(self, vrel: np.ndarray, c: complex, rho: float) -> np.ndarray:
+        """Time at which ``vrel t`` enters the disc of radius ``rho`` around ``c`` (inf = never)."""
+        if abs(c) <= rho:
+            return np.zeros(np.shape(vrel))
+        s2 = np.abs(vrel) ** 2
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t_closest = (c * np.conj(vrel)).real / s2
+            miss2 = np.abs(c) ** 2 - t_closest ** 2 * s2  # squared distance of closest approach
+            t_in = t_closest - np.sqrt(np.maximum(rho * rho - miss2, 0.0) / s2)
+        hit = (s2 > 0) & (t_closest > 0) & (miss2 < rho * rho)
+        if self.horizon is not None:
+            hit &= t_in <= self.horizon
+        return np.where(hit, t_in, np.inf)
+
+    def filter(self, planner, step) -> np.ndarray | None:
+        ctx, roll = step.ctx, step.roll
+        if len(step.mover_r) == 0:
+            return None
+        mid_heading = roll.theta0 + 0.5 * roll.w * ctx.dt + body_direction(roll.v, roll.vy)
+        v_samples = roll.speed * np.exp(1j * mid_heading)
+        state = ctx.state
+        v_now = math.hypot(state.v, state.vy) * np.exp(1j * (state.theta + body_direction(state.v, state.vy)))
+        keep = np.ones(roll.n, dtype=bool)
+        threat, t_threat = None, np.inf
+        for k in range(len(step.mover_r)):
+            c = step.movers[k, 0] - step.mover_vel[k] * roll.t[0] - roll.z0  # mover now, relative
+            rho = step.mover_r[k] + planner.robot.radius + self.margin
+            keep &= ~np.isfinite(self._contact_time(v_samples - step.mover_vel[k], c, rho))
+            t_now = float(self._contact_time(np.array([v_now - step.mover_vel[k]]), c, rho)[0])
+            if t_now < t_threat:
+                threat, t_threat = k, t_now
+        step.aux["vo_threat"] = threat
+        step.aux["vo_rejected"] = int((~keep).sum())
+        return keep
+
+
+@dataclass
+class BrakeAndWait(Mechanism):
+    """li2023 §5.4: emergency brake and wait while a moving obstacle (1) is ahead of the robot
+    (bearing within ``front_angle`` rad of its heading), (2) is closer than ``d_s`` m
+    (centre to centre), (3) moves faster than ``v_s`` m/s, and (4) moves in a direction within
+    ``cross_angle`` (3 pi / 4) of the robot's heading, i.e. crosses or leads rather than
+    comes head-on (those are left to the DWA). The robot moves on once no mover meets all
+    four conditions (the paper: once the mover is farther than ``d_s`` from the path ahead).
+    ``d_s``, ``v_s`` and ``front_angle`` are left to the user by the paper; the defaults are ours.
+    """
+
+    name: ClassVar[str] = "brake_and_wait"
+    d_s: float = 2.0
+    v_s: float = 0.05
+    front_angle: float = math.pi / 3
+    cross_angle: float = 3 * math.pi / 4
+
+    def threats(self, ctx: LocalContext) -> np.ndarray:
+        """Indices of the movers that meet the four conditions."""
+        d = np.asarray(ctx.dynamic, dtype=float).reshape(-1, 5)
+        rel = d[:, 0] - ctx.state.x + 1j * (d[:, 1] - ctx.state.y)
+        vel = d[:, 2] + 1j * d[:, 3]
+        ahead = np.abs(wrap_angle(np.angle(rel) - ctx.state.theta)) <= self.front_angle
+        near = np.abs(rel) < self.d_s
+        fast = np.abs(vel) > self.v_s
+        crossing = np.abs(wrap_angle(np.angle(vel) - ctx.state.theta)) <= self.cross_angle
+        return np.flatnonzero(ahead & near & fast & crossing)
+
+    def override(self, planner, ctx, window):
+        k = self.threats(ctx)
+        if len(k) == 0:
+            return None
+        return 0.0, 0.0, {"mode": "brake-and-wait", "waiting_for": [int(i) for i in k]}
+
+
+@dataclass
+class InitialHeading(Mechanism):
+    """li2023 §5.3, eq 11: start each run facing the first subgoal.
+
+    The heading ``theta = atan2(y_1 - y_s, x_1 - x_s)`` of the first global path segment is
+    stored as ``planner.initial_heading`` (the navigation layer may use it to set the start
+    pose, as the paper does); until the robot faces it within ``tol`` rad, the planner turns
+    on the spot (the paper's ``arctan k`` is taken with the quadrant, ``atan2``).
+    """
+
+    name: ClassVar[str] = "initial_heading"
+    tol: float = math.radians(5.0)
+    aligned: bool = field(default=True, init=False)
+
+    def reset(self, planner, state, global_path) -> None:
+        p = np.asarray(global_path, dtype=float).reshape(-1, 2)
+        d = np.hypot(p[:, 0] - state.x, p[:, 1] - state.y)
+        ahead = np.flatnonzero(d > 1e-6)
+        if len(ahead) == 0:
+            planner.initial_heading, self.aligned = None, True
+            return
+        x1, y1 = p[ahead[0]]
+        planner.initial_heading = math.atan2(y1 - state.y, x1 - state.x)
+        self.aligned = abs(wrap_angle(planner.initial_heading - state.theta)) <= self.tol
+
+    def override(self, planner, ctx, window):
+        if self.aligned or planner.initial_heading is None:
+            return None
+        err = float(wrap_angle(planner.initial_heading - ctx.state.theta))
+        if abs(err) <= self.tol:
+            self.aligned = True
+            return None
+        robot = planner.robot
+        # the fastest turn that can still stop at the target heading
+        w = math.copysign(min(robot.w_max, math.sqrt(2 * robot.alpha_max * abs(err))), err)
+        return 0.0, w, {"mode": "align-initial-heading", "heading_error": err}
+
+
+MECHANISMS: dict[str, type[Mechanism]] = {m.name: m for m in (
+    AdaptiveVelocity, VelocityObstacle, BrakeAndWait, InitialHeading)}

@@ -1,0 +1,67 @@
+"""The papers' local planners as data: which terms, with which weights, which mechanisms.
+
+Weights the papers give are used as given; where a paper gives none, the choice is ours
+and says so. Raw terms are described in ``critics.py``, mechanisms in ``mechanisms.py``.
+"""
+from __future__ import annotations
+
+from .dwa import Preset, Term
+
+# Fox, Burgard & Thrun 1997 use alpha = 2, beta = 0.2, gamma = 0.2 for heading, dist, vel.
+FOX_HEADING, FOX_DIST, FOX_VEL = 2.0, 0.2, 0.2
+
+PRESETS: dict[str, Preset] = {p.name: p for p in (
+    Preset(
+        name="dwa",
+        source="Fox et al. 1997, as restated in yuan2021 §3 (eq 19-22): heading, dist, vel",
+        terms=(Term("heading", FOX_HEADING), Term("clearance", FOX_DIST), Term("velocity", FOX_VEL)),
+    ),
+    Preset(
+        name="missa-dwa",
+        source="hou2024 §3.1: adaptive velocity (eq 23-24), Pathdist (eq 25), Dist_S / Dist_D with the "
+               "1.15 R and 1.15 S rules (eq 26-30), evaluation eq 31 with the §4.4 weights; omni model eq 19",
+        terms=(Term("heading", 0.15),            # alpha
+               Term("velocity", 0.2),            # beta
+               Term("static_inverse", 0.15),     # gamma, eq 26-27
+               Term("dynamic_inverse", 0.25),    # sigma, eq 28-30
+               Term("path_deviation", 0.3)),     # phi, eq 25
+        mechanisms=(("adaptive_velocity", {}),),
+        options={"omni": True, "horizon": 3.0},  # §4.4: prediction period 3.0 s, time resolution 0.1 s
+    ),
+    Preset(
+        name="idwa",
+        source="yang2023 §5: VO collision test (eq 12-14), one-step heading near the goal (§5.2), "
+               "binary Dist (eq 16), vh term (eq 17) with lambda = 1.5 alpha when the VO predicts a "
+               "collision (eq 19); alpha, beta, gamma are not given and taken from Fox (as the DWA baseline)",
+        terms=(Term("heading", FOX_HEADING, {"one_step_within": 1.0}),
+               Term("binary_distance", FOX_DIST),
+               Term("velocity", FOX_VEL),
+               Term("heading_change", 1.5 * FOX_HEADING)),  # lambda, eq 19 (0 unless VO flags a mover)
+        mechanisms=(("velocity_obstacle", {}),),
+    ),
+    Preset(
+        name="ba-dwa",
+        source="yuan2021 eq 23 with the §5.2 weights alpha = 0.05 (gdist), beta = 0.5 (dist), gamma = 0.1 "
+               "(vel); the azimuth to the local target that §4.1 step 3 keeps is weighted like gdist",
+        terms=(Term("gdist", 0.05), Term("clearance", 0.5), Term("velocity", 0.1), Term("heading", 0.05)),
+    ),
+    Preset(
+        name="iga-dwa",
+        source="li2023 §5: h, d, o, v terms (eq 10), initial heading towards the first subgoal (eq 11), "
+               "brake-and-wait for moving obstacles (§5.4); the paper gives no weights, ours are "
+               "Fox's for h and v and 0.2 for d and o",
+        terms=(Term("heading", FOX_HEADING), Term("goal_distance", 0.2), Term("end_clearance", 0.2),
+               Term("velocity", FOX_VEL)),
+        mechanisms=(("initial_heading", {}), ("brake_and_wait", {})),
+    ),
+    Preset(
+        name="qp-dwa",
+        source="this project: sampled DWA (Fox terms + hou2024 eq 25 path deviation + hou2024 eq 28 "
+               "mover clearance) -> QP refinement with linearised clearance (OSQP) -> Ruckig "
+               "jerk-limited velocity profile",
+        terms=(Term("heading", 1.0), Term("path_deviation", 0.6), Term("clearance", 0.6),
+               Term("velocity", 0.4)),
+        options={"omni": True, "normalise": "minmax", "margin": 0.05},
+        refine="qp",
+    ),
+)}

@@ -1,0 +1,237 @@
+"""qp-dwa: sampled DWA, then a small QP that refines the chosen velocity, then Ruckig.
+
+1. **Sampling** (``DWAPlanner``): the best admissible sample ``u0`` of the window under
+   the preset's terms.
+2. **QP** (OSQP, set up once, updated and warm-started every step): stay as close as
+   possible to ``u0`` inside the dynamic window while keeping ``qp_margin`` metres of
+   clearance to the obstacles the chosen trajectory comes closest to, linearised at ``u0``:
+
+       minimise   1/2 (u - u0)' W (u - u0) + c s + 1/2 M s^2
+       subject to window_lo <= u <= window_hi,   s >= 0,
+                  g_j(u0) + grad g_j(u0) . (u - u0) + s >= qp_margin    (rows j)
+
+   ``g_j`` is the edge-to-edge gap at the time the trajectory passes closest to a predicted
+   mover, or at the trajectory's closest points to static obstacles (gradient of the
+   distance field by central differences). The slack ``s`` keeps the QP feasible when the
+   margin cannot be met within the window. ``W`` scales each component by its window
+   half-width so a step across the window costs the same in ``v`` and ``w``. The position
+   derivatives ``dz/du`` come from the rollout formula of ``rollout.py`` in closed form.
+   The result is checked on the exact rollout (admissible and no closer to obstacles than
+   ``u0``); on any non-solved OSQP status or a failed check the sampled ``u0`` is used and
+   ``info["qp"]`` says why.
+3. **Ruckig** (``limiter.RuckigLimiter``): the refined velocity becomes the target of a
+   jerk-limited profile; the command is the profile one period ahead. The window of the
+   next step is the velocity range that profile can reach in one period (``window.py``), and
+   the stopping distance in the admissibility test includes one period plus the jerk ramp
+   ``a_max / jerk_max`` of reaction time.
+
+Everything is deterministic.
+"""
+from __future__ import annotations
+
+import math
+import time
+from typing import Any
+
+import numpy as np
+import osqp
+import scipy.sparse as sp
+
+from ..errors import ParameterError
+from ..world.robot import RobotSpec, RobotState
+from .base import LocalContext
+from .dwa import DWAPlanner, Preset
+from .limiter import RuckigLimiter
+from .rollout import Step, assess, rollout
+from .window import Window, dynamic_window
+
+_SLACK_LINEAR, _SLACK_QUADRATIC = 1e2, 1e4
+
+
+class QPDWAPlanner(DWAPlanner):
+    """The ``qp-dwa`` local planner (see the module docstring)."""
+
+    OPTIONS = {
+        **DWAPlanner.OPTIONS,
+        "qp_horizon": 1.5,       # s of the trajectory whose clearance the QP constrains
+        "qp_margin": 0.15,       # edge-to-edge clearance the QP tries to keep, m
+        "qp_activate": 0.6,      # obstacles closer than this to the chosen trajectory become rows, m
+        "qp_rows_moving": 4,     # at most this many mover rows ...
+        "qp_rows_static": 4,     # ... and static rows
+        "qp_max_iter": 200,      # OSQP iteration budget (a non-solved status falls back)
+        "ang_jerk_max": None,    # rad/s^3; None = jerk_max * alpha_max / a_max (same ramp time)
+    }
+
+    def __init__(self, preset: Preset, robot: RobotSpec, dt: float, **params: Any) -> None:
+        super().__init__(preset, robot, dt, **params)
+        o = self.options
+        for k in ("qp_horizon", "qp_margin", "qp_activate"):
+            o[k] = self._number(k, o[k], allow_zero=k == "qp_margin")
+        for k in ("qp_rows_moving", "qp_rows_static", "qp_max_iter"):
+            if isinstance(o[k], bool) or not isinstance(o[k], (int, np.integer)) or o[k] < (1 if k == "qp_max_iter" else 0):
+                raise ParameterError(f"{k} must be a non-negative int, got {o[k]!r}")
+            o[k] = int(o[k])
+        if robot.jerk_max is None:
+            self.jerk = (None, None)
+        else:
+            ang = o["ang_jerk_max"]
+            ang = robot.jerk_max * robot.alpha_max / robot.a_max if ang is None else self._number("ang_jerk_max", ang)
+            self.jerk = (robot.jerk_max, ang)
+        # components: v, w (, vy)
+        self.n_u = 3 if self.omni else 2
+        acc = [robot.a_max, robot.alpha_max, robot.a_max][:self.n_u]
+        jerk = [self.jerk[0], self.jerk[1], self.jerk[0]][:self.n_u]
+        self.limiter = RuckigLimiter(self.dt, acc, [math.inf if j is None else j for j in jerk])
+        self._setup_qp(acc)
+        self.qp_times_us: list[float] = []
+
+    # ------------------------------------------------------------------ QP set-up (once)
+    def _setup_qp(self, acc) -> None:
+        n = self.n_u + 1  # + slack
+        m_rows = self.options["qp_rows_moving"] + self.options["qp_rows_static"]
+        half_width = np.asarray(acc, dtype=float) * self.dt
+        self._W = 1.0 / half_width ** 2
+        P = sp.diags(np.r_[self._W, _SLACK_QUADRATIC]).tocsc()
+        # box rows (identity) then clearance rows, dense in every column: the pattern is fixed
+        # once so each step only updates values (explicit zeros kept in the pattern)
+        dense = np.vstack([np.eye(n), np.ones((m_rows, n))])
+        rows, cols = np.nonzero(dense)
+        order = np.lexsort((rows, cols))  # CSC order: by column, then row
+        self._A_rows, self._A_cols = rows[order], cols[order]
+        A = sp.csc_matrix((np.ones(len(order)), (self._A_rows, self._A_cols)), shape=dense.shape)
+        A.sort_indices()
+        self._m_rows = m_rows
+        self._n_x = n
+        self._qp = osqp.OSQP()
+        self._qp.setup(P, np.zeros(n), A, np.full(dense.shape[0], -np.inf), np.full(dense.shape[0], np.inf),
+                       verbose=False, warm_starting=True, polishing=False, max_iter=self.options["qp_max_iter"],
+                       eps_abs=1e-5, eps_rel=1e-5, check_termination=5)
+        self._solved = osqp.constant("OSQP_SOLVED")
+
+    # ------------------------------------------------------------------ overrides
+    def _reaction(self) -> float:
+        ramp = 0.0 if self.jerk[0] is None else self.robot.a_max / self.jerk[0]
+        return self.options["reaction"] + self.dt + ramp
+
+    def reset(self, state: RobotState, global_path: np.ndarray) -> None:
+        super().reset(state, global_path)
+        self.limiter.reset(self._vel(state))
+
+    def _vel(self, state: RobotState) -> np.ndarray:
+        return np.array([state.v, state.w, state.vy][:self.n_u])
+
+    def window(self, ctx: LocalContext) -> Window:
+        self._resynced = self.limiter.sync(self._vel(ctx.state))
+        acc = np.r_[self.limiter.acceleration, 0.0, 0.0][:3]
+        a3 = (acc[0], acc[1], acc[2] if self.n_u == 3 else 0.0)
+        win = dynamic_window(self.robot, ctx.state, ctx.dt, omni=self.omni, accel=a3, jerk=self.jerk)
+        for m in self.mechanisms:
+            win = m.adjust_window(self, ctx, win)
+        return win
+
+    def finish(self, ctx, window, u, step, info):
+        target = u
+        if step is not None and info.get("mode") == "sample":
+            target = self.refine(ctx, window, u, step, info)
+        comp = np.array([target[0], target[1], target[2]][:self.n_u])
+        out, result = self.limiter.step(comp)
+        info["target"] = [float(x) for x in target]
+        info["ruckig"] = result
+        if self._resynced:
+            info["ruckig_resync"] = True
+        return float(out[0]), float(out[1]), float(out[2]) if self.n_u == 3 else 0.0
+
+    # ------------------------------------------------------------------ refinement
+    def _rows(self, ctx: LocalContext, step: Step, i: int):
+        """Linearised clearance rows ``(grad (k, n_u), gap0 (k,))`` at sample ``i``."""
+        o = self.options
+        roll = step.roll
+        H = max(1, min(roll.z.shape[1], int(round(o["qp_horizon"] / roll.dt))))
+        z = roll.z[i, :H]
+        v, w, vy = roll.v[i], roll.w[i], roll.vy[i]
+        j = np.arange(H)
+        e = np.exp(1j * (roll.theta0 + w * j * roll.dt))
+        C = np.cumsum(e) * roll.dt                             # dz/dv ; dz/dvy = i C
+        dz_dw = (v + 1j * vy) * np.cumsum(1j * j * roll.dt * e) * roll.dt
+        dz = [C, dz_dw, 1j * C][:self.n_u]
+        grads, gaps = [], []
+        R = self.robot.radius
+        if len(step.mover_r) and o["qp_rows_moving"]:
+            d = np.abs(z[None, :] - step.movers[:, :H]) - step.mover_r[:, None] - R  # (K, H)
+            k_t = np.argmin(d, axis=1)
+            g = d[np.arange(len(d)), k_t]
+            for k in np.argsort(g, kind="stable")[:o["qp_rows_moving"]]:
+                if g[k] >= o["qp_activate"]:
+                    break
+                t = k_t[k]
+                nrm = z[t] - step.movers[k, t]
+                nrm = nrm / abs(nrm) if abs(nrm) > 0 else 1.0
+                grads.append([(np.conj(nrm) * dzc[t]).real for dzc in dz])
+                gaps.append(g[k])
+        if o["qp_rows_static"]:
+            sg = step.static_gap[i, :H]
+            picked: list[int] = []
+            for t in np.argsort(sg, kind="stable"):
+                if sg[t] >= o["qp_activate"] or len(picked) == o["qp_rows_static"]:
+                    break
+                if all(abs(t - q) >= 3 for q in picked):  # spread the rows along the trajectory
+                    picked.append(int(t))
+            if picked:
+                h = 0.05
+                pts = z[picked]
+                probe = np.concatenate([pts + h, pts - h, pts + 1j * h, pts - 1j * h])
+                dist = np.asarray(ctx.static_distance(probe.view(np.float64).reshape(-1, 2)))
+                n = len(pts)
+                gx = (dist[:n] - dist[n:2 * n]) / (2 * h)
+                gy = (dist[2 * n:3 * n] - dist[3 * n:]) / (2 * h)
+                grad_z = gx + 1j * gy
+                for q, t in enumerate(picked):
+                    grads.append([(np.conj(grad_z[q]) * dzc[t]).real for dzc in dz])
+                    gaps.append(sg[t])
+        return np.asarray(grads, dtype=float).reshape(-1, self.n_u), np.asarray(gaps, dtype=float)
+
+    def refine(self, ctx: LocalContext, window: Window, u0: tuple[float, float, float], step: Step,
+               info: dict) -> tuple[float, float, float]:
+        """The QP refinement of the sampled command ``u0`` (falls back to ``u0``)."""
+        i = info["index"]
+        grads, gaps = self._rows(ctx, step, i)
+        if len(gaps) == 0:
+            info["qp"] = "inactive"
+            return u0
+        o = self.options
+        n_u, n = self.n_u, self._n_x
+        x0 = np.array([u0[0], u0[1], u0[2]][:n_u])
+        lo = np.array([window.v[0], window.w[0], window.vy[0]][:n_u])
+        hi = np.array([window.v[1], window.w[1], window.vy[1]][:n_u])
+        rows = np.zeros((self._m_rows, n))
+        lb = np.full(self._m_rows, -np.inf)
+        k = len(gaps)
+        rows[:k, :n_u] = grads
+        rows[:k, n_u] = 1.0
+        lb[:k] = o["qp_margin"] - gaps + grads @ x0
+        dense = np.vstack([np.eye(n), rows])
+        q = np.r_[-self._W * x0, _SLACK_LINEAR]
+        t0 = time.perf_counter()
+        self._qp.update(q=q, l=np.r_[lo, 0.0, lb], u=np.r_[hi, np.inf, np.full(self._m_rows, np.inf)],
+                        Ax=dense[self._A_rows, self._A_cols])
+        self._qp.warm_start(x=np.r_[x0, 0.0])
+        res = self._qp.solve(raise_error=False)
+        elapsed = (time.perf_counter() - t0) * 1e6
+        self.qp_times_us.append(elapsed)
+        info["qp_us"] = elapsed
+        info["qp_solve_us"] = float(res.info.solve_time) * 1e6
+        info["qp_rows"] = k
+        if res.info.status_val != self._solved or res.x is None or not np.all(np.isfinite(res.x)):
+            info["qp"] = f"fallback: OSQP status {res.info.status!r}"
+            return u0
+        x = np.clip(res.x[:n_u], lo, hi)
+        u = (float(x[0]), float(x[1]), float(x[2]) if n_u == 3 else 0.0)
+        check = assess(ctx, self.robot, rollout(ctx.state, np.array([u[0]]), np.array([u[2]]), np.array([u[1]]),
+                                                step.roll.dt, step.roll.z.shape[1]),
+                       margin=o["margin"], reaction=self._reaction(), mover_range=o["mover_range"])
+        if not check.admissible[0] or check.gap[0].min() < min(step.gap[i].min(), o["qp_margin"]) - 1e-9:
+            info["qp"] = "fallback: refined command failed the rollout check"
+            return u0
+        info["qp"] = "solved"
+        info["qp_slack"] = float(res.x[n_u])
+        return u

@@ -1,0 +1,183 @@
+"""Forward simulation of every velocity sample at once, and its clearance.
+
+Positions are complex numbers ``x + i y`` so that one rotation is one multiplication.
+Under a constant command ``(v, vy, w)`` the motion model the simulator uses
+(unicycle: yuan2021 eq 14-18; omni: hou2024 eq 19, ``vy`` = 0 gives the unicycle) is
+
+    z_{k+1} = z_k + dt (v + i vy) exp(i theta_k),    theta_k = theta_0 + k w dt,
+
+so ``z_k = z_0 + dt (v + i vy) C_k(w)`` with ``C_k(w) = sum_{j<k} exp(i theta_j)``. ``C`` is
+computed once per sampled yaw rate and scaled by every linear velocity: the whole
+samples x horizon rollout is one complex multiplication.
+
+Moving obstacles are predicted at constant velocity along the horizon. Their clearance is
+accumulated one obstacle at a time over the full samples x horizon array: with ~10
+obstacles this keeps the working set in cache and is several times faster than one
+broadcast ``(samples, horizon, obstacles)`` array (measured in ``benchmarks/dwa_step.py``).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..world.robot import RobotSpec, RobotState
+from .base import LocalContext
+from .window import max_admissible_speed
+
+
+@dataclass
+class Rollouts:
+    """Predicted trajectories of ``S`` samples over ``H`` steps.
+
+    Attributes:
+        v, vy, w: ``(S,)`` sampled command of each trajectory (m/s, m/s, rad/s).
+        z: ``(S, H)`` complex positions ``x + i y`` at times ``t`` (metres).
+        t: ``(H,)`` times of the positions, ``dt, 2 dt, ..., H dt`` (s).
+        z0: start position (complex), theta0: start heading (rad), dt: step (s).
+    """
+
+    v: np.ndarray
+    vy: np.ndarray
+    w: np.ndarray
+    z: np.ndarray
+    t: np.ndarray
+    z0: complex
+    theta0: float
+    dt: float
+
+    @property
+    def n(self) -> int:
+        return self.z.shape[0]
+
+    @property
+    def xy(self) -> np.ndarray:
+        """``(S, H, 2)`` float view of the positions (no copy)."""
+        return self.z.view(np.float64).reshape(self.z.shape + (2,))
+
+    @property
+    def speed(self) -> np.ndarray:
+        """Planar speed of each sample, m/s."""
+        return np.hypot(self.v, self.vy)
+
+    def heading(self, k: int | None = None) -> np.ndarray:
+        """Heading after ``k`` steps (default: at the end of the horizon), rad."""
+        k = self.z.shape[1] if k is None else k
+        return self.theta0 + self.w * (k * self.dt)
+
+    def position(self, k: int | None = None) -> np.ndarray:
+        """Complex position after ``k`` steps (``k`` = 0 is the start), default the end."""
+        k = self.z.shape[1] if k is None else k
+        return np.full(self.n, self.z0) if k == 0 else self.z[:, k - 1]
+
+
+def rollout(state: RobotState, lin_v: np.ndarray, lin_vy: np.ndarray, w: np.ndarray, dt: float,
+            steps: int) -> Rollouts:
+    """Roll out the grid ``(lin_v, lin_vy) x w`` (see ``window.sample_grid``) for ``steps``
+    steps of ``dt`` seconds from ``state``."""
+    k = np.arange(steps)
+    rot = np.exp(1j * (state.theta + np.multiply.outer(w, k * dt)))  # (n_w, H): exp(i theta_j)
+    C = np.cumsum(rot, axis=1)
+    C *= dt
+    lin = (np.asarray(lin_v) + 1j * np.asarray(lin_vy))[:, None, None]  # (n_lin, 1, 1)
+    z0 = complex(state.x, state.y)
+    z = (lin * C[None]).reshape(-1, steps)
+    z += z0
+    n_lin = len(lin_v)
+    return Rollouts(v=np.repeat(lin_v, len(w)), vy=np.repeat(lin_vy, len(w)), w=np.tile(w, n_lin), z=z,
+                    t=(k + 1) * dt, z0=z0, theta0=float(state.theta), dt=float(dt))
+
+
+def predict_movers(dynamic: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Constant-velocity prediction of the sensed moving obstacles.
+
+    Returns ``(centres (K, H) complex, velocities (K,) complex, radii (K,))``."""
+    d = np.asarray(dynamic, dtype=float).reshape(-1, 5)
+    pos = d[:, 0] + 1j * d[:, 1]
+    vel = d[:, 2] + 1j * d[:, 3]
+    return pos[:, None] + vel[:, None] * t[None, :], vel, d[:, 4]
+
+
+@dataclass
+class Step:
+    """One control step under evaluation: the rollouts and everything the cost terms share.
+
+    Attributes:
+        ctx, robot: the inputs.
+        roll: the rollouts.
+        static_gap: ``(S, H)`` distance from the robot's edge to static obstacles, m
+            (centre distance minus the robot radius; negative = overlap).
+        dyn_gap: ``(S, H)`` distance from the robot's edge to the nearest moving obstacle's
+            edge at the same predicted time, m (``inf`` without movers).
+        movers, mover_vel, mover_r: predicted centres ``(K, H)``, velocities ``(K,)``, radii ``(K,)``.
+        free_distance: ``(S,)`` path length before the first predicted collision, m
+            (``inf`` when the horizon is collision-free).
+        admissible: ``(S,)`` the robot can stop before that collision (hou2024 eq 22).
+        target: current subgoal as a complex number.
+        aux: scratch space mechanisms use to pass findings to cost terms (e.g. the VO threat).
+    """
+
+    ctx: LocalContext
+    robot: RobotSpec
+    roll: Rollouts
+    static_gap: np.ndarray
+    dyn_gap: np.ndarray
+    movers: np.ndarray
+    mover_vel: np.ndarray
+    mover_r: np.ndarray
+    free_distance: np.ndarray
+    admissible: np.ndarray
+    target: complex
+    aux: dict = field(default_factory=dict)
+
+    @property
+    def gap(self) -> np.ndarray:
+        """``(S, H)`` clearance to any obstacle, static or moving, m."""
+        return np.minimum(self.static_gap, self.dyn_gap)
+
+
+def dynamic_gaps(z: np.ndarray, movers: np.ndarray, radii: np.ndarray, robot_radius: float) -> np.ndarray:
+    """Edge-to-edge distance from each rollout point to the nearest mover at the same time."""
+    gap = np.full(z.shape, np.inf)
+    buf = np.empty(z.shape)
+    for centre, r in zip(movers, radii):  # one pass per obstacle over all samples x horizon
+        np.abs(z - centre, out=buf)
+        buf -= r
+        np.minimum(gap, buf, out=gap)
+    gap -= robot_radius
+    return gap
+
+
+def relevant_movers(z0: complex, movers: np.ndarray, radii: np.ndarray, t: np.ndarray, max_speed: float,
+                    robot_radius: float, beyond: float) -> np.ndarray:
+    """Mask of movers that can come within ``beyond`` metres (edge to edge) of some rollout:
+    a rollout point at time ``t`` lies within ``max_speed t`` of the start, so a mover whose
+    predicted edge stays farther than that plus ``beyond`` is irrelevant (exact bound)."""
+    if len(radii) == 0:
+        return np.zeros(0, dtype=bool)
+    lower = np.abs(movers - z0) - radii[:, None] - robot_radius - max_speed * t[None, :]
+    return lower.min(axis=1) <= beyond
+
+
+def assess(ctx: LocalContext, robot: RobotSpec, roll: Rollouts, *, margin: float = 0.0, reaction: float = 0.0,
+           mover_range: float = 3.0) -> Step:
+    """Clearance of every rollout point, the free distance and the admissibility of every sample.
+
+    Args:
+        margin: extra clearance, m, below which a point counts as a collision.
+        reaction: reaction time in the stopping distance (see ``window.max_admissible_speed``).
+        mover_range: movers that provably stay more than this far (edge to edge) from every
+            rollout are skipped; cost terms therefore see mover clearances up to this value.
+    """
+    static_gap = np.asarray(ctx.static_distance(roll.xy), dtype=float) - robot.radius
+    movers, vel, radii = predict_movers(ctx.dynamic, roll.t)
+    speed = roll.speed
+    keep = relevant_movers(roll.z0, movers, radii, roll.t, float(speed.max(initial=0.0)), robot.radius,
+                           max(mover_range, margin))
+    dyn_gap = dynamic_gaps(roll.z, movers[keep], radii[keep], robot.radius)
+    hit = (static_gap < margin) | (dyn_gap < margin)
+    first = np.argmax(hit, axis=1)  # index of the first colliding point (0 = after one step)
+    free = np.where(hit.any(axis=1), first * speed * roll.dt, np.inf)
+    admissible = speed <= max_admissible_speed(free, robot.a_max, reaction) + 1e-12
+    target = complex(*np.asarray(ctx.subgoal, dtype=float)[:2])
+    return Step(ctx, robot, roll, static_gap, dyn_gap, movers, vel, radii, free, admissible, target)
