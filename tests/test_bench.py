@@ -1,0 +1,278 @@
+"""Experiment specs, the runner, the results database, summaries and the bench/reproduce commands."""
+from __future__ import annotations
+
+import csv
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from optplan.bench.runner import execute_run, run_records
+from optplan.bench.spec import load_spec
+from optplan.bench.store import ResultStore
+from optplan.bench.summary import load_results, summary_tables
+from optplan.cli import main
+from optplan.errors import ParameterError, ScenarioError, UnknownAlgorithmError
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+
+SMALL = {
+    "name": "small", "kind": "plan", "maps": ["chen2025_20"],
+    "algorithms": ["msiar-gwo", "gwo", {"name": "pso", "label": "pso-broken", "params": {"no_such_param": 1}}],
+    "params": {"pop": 20, "iters": 25}, "runs": 3, "reference": "msiar-gwo",
+}
+# metrics that depend on the clock or the process, not on the seed
+CLOCK = {"runtime_s", "wall_s", "worker", "finished_at", "mean_step_ms"}
+
+
+def same_numbers(rows_a: dict, rows_b: dict) -> None:
+    assert rows_a.keys() == rows_b.keys()
+    for k in rows_a:
+        a = {c: v for c, v in rows_a[k].items() if c not in CLOCK}
+        b = {c: v for c, v in rows_b[k].items() if c not in CLOCK}
+        assert a == b, k
+
+
+# ----------------------------------------------------------------------------- specs
+def test_expansion_gives_distinct_stable_keys_and_own_seeds():
+    spec = load_spec(SMALL)
+    recs = spec.expand()
+    assert len(recs) == 9 and [r.seed for r in recs[:3]] == [0, 1, 2]
+    assert len({r.key for r in recs}) == 9
+    assert [r.key for r in load_spec(SMALL).expand()] == [r.key for r in recs]  # stable across loads
+    # the key describes the run, not its presentation: label and experiment name do not enter it
+    relabelled = load_spec({**SMALL, "name": "other", "algorithms": [{"name": "msiar-gwo", "label": "M"}],
+                            "reference": "M"})
+    assert relabelled.expand()[0].key == recs[0].key
+    # a budget change is a different run
+    assert load_spec({**SMALL, "params": {"pop": 20, "iters": 26}}).expand()[0].key != recs[0].key
+
+
+def test_quick_runs_and_per_algorithm_overrides():
+    raw = {**SMALL, "algorithms": ["gwo", {"name": "astar", "runs": 1}], "reference": None,
+           "quick": {"runs": 2, "params": {"iters": 5}}}
+    full, quick = load_spec(raw), load_spec(raw, quick=True)
+    assert full.runs == 3 and quick.runs == 2
+    assert quick.algorithms[0].params == {"pop": 20, "iters": 5}
+    assert [r.algorithm for r in quick.expand()] == ["gwo", "gwo", "astar"]
+    assert load_spec(raw, quick=True, runs=4).runs == 4
+    assert load_spec({**raw, "seeds": [7, 3], "runs": None}).seeds == [7, 3]
+
+
+def test_shipped_specs_load_for_every_paper():
+    from optplan.bench.spec import shipped_specs
+
+    names = shipped_specs()
+    for paper in ("hou2024", "yang2023", "yuan2021", "li2023", "chen2025"):
+        assert any(n.startswith(paper) for n in names), paper
+    for n in names:
+        spec = load_spec(n, quick=True)
+        assert spec.expand() and spec.paper == n.split("_")[0]
+
+
+@pytest.mark.parametrize("change,error,needle", [
+    ({"algoritms": ["gwo"]}, ScenarioError, "unknown key(s) 'algoritms'"),
+    ({"algorithms": ["nope"]}, UnknownAlgorithmError, "unknown algorithm 'nope'"),
+    ({"algorithms": ["dwa"]}, UnknownAlgorithmError, "unknown algorithm 'dwa'"),  # a local planner is no global one
+    ({"runs": 0}, ParameterError, "runs must be a positive integer"),
+    ({"seed": -1}, ParameterError, "non-negative"),
+    ({"reference": "woa"}, ParameterError, "reference 'woa' is not one of"),
+    ({"maps": ["atlantis"]}, ScenarioError, "unknown paper map 'atlantis'"),
+    ({"maps": [{"map": "arena", "start": [1.5, 37.5]}]}, ScenarioError, "needs 'map', 'start' and 'goal'"),
+    ({"functions": ["F1"]}, ScenarioError, "'functions' belongs to kind 'optimize'"),
+    ({"refine": ["smooth"]}, ParameterError, "refine must be one of"),
+    ({"params": {"pop": 0}}, ParameterError, "pop must be a positive integer"),
+    ({"params": {"seed": 3}}, ScenarioError, "set by the spec grid"),
+    ({"algorithms": ["gwo", "gwo"], "reference": None}, ScenarioError, "labels repeat"),
+    ({"kind": "simulate", "maps": None, "scenarios": ["s.yaml"]}, ScenarioError, "needs 'local_planners'"),
+])
+def test_bad_specs_say_what_is_wrong(change, error, needle):
+    with pytest.raises(error) as exc:
+        load_spec({**SMALL, **change})
+    assert needle in str(exc.value)
+
+
+def test_bad_spec_files(tmp_path):
+    with pytest.raises(ScenarioError, match="not found"):
+        load_spec(tmp_path / "missing.yaml")
+    (tmp_path / "bad.yaml").write_text("kind: plan\nmaps: [chen2025_20\n")
+    with pytest.raises(ScenarioError, match="not valid YAML"):
+        load_spec(tmp_path / "bad.yaml")
+    (tmp_path / "list.yaml").write_text("- a\n- b\n")
+    with pytest.raises(ScenarioError, match="must be a YAML mapping"):
+        load_spec(tmp_path / "list.yaml")
+
+
+# ----------------------------------------------------------------------------- runner and store
+def test_pool_and_in_process_runs_give_the_same_numbers_and_failures_are_recorded(tmp_path):
+    recs = load_spec(SMALL).expand()
+    serial, pooled = ResultStore(tmp_path / "a.sqlite"), ResultStore(tmp_path / "b.sqlite")
+    rep = run_records(recs, serial, workers=1, progress=False)
+    assert (rep.ran, rep.failed) == (9, 3)
+    rep = run_records(recs, pooled, workers=2, progress=False)
+    assert (rep.ran, rep.failed) == (9, 3)
+    rows = serial.rows()
+    same_numbers(rows, pooled.rows())
+    broken = [r for r in rows.values() if r["label"] == "pso-broken"]
+    assert all(r["status"] == "failed" and "no_such_param" in r["error"] for r in broken)
+    ok = [r for r in rows.values() if r["status"] == "ok"]
+    assert len(ok) == 6 and all(r["feasible"] == 1 and r["length"] > 27.59 for r in ok)
+    # every stored path passes the exact check and its length is the stored one
+    import optplan as op
+    from optplan.world.papermaps import paper_map
+
+    world = paper_map("chen2025_20")[0]
+    for k, t in serial.traces([r["key"] for r in ok]).items():
+        path = np.asarray(t["path"])
+        assert op.validate_path(world, path)
+        assert np.isclose(np.linalg.norm(np.diff(path, axis=0), axis=1).sum(), rows[k]["length"])
+        assert len(t["history"]) == 26  # initial population + 25 iterations
+
+
+def test_rerun_skips_stored_runs_and_csv_has_parameter_and_metric_columns(tmp_path):
+    db = tmp_path / "r.sqlite"
+    spec = load_spec({**SMALL, "algorithms": ["gwo"], "reference": None})
+    recs = spec.expand()
+    with ResultStore(db) as store:
+        assert run_records(recs[:1], store, workers=1, progress=False).ran == 1
+    with ResultStore(db) as store:
+        first = store.rows()
+        rep = run_records(recs, store, workers=1, progress=False)
+        assert (rep.skipped, rep.ran) == (1, 2)
+        assert store.rows(first)[recs[0].key]["finished_at"] == first[recs[0].key]["finished_at"]
+        assert run_records(recs, store, workers=1, progress=False).ran == 0
+        assert store.to_csv(tmp_path / "out.csv") == 3
+    with open(tmp_path / "out.csv") as fh:
+        table = list(csv.DictReader(fh))
+    assert {"key", "seed", "status", "param_pop", "param_iters", "length", "feasible", "nfev"} <= set(table[0])
+    assert sorted(int(r["seed"]) for r in table) == [0, 1, 2] and {r["param_iters"] for r in table} == {"25"}
+
+
+def test_execute_run_reports_exceptions_as_failed_runs():
+    rec = load_spec({**SMALL, "algorithms": [{"name": "gwo", "params": {"no_such_param": 1}}],
+                     "reference": None}).expand()[0]
+    out = execute_run(rec.to_dict())
+    assert out["status"] == "failed" and out["error"].startswith("ParameterError") and out["key"] == rec.key
+
+
+def test_optimize_runs_store_error_to_the_known_optimum():
+    spec = load_spec({"kind": "optimize", "functions": ["F15"], "algorithms": ["gwo"], "runs": 2,
+                      "params": {"pop": 20, "max_evals": 600, "iters": None}})
+    store = ResultStore()
+    run_records(spec.expand(), store, workers=1, progress=False)
+    rows = list(store.rows().values())
+    assert all(r["nfev"] == 600 and r["f_error"] == pytest.approx(r["f"] - 0.39788735772973816) for r in rows)
+    assert all(0 <= r["f_error"] < 0.05 for r in rows)
+
+
+# ----------------------------------------------------------------------------- summaries
+def test_summary_tables_have_gap_reference_and_tally():
+    spec = load_spec({**SMALL, "runs": 5})
+    store = ResultStore()
+    run_records(spec.expand(), store, workers=1, progress=False)
+    res = load_results(spec, store)
+    per_map, tally = summary_tables(res)
+    md = per_map.markdown()
+    assert "best gap [%]" in md and "exact optimum (any-angle, same start/goal): 27.5990 m" in md
+    row = {r[0]: r for r in per_map.rows}
+    assert row["msiar-gwo"][-1] == "ref" and row["pso-broken"][1:4] == ["5/5", "5", "0/5"]
+    assert row["gwo"][-1] in "+=-"
+    lengths = res.values(res.groups("chen2025_20")[("gwo", None, None)])
+    assert row["gwo"][5] == f"{lengths.mean():.4f}"
+    assert [r[0] for r in tally.rows] == ["gwo", "pso-broken"]
+    tex = per_map.latex()
+    assert r"\begin{tabular}" in tex and r"\toprule" in tex and "pso-broken" in tex
+    assert r"best gap [\%]" in tex  # LaTeX specials escaped
+
+
+def test_plots_are_written(tmp_path):
+    from optplan.bench.plots import experiment_plots
+
+    spec = load_spec({**SMALL, "algorithms": ["gwo", "msiar-gwo"]})
+    store = ResultStore()
+    run_records(spec.expand(), store, workers=1, progress=False)
+    files = experiment_plots(load_results(spec, store), tmp_path)
+    assert sorted(f.name for f in files) == ["small_chen2025_20_box.png", "small_chen2025_20_convergence.png",
+                                             "small_chen2025_20_paths.png"]
+    assert all(f.stat().st_size > 5000 for f in files)
+
+
+# ----------------------------------------------------------------------------- command line
+def test_bench_command_writes_db_csv_and_latex(tmp_path, capsys):
+    spec = tmp_path / "s.yaml"
+    spec.write_text("kind: plan\nmaps: [chen2025_20]\nalgorithms: [gwo, msiar-gwo]\nparams: {pop: 20, iters: 20}\n"
+                    "runs: 3\nreference: gwo\n")
+    db, out = tmp_path / "r.sqlite", tmp_path / "r.csv"
+    args = [str(spec), "--db", str(db), "--workers", "1", "--csv", str(out), "--no-progress"]
+    assert main(["bench", *args]) == 0
+    cap = capsys.readouterr()
+    assert "| msiar-gwo | 3/3 | 0 | 3/3 |" in cap.out and "6 ran (0 failed)" in cap.err
+    assert len(out.read_text().splitlines()) == 7
+    assert main(["bench", *args, "--format", "latex"]) == 0
+    cap = capsys.readouterr()
+    assert r"\begin{tabular}" in cap.out and "6 already in the database, 0 ran" in cap.err
+
+
+def test_bench_command_errors_exit_2(tmp_path, capsys):
+    spec = tmp_path / "s.yaml"
+    spec.write_text("kind: plan\nmaps: [chen2025_20]\nalgorithms: [gwo]\nrunz: 3\n")
+    assert main(["bench", str(spec), "--db", str(tmp_path / "r.sqlite")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "unknown key(s) 'runz'" in err
+    spec.write_text("kind: plan\nmaps: [chen2025_20]\nalgorithms: [gwo]\nruns: 1\n")
+    assert main(["bench", str(spec), "--db", str(tmp_path / "r.sqlite"), "--executor", "spark://x"]) == 2
+    assert "unknown executor 'spark://x'" in capsys.readouterr().err
+    assert main(["reproduce", "chen2025", "--part", "nope"]) == 2
+    assert "its parts: functions, paths" in capsys.readouterr().err
+
+
+def test_reproduce_prints_the_example_scripts_numbers(tmp_path, capsys):
+    """``optplan reproduce chen2025 --quick --part paths`` and the example script agree run for run
+    (every cell except the wall times)."""
+    assert main(["reproduce", "chen2025", "--quick", "--part", "paths", "--workers", "1", "--no-progress"]) == 0
+    ours = capsys.readouterr().out
+    ex = subprocess.run([sys.executable, str(EXAMPLES / "chen2025_msiar_gwo.py"), "--part", "paths", "--quick",
+                         "--out", str(tmp_path)], capture_output=True, text=True, timeout=300)
+    assert ex.returncode == 0, ex.stderr[-2000:]
+    for needle in ("Tables 9-11 analog", "Table 8 analog", "### chen2025_20", "exact optimum", "p vs msiar-gwo"):
+        assert needle in ours
+
+    def cells(text):
+        rows, head = [], None
+        for line in text.splitlines():
+            if line.startswith("|") and not line.startswith("|---"):
+                c = [x.strip() for x in line.strip("|").split("|")]
+                if c[0] in ("algorithm", "map"):
+                    head = c
+                rows.append(tuple(v for v, h in zip(c, head) if "time" not in h))
+        return sorted(rows)
+
+    assert cells(ours) == cells(ex.stdout) and len(cells(ours)) == 9
+
+
+def test_closed_loop_runs_through_simulate(tmp_path):
+    from optplan.bench.command import simulate_available
+
+    if not simulate_available():
+        pytest.skip("this version of optplan has no op.simulate")
+    (tmp_path / "tiny.yaml").write_text(
+        "map: [[0,0,0,0,0,0],[0,0,1,1,0,0],[0,0,0,0,0,0],[0,0,0,0,0,0]]\nresolution: 1.0\n"
+        "robot: {model: unicycle, radius: 0.2, v_max: 1.0, w_max_deg: 60, a_max: 0.5, alpha_max_deg: 90}\n"
+        "start: [0.5, 0.5, 0]\ngoal: [5.5, 3.5]\nsensor_range: 3.0\ndt: 0.1\ntime_limit: 15\n")
+    spec_file = tmp_path / "loop.yaml"
+    spec_file.write_text("kind: simulate\nscenarios: [tiny.yaml]\nalgorithms: [astar]\nlocal_planners: [dwa]\n"
+                         "runs: 2\nreport: closed-loop\n")
+    spec = load_spec(spec_file)
+    store = ResultStore()
+    rep = run_records(spec.expand(), store, workers=1, progress=False)
+    rows = list(store.rows().values())
+    assert rep.ran == 2 and all(r["status"] == "ok" for r in rows), [r["error"] for r in rows]
+    assert all(r["local_planner"] == "dwa" and r["steps"] > 0 and r["time_s"] <= 15 for r in rows)
+    traj = next(iter(store.traces([rows[0]["key"]]).values()))["trajectory"]
+    assert len(traj[0]) == 6
+    from optplan.bench.reports import render_report
+
+    text = render_report(load_results(spec, store))
+    assert "### tiny" in text and "collision-free" in text
