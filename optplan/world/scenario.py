@@ -48,6 +48,10 @@ Optional keys added by optplan (all validated like the rest):
   degrees, with a random phase; segments are kept free of known obstacles by the
   obstacle radius.
 
+* ``timing_jitter``: seconds (default 0). Each moving obstacle of the file is advanced
+  along its motion by a time drawn uniformly from ``[0, timing_jitter]`` with the
+  run's seed, so seeded runs of a fixed scenario meet the movers at different moments.
+
 Seed-dependent parts are realised by :meth:`Scenario.realize` (``op.simulate`` calls
 it with its ``seed``), so the same scenario file and seed always give the same world.
 Malformed files raise :class:`ScenarioError` naming the key and what to write instead.
@@ -69,7 +73,7 @@ SCENARIOS_DIR = Path(__file__).resolve().parent.parent / "data" / "scenarios"
 
 TOP_KEYS = ("map", "resolution", "robot", "start", "goal", "sensor_range", "dt", "time_limit",
             "unknown_obstacles", "dynamic_obstacles", "name", "description", "goal_tolerance",
-            "random_obstacles", "random_dynamic")
+            "random_obstacles", "random_dynamic", "timing_jitter")
 REQUIRED = ("map", "start", "goal")
 BORDER_MODES = ("bounce", "stop", "pass")
 
@@ -221,6 +225,7 @@ class Scenario:
         name, description: free text.
         random_obstacles, random_dynamic: seed-dependent parts (``None`` when absent);
             :meth:`realize` turns them into unknown and moving obstacles.
+        timing_jitter: seconds; :meth:`realize` advances each mover by a random time up to this.
         source: the file it was read from, if any.
     """
 
@@ -239,6 +244,7 @@ class Scenario:
     description: str = ""
     random_obstacles: dict | None = None
     random_dynamic: dict | None = None
+    timing_jitter: float = 0.0
     source: str = ""
 
     def __post_init__(self) -> None:
@@ -267,20 +273,23 @@ class Scenario:
     def realize(self, seed=0) -> "Scenario":
         """A copy whose random obstacles (``random_obstacles``, ``random_dynamic``) are
         drawn from ``seed`` and added as ordinary unknown / moving obstacles."""
-        if not self.random_obstacles and not self.random_dynamic:
+        if not self.random_obstacles and not self.random_dynamic and not self.timing_jitter:
             return self
         from ..rng import as_generator
 
         rng = as_generator(seed)
         cells, circles, dynamic = self.unknown_cells, self.unknown_circles, list(self.dynamic)
+        if self.timing_jitter:
+            dynamic = _jitter_movers(self, rng)
+        path = _reference_path(self) if (self.random_obstacles or self.random_dynamic) else None
         if self.random_obstacles:
-            new_cells, new_circles = _draw_random_obstacles(self, self.random_obstacles, rng)
+            new_cells, new_circles = _draw_random_obstacles(self, self.random_obstacles, rng, path)
             cells = np.vstack([cells, new_cells]) if len(new_cells) else cells
             circles = np.vstack([circles, new_circles]) if len(new_circles) else circles
         if self.random_dynamic:
-            dynamic += _draw_random_movers(self, self.random_dynamic, rng)
+            dynamic += _draw_random_movers(self, self.random_dynamic, rng, path)
         return replace(self, unknown_cells=cells, unknown_circles=circles, dynamic=dynamic,
-                       random_obstacles=None, random_dynamic=None)
+                       random_obstacles=None, random_dynamic=None, timing_jitter=0.0)
 
 
 # ------------------------------------------------------------------ true world
@@ -538,6 +547,8 @@ def scenario_from_dict(data: dict, base_dir: str | os.PathLike | None = None, so
     for key in ("sensor_range", "dt", "time_limit", "goal_tolerance"):
         if key in data:
             kwargs[key] = _number(data[key], key, positive=True)
+    if "timing_jitter" in data:
+        kwargs["timing_jitter"] = _number(data["timing_jitter"], "timing_jitter", non_negative=True)
     for key in ("name", "description"):
         if key in data:
             if not isinstance(data[key], str):
@@ -613,14 +624,23 @@ def _reference_path(sc: Scenario) -> np.ndarray:
 
 
 def _reachable(sc: Scenario, cells: np.ndarray, circles: np.ndarray) -> bool:
+    """Can the robot's footprint still get from start to goal with these extra obstacles?"""
     from ..solvers.graph import shortest_path
 
     trial = replace(sc, unknown_cells=np.vstack([sc.unknown_cells, cells]) if len(cells) else sc.unknown_cells,
                     unknown_circles=np.vstack([sc.unknown_circles, circles]) if len(circles) else sc.unknown_circles,
-                    random_obstacles=None, random_dynamic=None)
+                    random_obstacles=None, random_dynamic=None, timing_jitter=0.0)
     world = trial.true_world()
     if sc.is_grid and len(trial.unknown_circles):
         return True  # discs on a grid: accepted without a reachability test
+    if sc.is_grid and sc.robot.radius <= 0.5 * world.resolution:
+        # 4-neighbour moves between free cell centres keep half a cell from every blocked
+        # cell, so 4-connectivity of the free cells suffices for this footprint
+        from scipy.ndimage import label
+
+        lab, _ = label(~world.occ)
+        (sx, sy), (gx, gy) = world.cell_of(sc.start[:2]), world.cell_of(sc.goal)
+        return bool(lab[sy, sx] != 0 and lab[sy, sx] == lab[gy, gx])
     try:
         shortest_path(world, sc.start[:2], sc.goal, method="astar" if sc.is_grid else "visibility",
                       clearance=sc.robot.radius)
@@ -629,11 +649,10 @@ def _reachable(sc: Scenario, cells: np.ndarray, circles: np.ndarray) -> bool:
     return True
 
 
-def _draw_random_obstacles(sc: Scenario, spec: dict, rng) -> tuple[np.ndarray, np.ndarray]:
+def _draw_random_obstacles(sc: Scenario, spec: dict, rng, path: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     count, size, keep = int(spec["count"]), float(spec["size"]), float(spec["keep_away"])
     if count == 0:
         return np.zeros((0, 2), np.int64), np.zeros((0, 3))
-    path = _reference_path(sc)
     far = (np.hypot(*(path - sc.start[:2]).T) >= keep) & (np.hypot(*(path - sc.goal).T) >= keep)
     candidates = path[far]
     if not len(candidates):
@@ -670,6 +689,29 @@ def _draw_random_obstacles(sc: Scenario, spec: dict, rng) -> tuple[np.ndarray, n
     raise ScenarioError("random_obstacles: no draw in 200 tries left the goal reachable; lower count or size")
 
 
+def _jitter_movers(sc: Scenario, rng) -> list[DynamicObstacle]:
+    """The scenario's movers, each advanced by ``U(0, timing_jitter)`` seconds; a shift that
+    would put a mover onto the robot's start is drawn again (then dropped to zero)."""
+    out = []
+    for ob in sc.dynamic:
+        for _ in range(20):
+            shift = float(rng.uniform(0.0, sc.timing_jitter))
+            if ob.waypoints is not None:
+                moved = replace(ob, phase=ob.phase + ob.speed * shift)
+            else:
+                pos, vel = ob.state(shift, sc.bounds)
+                moved = replace(ob, start=pos, velocity=vel if ob.at_border != "stop" else ob.velocity)
+                if ob.at_border == "stop" and not np.any(vel):
+                    moved = replace(ob, start=pos, velocity=np.zeros(2))
+            pos, _ = moved.state(0.0, sc.bounds)
+            if np.hypot(*(pos - sc.start[:2])) >= ob.radius + sc.robot.radius:
+                out.append(moved)
+                break
+        else:
+            out.append(ob)
+    return out
+
+
 def _point_segment_distance(p, a, b) -> float:
     ab = b - a
     L2 = float(ab @ ab)
@@ -677,11 +719,10 @@ def _point_segment_distance(p, a, b) -> float:
     return float(np.hypot(*(p - (a + t * ab))))
 
 
-def _draw_random_movers(sc: Scenario, spec: dict, rng) -> list[DynamicObstacle]:
+def _draw_random_movers(sc: Scenario, spec: dict, rng, path: np.ndarray) -> list[DynamicObstacle]:
     count, radius, keep = int(spec["count"]), float(spec["radius"]), float(spec["keep_away"])
     if count == 0:
         return []
-    path = _reference_path(sc)
     far = (np.hypot(*(path - sc.start[:2]).T) >= keep) & (np.hypot(*(path - sc.goal).T) >= keep)
     idx = np.nonzero(far)[0]
     if not len(idx):
