@@ -73,3 +73,26 @@ def test_infeasible_seed_result_is_not_refined():
 
     out = refine_result(world, bad)
     assert not out.refined and "infeasible" in out.message
+
+
+def test_warm_start_reaches_the_cold_solution_in_fewer_iterations():
+    world, s, g = paper_map("yang2023_env1")
+    seed = op.plan(world, s, g, algorithm="pso", seed=1, pop=20, iters=40).path
+    first = smooth_path(world, seed)
+    assert first.success and first.warm is not None
+    again = smooth_path(world, seed, warm_start=first)
+    assert again.success and again.iterations < first.iterations
+    np.testing.assert_allclose(again.path, first.path, atol=1e-5)
+    # replanning: the start moves a little along the path; warm and cold agree
+    moved = np.vstack([first.path[0] + 0.3 * (first.path[1] - first.path[0]), seed[1:]])
+    warm = smooth_path(world, moved, warm_start=first)
+    cold = smooth_path(world, moved, n_points=len(first.path))
+    assert warm.success and cold.success and warm.iterations < cold.iterations
+    np.testing.assert_allclose(warm.path, cold.path, atol=1e-3)   # IPOPT tol 1e-6 on J, not on points
+    assert warm.objective == pytest.approx(cold.objective, rel=1e-5)
+
+
+def test_warm_start_of_the_wrong_type_is_refused():
+    world, s, g = paper_map("yang2023_env1")
+    with pytest.raises(op.OptplanError, match="warm_start"):
+        smooth_path(world, np.array([s, g]), warm_start=np.zeros((3, 2)))

@@ -1,4 +1,4 @@
-"""Nonlinear-programming refinement (CasADi Opti + IPOPT)."""
-from .smoothing import SmoothResult, resample, smooth_path
+"""Nonlinear-programming refinement (CasADi + IPOPT)."""
+from .smoothing import SmoothResult, WarmStart, resample, smooth_path, smoothing_objective
 
-__all__ = ["SmoothResult", "resample", "smooth_path"]
+__all__ = ["SmoothResult", "WarmStart", "resample", "smooth_path", "smoothing_objective"]

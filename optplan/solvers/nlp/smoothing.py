@@ -1,20 +1,30 @@
-"""Path smoothing as a nonlinear program (CasADi Opti + IPOPT).
+"""Path smoothing as a nonlinear program (CasADi + IPOPT).
 
-Variables: the seed path resampled to ``N`` points by arc length; start and goal
-are fixed. Objective: ``sum |p_{i+1} - p_i|^2 + w * sum |p_{i+1} - 2 p_i + p_{i-1}|^2``
-(squared segment lengths pull the path taut and spread the points evenly; the
-second differences smooth it). Constraints: clearance of at least ``margin`` at
-every point and every segment midpoint, and the map box.
+Variables: the interior points of the seed path resampled to ``N`` points by arc
+length (start and goal are parameters, so they stay exactly fixed and cost no
+equality constraints); the map box enters as simple variable bounds, which
+IPOPT treats more cheaply than general constraints. Objective:
+``J = sum |p_{i+1} - p_i|^2 + w * sum |p_{i+1} - 2 p_i + p_{i-1}|^2`` (squared
+segment lengths pull the path taut and spread the points evenly; the second
+differences smooth it). Constraints: clearance of at least ``margin`` at every
+interior point and every segment midpoint.
 
-* Circle worlds: each point (and midpoint) keeps the analytic squared distance to
-  its ``K`` nearest circles above ``(R + margin)^2``. Which circles those are is a
-  parameter, so the NLP is built once (``Opti.to_function``, expanded to SX) and an
-  outer loop reassigns neighbours and re-solves while the exact check finds a
-  violation.
+* Circle worlds: each query point keeps the analytic squared distance to its
+  ``K`` nearest circles above ``(R + margin)^2``. Which circles those are is a
+  parameter, so the NLP is built once per ``(N, K, w)`` directly in SX (no
+  Opti layer, nothing to expand) and an outer loop reassigns neighbours and
+  re-solves, warm-started, while the exact check finds a violation.
 * Grid maps: the signed distance field (``optplan.world.fields``) becomes a CasADi
-  ``interpolant('bspline')``, built once per map and cached. The spline only
-  approximates the field near corners, so ``margin`` carries a small cushion that
-  is raised when the exact check fails.
+  ``interpolant('bspline')``, built once per map and cached (MX graph, not
+  expanded). The spline only approximates the field near corners, so ``margin``
+  carries a small cushion that is raised when the exact check fails.
+
+Warm starts: every successful result carries a :class:`WarmStart` (points,
+IPOPT's bound and constraint multipliers, the neighbour assignment). Passing it
+to the next :func:`smooth_path` call of the same size starts IPOPT from that
+primal-dual point with ``warm_start_init_point`` and a small barrier parameter,
+which is what a replanning loop needs (the start moves a little, the rest of
+the problem stays).
 
 Status discipline: start and goal clearance are checked first; every solution
 goes through ``validate_path``; a failed solve or an invalid result is retried
@@ -24,19 +34,54 @@ unchanged with the reason (never a colliding path).
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
+from ...errors import ParameterError
 from ...world.geometry import validate_path
 
 IPOPT_OPTIONS = {
     "print_level": 0,
     "sb": "yes",
-    "mu_strategy": "adaptive",  # measured: fewer iterations than monotone on these problems
+    # measured on the paper maps (benchmarks/refine_solvers.py --ipopt-options): adaptive mu
+    # needs fewer iterations than monotone from a cold start; limited-memory Hessians stall
+    "mu_strategy": "adaptive",
     "tol": 1e-6,
     "max_iter": 300,
 }
+# from a previous primal-dual solution: keep the point where it is (tiny bound pushes)
+# and start with a small barrier parameter instead of re-centring
+IPOPT_WARM_OPTIONS = {
+    **IPOPT_OPTIONS,
+    "mu_strategy": "monotone",
+    "warm_start_init_point": "yes",
+    "mu_init": 1e-6,
+    "warm_start_bound_push": 1e-9,
+    "warm_start_bound_frac": 1e-9,
+    "warm_start_slack_bound_push": 1e-9,
+    "warm_start_slack_bound_frac": 1e-9,
+    "warm_start_mult_bound_push": 1e-9,
+}
+
+
+@dataclass
+class WarmStart:
+    """A solved smoothing NLP's primal-dual point, to start a later solve of the same size.
+
+    Attributes:
+        points: ``(N, 2)`` solution, metres.
+        lam_x: multipliers of the variable bounds.
+        lam_g: multipliers of the clearance constraints.
+        neighbours: ``(2N-3, K)`` circle indices of each query point (circle worlds), else None.
+        key: which NLP produced it; a warm start from another NLP is ignored.
+    """
+
+    points: np.ndarray
+    lam_x: np.ndarray
+    lam_g: np.ndarray
+    neighbours: np.ndarray | None
+    key: tuple
 
 
 @dataclass
@@ -50,6 +95,8 @@ class SmoothResult:
         solve_time_s: wall time of the whole call, seconds.
         iterations: solver iterations (IPOPT iterations / OSQP ADMM iterations, summed over rounds).
         objective: the smoothing objective ``J`` of ``path`` (NaN when not computed).
+        rounds: solves made (neighbour-reassignment rounds / corridor rounds, over all attempts).
+        warm: primal-dual point for warm-starting a later call (CasADi smoother only).
     """
 
     path: np.ndarray
@@ -58,6 +105,8 @@ class SmoothResult:
     solve_time_s: float
     iterations: int = 0
     objective: float = float("nan")
+    rounds: int = 0
+    warm: WarmStart | None = field(default=None, repr=False)
 
 
 def resample(path: np.ndarray, n: int) -> np.ndarray:
@@ -77,109 +126,201 @@ def default_points(path: np.ndarray, spacing: float) -> int:
     return int(np.clip(np.ceil(L / spacing) + 1, 20, 100))
 
 
+def smoothing_objective(points: np.ndarray, w_smooth: float) -> float:
+    """``J`` of a path (see the module docstring)."""
+    P = np.asarray(points, float)
+    d = np.diff(P, axis=0)
+    dd = P[2:] - 2 * P[1:-1] + P[:-2]
+    return float((d ** 2).sum() + w_smooth * (dd ** 2).sum())
+
+
 # --------------------------------------------------------------------- builders
 _CACHE: dict = {}
 
 
-def _smoothing_core(opti, N: int, w_smooth: float):
-    """Variables, fixed ends and the objective shared by every smoothing NLP."""
+def _path_expressions(ca, z, ends, N: int, w_smooth: float, per_segment: int = 1):
+    """Objective and query points of the path ``ends[0:2], interior z, ends[2:4]``
+    with ``z = (x_1..x_{N-2}, y_1..y_{N-2})``: the interior points, then
+    ``per_segment`` evenly spaced points inside every segment (1: the midpoints)."""
+    n = N - 2
+    xs = ca.vertcat(ends[0], z[:n], ends[2])
+    ys = ca.vertcat(ends[1], z[n:], ends[3])
+    J = ca.sumsqr(xs[1:] - xs[:-1]) + ca.sumsqr(ys[1:] - ys[:-1])
+    if N >= 3:
+        J = J + w_smooth * (ca.sumsqr(xs[2:] - 2 * xs[1:-1] + xs[:-2]) + ca.sumsqr(ys[2:] - 2 * ys[1:-1] + ys[:-2]))
+    fr = [(j + 1) / (per_segment + 1) for j in range(per_segment)]
+    qx = ca.vertcat(xs[1:-1], *[(1 - f) * xs[:-1] + f * xs[1:] for f in fr])
+    qy = ca.vertcat(ys[1:-1], *[(1 - f) * ys[:-1] + f * ys[1:] for f in fr])
+    return J, qx, qy
+
+
+def _two_solvers(name: str, nlp: dict) -> dict:
+    """A cold-start and a warm-start IPOPT instance of the same NLP (options are fixed per instance)."""
     import casadi as ca
 
-    X = opti.variable(N, 2)
-    ends = opti.parameter(2, 2)
-    d = X[1:, :] - X[:-1, :]
-    dd = X[2:, :] - 2 * X[1:-1, :] + X[:-2, :]
-    opti.minimize(ca.sum1(ca.sum2(d ** 2)) + w_smooth * ca.sum1(ca.sum2(dd ** 2)))
-    opti.subject_to(X[0, :] == ends[0, :])
-    opti.subject_to(X[N - 1, :] == ends[1, :])
-    return X, ends
+    base = {"print_time": False}
+    return {"cold": ca.nlpsol(name, "ipopt", nlp, {**base, "ipopt": dict(IPOPT_OPTIONS)}),
+            "warm": ca.nlpsol(name + "_warm", "ipopt", nlp, {**base, "ipopt": dict(IPOPT_WARM_OPTIONS)})}
 
 
-def _circle_solver(N: int, K: int, w_smooth: float):
-    """NLP for circle worlds, built once per (N, K, w): inputs (x0, centres, radii, box, ends)."""
-    key = ("circles", N, K, w_smooth)
-    if key in _CACHE:
-        return _CACHE[key]
-    import casadi as ca
+def circle_nlp(N: int, K: int, w_smooth: float) -> dict:
+    """NLP for circle worlds, built once per ``(N, K, w)`` in SX.
 
-    opti = ca.Opti()
-    X, ends = _smoothing_core(opti, N, w_smooth)
-    C = opti.parameter(2 * N - 1, 2 * K)   # K nearest centres of each point and midpoint (x..., y...)
-    R = opti.parameter(2 * N - 1, K)       # their grown radii + margin
-    box = opti.parameter(4)
-    Q = ca.vertcat(X, (X[1:, :] + X[:-1, :]) / 2)   # points then midpoints
-    for k in range(K):
-        dx = Q[:, 0] - C[:, k]
-        dy = Q[:, 1] - C[:, K + k]
-        opti.subject_to(dx ** 2 + dy ** 2 >= R[:, k] ** 2)
-    opti.subject_to(opti.bounded(box[0], X[:, 0], box[2]))
-    opti.subject_to(opti.bounded(box[1], X[:, 1], box[3]))
-    opti.solver("ipopt", {"expand": True, "print_time": False}, dict(IPOPT_OPTIONS))
-    fn = opti.to_function("smooth_circles", [X, C, R, box, ends], [X], ["x0", "c", "r", "box", "ends"], ["x"])
-    _CACHE[key] = fn
-    return fn
+    Parameters ``p = (ends (4), centre x (M*K), centre y (M*K), grown radius (M*K))``
+    with ``M = 2N - 3`` query points, column-major ``(M, K)`` blocks.
+    """
+    key = ("circles", N, K, float(w_smooth))
+    if key not in _CACHE:
+        import casadi as ca
+
+        M = 2 * N - 3
+        z = ca.SX.sym("z", 2 * (N - 2))
+        p = ca.SX.sym("p", 4 + 3 * M * K)
+        J, qx, qy = _path_expressions(ca, z, p[:4], N, w_smooth)
+        cx = ca.reshape(p[4:4 + M * K], M, K)
+        cy = ca.reshape(p[4 + M * K:4 + 2 * M * K], M, K)
+        R = ca.reshape(p[4 + 2 * M * K:], M, K)
+        g = ca.vertcat(*[(qx - cx[:, k]) ** 2 + (qy - cy[:, k]) ** 2 - R[:, k] ** 2 for k in range(K)])
+        _CACHE[key] = {"key": key, **_two_solvers("smooth_circles", {"x": z, "p": p, "f": J, "g": g})}
+    return _CACHE[key]
 
 
-def _grid_solver(grid, N: int, w_smooth: float, subdiv: int = 4):
-    """NLP for a grid map, built once per (map, N, w): inputs (x0, margin, ends)."""
-    key = ("grid", id(grid), N, w_smooth, subdiv)
-    cached = grid._cache.get(key)
-    if cached is not None:
-        return cached
+def _grid_interpolant(grid, subdiv: int):
     import casadi as ca
 
     from ...world.fields import grid_distance_field
 
     interp = grid._cache.get(("casadi_sdf", subdiv))
     if interp is None:
-        field = grid_distance_field(grid, subdiv)
-        interp = ca.interpolant("sdf", "bspline", [field.xs, field.ys], field.values.ravel())
+        field_ = grid_distance_field(grid, subdiv)
+        interp = ca.interpolant("sdf", "bspline", [field_.xs, field_.ys], field_.values.ravel())
         grid._cache[("casadi_sdf", subdiv)] = interp
-    xmin, ymin, xmax, ymax = grid.bounds
-    opti = ca.Opti()
-    X, ends = _smoothing_core(opti, N, w_smooth)
-    margin = opti.parameter()
-    Q = ca.vertcat(X[1:N - 1, :], (X[1:, :] + X[:-1, :]) / 2)
-    opti.subject_to(interp(Q.T).T >= margin)
-    opti.subject_to(opti.bounded(xmin, X[:, 0], xmax))
-    opti.subject_to(opti.bounded(ymin, X[:, 1], ymax))
-    opti.solver("ipopt", {"print_time": False}, dict(IPOPT_OPTIONS))
-    fn = opti.to_function("smooth_grid", [X, margin, ends], [X], ["x0", "margin", "ends"], ["x"])
-    grid._cache[key] = fn
-    return fn
+    return interp
+
+
+def grid_nlp(grid, N: int, w_smooth: float, per_segment: int = 3, subdiv: int = 4) -> dict:
+    """NLP for a grid map, built once per ``(map, N, w, per_segment)``: parameters
+    ``p = (ends (4), margin)``; clearance constraints at the interior points and at
+    ``per_segment`` points inside each segment."""
+    key = ("grid", N, float(w_smooth), per_segment, subdiv)
+    cached = grid._cache.get(key)
+    if cached is None:
+        import casadi as ca
+
+        interp = _grid_interpolant(grid, subdiv)
+        z = ca.MX.sym("z", 2 * (N - 2))
+        p = ca.MX.sym("p", 5)
+        J, qx, qy = _path_expressions(ca, z, p[:4], N, w_smooth, per_segment)
+        g = interp(ca.horzcat(qx, qy).T).T - p[4]
+        cached = grid._cache[key] = {"key": ("grid", id(grid)) + key[1:],
+                                     **_two_solvers("smooth_grid", {"x": z, "p": p, "f": J, "g": g})}
+    return cached
 
 
 # ------------------------------------------------------------------------ solve
-def _nearest(world, Q: np.ndarray, K: int):
+def nearest_circles(world, Q: np.ndarray, K: int) -> np.ndarray:
+    """Indices ``(len(Q), K)`` of the ``K`` circles whose grown edge is nearest to each point."""
     d = np.hypot(Q[:, None, 0] - world.circles[None, :, 0], Q[:, None, 1] - world.circles[None, :, 1]) - world.radii
-    idx = np.argsort(d, axis=1)[:, :K]
-    return idx
+    return np.argsort(d, axis=1)[:, :K]
 
 
-def _solve_circles(world, X0, clearance, cushion, w_smooth, K, max_rounds=6):
+def _query_points(X: np.ndarray) -> np.ndarray:
+    return np.vstack([X[1:-1], (X[1:] + X[:-1]) / 2])
+
+
+def _remap_multipliers(lam_g: np.ndarray, old: np.ndarray, new: np.ndarray) -> np.ndarray:
+    """Carry constraint multipliers over a neighbour reassignment: a (point, circle)
+    pair that stays keeps its multiplier, a new pair starts at zero."""
+    M, K = new.shape
+    lam = lam_g.reshape(K, M).T                       # g is stacked slot by slot
+    match = new[:, :, None] == old[:, None, :]
+    return (match * lam[:, None, :]).sum(axis=2).T.ravel()
+
+
+def _unpack(z: np.ndarray, ends: np.ndarray) -> np.ndarray:
+    n = len(z) // 2
+    return np.vstack([ends[0], np.stack([z[:n], z[n:]], axis=1), ends[1]])
+
+
+def _pack(X: np.ndarray) -> np.ndarray:
+    return np.concatenate([X[1:-1, 0], X[1:-1, 1]])
+
+
+class _Solve:
+    """Runs one IPOPT instance and keeps count of time, iterations and calls."""
+
+    def __init__(self) -> None:
+        self.iterations = 0
+        self.calls = 0
+
+    def __call__(self, solver, **args):
+        sol = solver(**args)
+        st = solver.stats()
+        self.iterations += int(st.get("iter_count", 0))
+        self.calls += 1
+        if not st.get("success", False):
+            raise RuntimeError(f"IPOPT: {st.get('return_status', 'failed')}")
+        return sol
+
+
+def _box_bounds(world, N: int, clearance: float):
+    xmin, ymin, xmax, ymax = world.bounds
+    n = N - 2
+    lbx = np.concatenate([np.full(n, xmin + clearance), np.full(n, ymin + clearance)])
+    ubx = np.concatenate([np.full(n, xmax - clearance), np.full(n, ymax - clearance)])
+    return lbx, ubx
+
+
+def _solve_circles(world, X0, clearance, cushion, w_smooth, K, run, warm: WarmStart | None, max_rounds=6):
     N = len(X0)
-    m = len(world.circles)
-    if m == 0:
-        return resample(np.stack([X0[0], X0[-1]]), N), "no obstacles"
-    K = min(K, m)
-    fn = _circle_solver(N, K, w_smooth)
-    box = np.array(world.bounds) + np.array([1, 1, -1, -1]) * clearance
     ends = np.stack([X0[0], X0[-1]])
+    if len(world.circles) == 0:
+        return resample(ends, N), None, "no obstacles"
+    K = min(K, len(world.circles))
+    nlp = circle_nlp(N, K, w_smooth)
+    lbx, ubx = _box_bounds(world, N, clearance)
     X = X0
+    lam_x = lam_g = idx = None
+    if warm is not None and warm.key == nlp["key"]:
+        X = np.vstack([ends[0], warm.points[1:-1], ends[1]])
+        lam_x, lam_g, idx = warm.lam_x, warm.lam_g, warm.neighbours
     for _ in range(max_rounds):
-        Q = np.vstack([X, (X[1:] + X[:-1]) / 2])
-        idx = _nearest(world, Q, K)
-        C = np.hstack([world.circles[idx, 0], world.circles[idx, 1]])
-        Rr = world.radii[idx] + clearance + cushion
-        X = np.array(fn(X, C, Rr, box, ends))
-        X[0], X[-1] = ends
+        new_idx = nearest_circles(world, _query_points(X), K)
+        if lam_g is not None and idx is not None:
+            lam_g = _remap_multipliers(lam_g, idx, new_idx)
+        idx = new_idx
+        p = np.concatenate([ends.ravel(), world.circles[idx, 0].ravel(order="F"), world.circles[idx, 1].ravel(order="F"),
+                            (world.radii[idx] + clearance + cushion).ravel(order="F")])
+        args = dict(x0=_pack(X), p=p, lbx=lbx, ubx=ubx, lbg=0.0, ubg=np.inf)
+        if lam_g is not None:
+            sol = run(nlp["warm"], lam_x0=lam_x, lam_g0=lam_g, **args)
+        else:
+            sol = run(nlp["cold"], **args)
+        X = _unpack(np.asarray(sol["x"]).ravel(), ends)
+        lam_x, lam_g = np.asarray(sol["lam_x"]).ravel(), np.asarray(sol["lam_g"]).ravel()
         if validate_path(world, X, clearance):
-            return X, "ok"
-    return X, "neighbour reassignment did not settle"
+            return X, WarmStart(X, lam_x, lam_g, idx, nlp["key"]), "ok"
+    return X, None, "neighbour reassignment did not settle"
+
+
+def _solve_grid(world, X0, clearance, cushion, w_smooth, per_segment, run, warm: WarmStart | None):
+    N = len(X0)
+    ends = np.stack([X0[0], X0[-1]])
+    nlp = grid_nlp(world, N, w_smooth, per_segment)
+    lbx, ubx = _box_bounds(world, N, 0.0)
+    args = dict(p=np.concatenate([ends.ravel(), [clearance + cushion]]), lbx=lbx, ubx=ubx, lbg=0.0, ubg=np.inf)
+    if warm is not None and warm.key == nlp["key"]:
+        X = np.vstack([ends[0], warm.points[1:-1], ends[1]])
+        sol = run(nlp["warm"], x0=_pack(X), lam_x0=warm.lam_x, lam_g0=warm.lam_g, **args)
+    else:
+        sol = run(nlp["cold"], x0=_pack(X0), **args)
+    X = _unpack(np.asarray(sol["x"]).ravel(), ends)
+    return X, WarmStart(X, np.asarray(sol["lam_x"]).ravel(), np.asarray(sol["lam_g"]).ravel(), None, nlp["key"]), "ok"
 
 
 def smooth_path(world, seed_path, clearance: float = 0.0, n_points: int | None = None, w_smooth: float = 0.5,
-                k_nearest: int = 4, cushion: float | None = None) -> SmoothResult:
+                k_nearest: int = 4, cushion: float | None = None, grid_samples: int = 3,
+                warm_start: "WarmStart | SmoothResult | None" = None) -> SmoothResult:
     """Smooth and shorten ``seed_path`` under clearance constraints with IPOPT.
 
     Args:
@@ -190,49 +331,65 @@ def smooth_path(world, seed_path, clearance: float = 0.0, n_points: int | None =
         w_smooth: weight of the squared second differences.
         k_nearest: circles per point in the constraints (circle worlds).
         cushion: extra margin over ``clearance`` at the sampled points. Constraints
-            hold at points and midpoints ``h`` apart, so a straight piece between two
+            hold at sample points ``h`` apart, so a straight piece between two
             samples can come closer to an obstacle than either sample: by up to ``h/2``
-            at a grid corner and ``h^2 / (8 R)`` at a circle of radius ``R``. The
-            default cushion covers that, so the exact check passes on the first try.
+            at a grid corner (distance is 1-Lipschitz) and ``h^2 / (8 R)`` at a circle
+            of radius ``R`` (sagitta). The default cushion covers that, so the exact
+            check passes on the first try.
+        grid_samples: constrained points inside each segment on grids (the cushion
+            shrinks with the spacing; more samples cost constraint evaluations, not variables).
+        warm_start: a previous result (or its ``.warm``) of a solve with the same
+            number of points: IPOPT starts from its points and multipliers (the new
+            seed's start and goal replace the old ends). Ignored when the sizes differ.
 
     Returns:
         SmoothResult; ``success`` only when the result passed ``validate_path``.
     """
     t0 = time.perf_counter()
     P = np.asarray(seed_path, dtype=float)
-    if len(P) < 2:
-        return SmoothResult(P, False, "the seed has fewer than two points", 0.0)
+    if P.ndim != 2 or P.shape[1] != 2 or len(P) < 2:
+        return SmoothResult(P, False, "the seed must be an (M, 2) path with at least two points", 0.0)
     for p, what in ((P[0], "start"), (P[-1], "goal")):
         if not bool(world.is_free(p, clearance)):
             return SmoothResult(P, False, f"the {what} is not {clearance:g} m clear of obstacles", 0.0)
+    warm = warm_start.warm if isinstance(warm_start, SmoothResult) else warm_start
+    if warm is not None and not isinstance(warm, WarmStart):
+        raise ParameterError(f"warm_start must be a SmoothResult or WarmStart, got {type(warm_start).__name__}")
     is_grid = hasattr(world, "occ")
     res = world.resolution if is_grid else 1.0
-    N = n_points or default_points(P, 0.25 * res)
+    if n_points is None:
+        N = len(warm.points) if warm is not None else default_points(P, 0.25 * res)
+    else:
+        N = int(n_points)
+        if N < 3:
+            raise ParameterError(f"n_points must be at least 3, got {n_points}")
     if cushion is not None:
         base = cushion
     else:
         L = float(np.hypot(*np.diff(P, axis=0).T).sum())
-        h = L / (N - 1) / 2            # distance between a point and the next midpoint
+        seg = L / (N - 1)
         r_min = float(world.radii.min()) if not is_grid and len(world.circles) else 1.0
-        base = 0.55 * h if is_grid else h * h / (8 * r_min) + 1e-6
+        # spacing of the constrained samples: grid_samples (grids) or 1 midpoint (circles) per segment
+        base = 0.55 * seg / (grid_samples + 1) if is_grid else (seg / 2) ** 2 / (8 * r_min) + 1e-6
     reasons = []
+    run = _Solve()
     for attempt in range(2):
         n = N if attempt == 0 else min(2 * N, 200)
         cush = base if attempt == 0 else 5 * base + (0.05 * res if is_grid else 1e-3)
         X0 = resample(P, n)
+        ws = warm if attempt == 0 else None
         try:
             if is_grid:
-                fn = _grid_solver(world, n, w_smooth)
-                X = np.array(fn(X0, clearance + cush, np.stack([P[0], P[-1]])))
-                note = "ok"
+                X, ws_out, note = _solve_grid(world, X0, clearance, cush, w_smooth, grid_samples, run, ws)
             else:
-                X, note = _solve_circles(world, X0, clearance, cush, w_smooth, k_nearest)
-            X[0], X[-1] = P[0], P[-1]  # equality constraints hold to rounding only
-        except RuntimeError as exc:  # IPOPT failures surface as RuntimeError from CasADi
+                X, ws_out, note = _solve_circles(world, X0, clearance, cush, w_smooth, k_nearest, run, ws)
+        except RuntimeError as exc:  # IPOPT failures surface as RuntimeError
             reasons.append(f"attempt {attempt + 1}: IPOPT failed ({str(exc).splitlines()[0][:120]})")
             continue
         check = validate_path(world, X, clearance)
         if check:
-            return SmoothResult(X, True, "" if attempt == 0 else "succeeded on retry", time.perf_counter() - t0)
+            return SmoothResult(X, True, "" if attempt == 0 else "succeeded on retry", time.perf_counter() - t0,
+                                run.iterations, smoothing_objective(X, w_smooth), run.calls, ws_out)
         reasons.append(f"attempt {attempt + 1}: result invalid ({check.reason}; {note})")
-    return SmoothResult(P, False, "; ".join(reasons), time.perf_counter() - t0)
+    return SmoothResult(P, False, "; ".join(reasons), time.perf_counter() - t0, run.iterations,
+                        smoothing_objective(P, w_smooth), run.calls)
