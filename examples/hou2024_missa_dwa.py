@@ -7,6 +7,15 @@ Q 5): min/mean length, total rotation angle and time, plus what the paper lacks:
 the gap to the exact any-angle optimum and the rank-sum p-value against SSA.
 
     python examples/hou2024_missa_dwa.py --part global [--runs 50] [--quick]
+
+--part local: Table 4 analog (0-3 random unknown obstacles, scenarios
+hou2024_table4_0..3) and the four dynamic environments of §4.5
+(hou2024_dynamic1..4), every local planner preset on the same MISSA global path
+per seed (60 sparrows; --iters, default 300), with success, collisions, timeouts,
+time and path length. --gif FILE writes an animation of MISSA-DWA in dynamic
+environment 1 (seed 0).
+
+    python examples/hou2024_missa_dwa.py --part local [--runs 20] [--quick] [--gif run.gif]
 """
 from __future__ import annotations
 
@@ -20,15 +29,35 @@ def main(argv=None) -> int:
     ap.add_argument("--part", choices=["global", "local"], default="global")
     ap.add_argument("--runs", type=int, default=50)
     ap.add_argument("--quick", action="store_true", help="one map, 3 runs, 60 iterations")
+    ap.add_argument("--iters", type=int, default=None, help="iterations of the global planner")
+    ap.add_argument("--gif", metavar="FILE.gif", help="--part local: also write an animation of one run")
     args = ap.parse_args(argv)
     if args.part == "local":
-        print("the local part (Table 4, dynamic environments) is not available yet")
-        return 2
+        return part_local(args)
     maps = ["hou2024_env1"] if args.quick else ["hou2024_env1", "hou2024_env2"]
     runs = 3 if args.quick else args.runs
     iters = 60 if args.quick else 300
     paper_global("hou2024 Tables 2-3 analog: ACO, SSA, MISSA (pop 60)", maps, ["aco", "ssa", "missa"], runs,
                  reference="ssa", pop=60, iters=iters)
+    return 0
+
+
+def part_local(args) -> int:
+    from optplan.sim.experiments import paper_local, write_gif
+
+    if args.quick:
+        paper_local("hou2024 Table 4 analog (quick: 1 random obstacle, A* global path)", ["hou2024_table4_1"], 1,
+                    planners=["dwa", "missa-dwa"])
+    else:
+        runs = args.runs if args.runs != 50 else 20
+        gopts = {"pop": 60, "iters": args.iters or 300}
+        paper_local("hou2024 Table 4 analog: random unknown obstacles (MISSA global path)",
+                    [f"hou2024_table4_{k}" for k in range(4)], runs, global_planner="missa", global_options=gopts)
+        paper_local("hou2024 §4.5 analog: dynamic environments 1-4 (MISSA global path)",
+                    [f"hou2024_dynamic{k}" for k in range(1, 5)], runs, global_planner="missa", global_options=gopts)
+    if args.gif:
+        print(write_gif("hou2024_dynamic1", "missa-dwa", args.gif, global_planner="astar" if args.quick else "missa",
+                        global_options=None if args.quick else {"pop": 60, "iters": args.iters or 300}))
     return 0
 
 

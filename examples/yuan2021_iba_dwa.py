@@ -6,6 +6,16 @@ Table 1 is the shortest collision-free path (mu = 0 in eq 13, preset
 and reports turns. Each length is shown next to the exact any-angle optimum.
 
     python examples/yuan2021_iba_dwa.py --part global [--runs 20] [--quick]
+
+--part local: §5.2 analog (three unknown obstacles added on the global path,
+yuan2021_added_obstacles) and §5.3 analog (a 3x3 unknown block that makes the
+global path fail, yuan2021_path_switch), every local planner preset on the same
+IBA global path per seed (50 bats; --iters, default 100). BA-DWA follows the
+turning points and switches paths through the virtual-point graph (§4.2); the
+table after the main one counts path switches and re-plans. --gif FILE animates
+BA-DWA in the path switch scenario.
+
+    python examples/yuan2021_iba_dwa.py --part local [--runs 20] [--quick] [--gif run.gif]
 """
 from __future__ import annotations
 
@@ -19,10 +29,11 @@ def main(argv=None) -> int:
     ap.add_argument("--part", choices=["global", "local"], default="global")
     ap.add_argument("--runs", type=int, default=20)
     ap.add_argument("--quick", action="store_true", help="3 runs, 60 iterations")
+    ap.add_argument("--iters", type=int, default=None, help="iterations of the global planner")
+    ap.add_argument("--gif", metavar="FILE.gif", help="--part local: also write an animation of one run")
     args = ap.parse_args(argv)
     if args.part == "local":
-        print("the local part (§5.2-5.3, added obstacles and path switch) is not available yet")
-        return 2
+        return part_local(args)
     runs = 3 if args.quick else args.runs
     iters = 60 if args.quick else 300
     paper_global("yuan2021 Table 1 analog: shortest collision-free path (mu = 0)", ["yuan2021_25"], ["ba", "iba"],
@@ -33,6 +44,30 @@ def main(argv=None) -> int:
         turns = [r.n_turns for r in s.feasible]
         if turns:
             print(f"{s.algorithm}: turns min {min(turns)}, mean {sum(turns) / len(turns):.1f}")
+    return 0
+
+
+def part_local(args) -> int:
+    from optplan.sim.experiments import paper_local, path_switches, write_gif
+
+    if args.quick:
+        sets = paper_local("yuan2021 §5.3 analog (quick): path switch, A* global path", ["yuan2021_path_switch"], 1,
+                           planners=["dwa", "ba-dwa"])
+    else:
+        gopts = {"pop": 50, "iters": args.iters or 100}
+        paper_local("yuan2021 §5.2 analog: newly added obstacles (IBA global path)", ["yuan2021_added_obstacles"],
+                    args.runs, global_planner="iba", global_options=gopts)
+        sets = paper_local("yuan2021 §5.3 analog: path switch (IBA global path)", ["yuan2021_path_switch"],
+                           args.runs, global_planner="iba", global_options=gopts)
+    print("| local planner | runs | mean path switches | mean re-plans (incl. switches) |")
+    print("|---|---|---|---|")
+    for s in sets:
+        if s.results:
+            switches = [path_switches(r) for r in s.results]
+            print(f"| {s.planner} | {len(s.results)} | {sum(switches) / len(s.results):.2f} | "
+                  f"{sum(r.replans for r in s.results) / len(s.results):.2f} |")
+    if args.gif:
+        print(write_gif("yuan2021_path_switch", "ba-dwa", args.gif))
     return 0
 
 

@@ -100,8 +100,15 @@ class Navigator:
         self._history: deque = deque()
 
     # ------------------------------------------------------------------ global plan
-    def plan_initial(self) -> PlanResult:
-        """Plan on the known map (robot radius as clearance, else zero clearance)."""
+    def plan_initial(self, given: PlanResult | None = None) -> PlanResult:
+        """Plan on the known map (robot radius as clearance, else zero clearance), or adopt
+        ``given`` (a PlanResult planned earlier for the same map, start and goal)."""
+        if given is not None:
+            self.plan_result = given
+            if not given.feasible:
+                self.messages.append(f"the given global path is not valid ({given.message}); following it anyway")
+            self._adopt(self._with_ends(given.path, self.start))
+            return given
         opts = dict(self.global_options)
         opts.setdefault("clearance", self.robot.radius)
         try:

@@ -37,7 +37,7 @@ from .environment import SimEnvironment
 from .kinematics import step_pose
 
 OPTIONS = ("subgoals", "on_blocked", "stuck_time", "stuck_distance", "max_replans", "stop_on_collision",
-           "actuator_limits", "planner_params", "global_options", "subgoal_options", "progress", "time_limit")
+           "actuator_limits", "planner_params", "global_options", "subgoal_options", "progress", "time_limit", "global_plan")
 
 
 def make_planner(local_planner, robot, dt: float, params: dict):
@@ -102,6 +102,8 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
             progress: ``True`` prints a status line to stderr every 10 simulated seconds;
                 a number sets the interval; a callable gets ``(t, state, info)`` every period.
             time_limit: override the scenario's, seconds.
+            global_plan: a PlanResult to follow instead of planning (e.g. one global plan
+                shared by several local planners; it must be for the same map, start and goal).
 
     Returns:
         A :class:`SimResult` (``to_json_dict()`` gives the ``optplan simulate --json`` keys).
@@ -132,7 +134,7 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
     stop_on_collision = bool(options.get("stop_on_collision", False))
     limits = bool(options.get("actuator_limits", False))
 
-    nav.plan_initial()
+    nav.plan_initial(options.get("global_plan"))
     state = RobotState(float(sc.start[0]), float(sc.start[1]), float(sc.start[2]))
     planner.reset(state, nav.path)
     n_max = int(np.ceil(time_limit / dt - 1e-9))

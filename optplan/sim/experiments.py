@@ -1,0 +1,160 @@
+"""Repeated closed-loop runs and the paper-style tables of the example scripts' ``--part local``.
+
+:func:`run_local` runs every scenario x local planner over seeds ``0 .. runs-1``. For
+one scenario and seed the global plan (the slow part with a metaheuristic) is made
+once and shared by every local planner, so the planners are compared on the same
+global path and the same random obstacles. :func:`local_table` prints one row per
+scenario and planner: success (goal reached with no collision), runs that reached
+the goal, runs with a collision, timeouts, stuck runs, and the means of time, path
+length and local-planner step time over the successful runs (all runs when none
+succeeded, marked so). Nothing is hidden: failing planners get their rows too.
+"""
+from __future__ import annotations
+
+import sys
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..results import SimResult
+
+
+@dataclass
+class LocalRuns:
+    """All runs of one local planner on one scenario."""
+
+    scenario: str
+    planner: str
+    results: list[SimResult] = field(default_factory=list)
+    error: str = ""
+
+    @property
+    def successes(self) -> list[SimResult]:
+        return [r for r in self.results if r.reached and r.collisions == 0]
+
+
+def _plan_once(scenario, global_planner: str, refine, seed: int, global_options: dict):
+    from ..nav.navigator import Navigator
+
+    nav = Navigator(scenario.world, scenario.robot, scenario.start[:2], scenario.goal, global_planner=global_planner,
+                    refine=refine, seed=seed, global_options=global_options)
+    return nav.plan_initial()
+
+
+def run_local(scenarios, planners, runs: int, global_planner: str = "astar", refine=None, seed0: int = 0,
+              global_options: dict | None = None, progress: bool = True, **options) -> list[LocalRuns]:
+    """Run each scenario with each local planner for ``runs`` seeds.
+
+    Args:
+        scenarios: names or paths of scenario files (or Scenario objects).
+        planners: local planner names.
+        runs: seeds ``seed0 .. seed0 + runs - 1``.
+        global_planner, refine, global_options: the shared global plan of each seed.
+        progress: a counter on stderr.
+        **options: passed to ``op.simulate`` for every run.
+
+    Returns:
+        One :class:`LocalRuns` per scenario and planner, in that order.
+    """
+    from ..errors import OptplanError
+    from ..world.scenario import load_scenario
+    from .closed_loop import simulate
+
+    out: list[LocalRuns] = []
+    for spec in scenarios:
+        sc = load_scenario(spec)
+        sets = {p: LocalRuns(sc.name, p) for p in planners}
+        for k in range(runs):
+            seed = seed0 + k
+            gp = _plan_once(sc, global_planner, refine, seed, dict(global_options or {}))
+            for p in planners:
+                if sets[p].error:
+                    continue
+                try:
+                    sets[p].results.append(simulate(sc, global_planner=global_planner, local_planner=p, refine=refine,
+                                                    seed=seed, global_plan=gp, **options))
+                except (ImportError, OptplanError) as exc:  # a planner that cannot run gets an honest row
+                    sets[p].error = f"{type(exc).__name__}: {exc}"
+            if progress:
+                print(f"\r  {sc.name}: {k + 1}/{runs} seeds", end="", file=sys.stderr, flush=True)
+        if progress:
+            print(file=sys.stderr)
+        out.extend(sets.values())
+    return out
+
+
+def local_table(sets: list[LocalRuns], title: str = "") -> str:
+    """Markdown table of :func:`run_local` results."""
+    lines = []
+    if title:
+        lines += [f"## {title}", ""]
+    lines += ["| scenario | local planner | runs | success [%] | reached | with collision | timeouts | stuck | "
+              "mean time [s] | mean path length [m] | mean step [ms] | min clearance [m] |",
+              "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for s in sets:
+        if s.error and not s.results:
+            lines.append(f"| {s.scenario} | {s.planner} | 0 | - | - | - | - | - | - | - | - | not run: "
+                         f"{s.error.splitlines()[0][:80]} |")
+            continue
+        n = len(s.results)
+        ok = s.successes
+        pool, mark = (ok, "") if ok else (s.results, "*")
+        reached = sum(r.reached for r in s.results)
+        coll = sum(r.collisions > 0 for r in s.results)
+        timeouts = sum(r.status == "timeout" for r in s.results)
+        stuck = sum(r.status == "stuck" for r in s.results)
+        t = np.mean([r.time_s for r in pool]) if pool else np.nan
+        L = np.mean([r.path_length for r in pool]) if pool else np.nan
+        ms = np.mean([r.mean_step_ms for r in s.results]) if n else np.nan
+        mc = min(r.min_clearance for r in s.results) if n else np.nan
+        lines.append(f"| {s.scenario} | {s.planner} | {n} | {100 * len(ok) / max(n, 1):.0f} | {reached} | {coll} | "
+                     f"{timeouts} | {stuck} | {t:.1f}{mark} | {L:.2f}{mark} | {ms:.2f} | {mc:.3f} |")
+    lines += ["", "success = goal reached with no collision; time and length are means over successful runs "
+                  "(* = no run succeeded: mean over all runs); min clearance is the worst over all runs."]
+    return "\n".join(lines)
+
+
+def path_switches(result: SimResult) -> int:
+    """Path switches (yuan2021 §4.2) of a run, as reported in its message."""
+    import re
+
+    m = re.search(r"(\d+) path switch", result.message)
+    return int(m.group(1)) if m else 0
+
+
+def available_planners(wanted=None) -> list[str]:
+    """Local planner names from ``optplan.local`` (all of them, or those of ``wanted`` that exist;
+    unknown ones are kept so their rows say why they did not run)."""
+    try:
+        from ..local import algorithm_names
+
+        names = list(algorithm_names())
+    except ImportError:
+        names = []
+    return list(wanted) if wanted else names
+
+
+def paper_local(title: str, scenarios, runs: int, planners=None, global_planner: str = "astar",
+                global_options: dict | None = None, **options) -> list[LocalRuns]:
+    """Run :func:`run_local` and print its table under ``title`` (the example scripts' helper)."""
+    names = available_planners(planners)
+    print(f"global planner: {global_planner} {global_options or ''}; seeds 0..{runs - 1}; "
+          f"local planners: {', '.join(names)}\n", flush=True)
+    sets = run_local(scenarios, names, runs, global_planner=global_planner, global_options=global_options, **options)
+    print(local_table(sets, title))
+    print(flush=True)
+    return sets
+
+
+def write_gif(scenario, local_planner: str, filename, global_planner: str = "astar", seed: int = 0,
+              global_options: dict | None = None) -> str:
+    """Simulate one run and write its animation; returns a one-line summary."""
+    from ..viz.animate import animate_run
+    from ..world.scenario import load_scenario
+    from .closed_loop import simulate
+
+    sc = load_scenario(scenario)
+    res = simulate(sc, global_planner=global_planner, local_planner=local_planner, seed=seed,
+                   global_options=global_options)
+    animate_run(sc, res, filename, seed=seed)
+    return f"wrote {filename}: {sc.name}, {global_planner} + {local_planner}, seed {seed}: {res.message}"
