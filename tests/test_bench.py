@@ -86,7 +86,8 @@ def test_shipped_specs_load_for_every_paper():
     ({"params": {"pop": 0}}, ParameterError, "pop must be a positive integer"),
     ({"params": {"seed": 3}}, ScenarioError, "set by the spec grid"),
     ({"algorithms": ["gwo", "gwo"], "reference": None}, ScenarioError, "labels repeat"),
-    ({"kind": "simulate", "maps": None, "scenarios": ["s.yaml"]}, ScenarioError, "needs 'local_planners'"),
+    ({"kind": "simulate", "maps": None, "scenarios": ["s.yaml"], "local_planners": ["dwa"]}, ScenarioError,
+     "scenario 's.yaml' is neither a file"),
 ])
 def test_bad_specs_say_what_is_wrong(change, error, needle):
     with pytest.raises(error) as exc:
@@ -100,6 +101,10 @@ def test_bad_spec_files(tmp_path):
     (tmp_path / "bad.yaml").write_text("kind: plan\nmaps: [chen2025_20\n")
     with pytest.raises(ScenarioError, match="not valid YAML"):
         load_spec(tmp_path / "bad.yaml")
+    (tmp_path / "sc.yaml").write_text("map: [[0, 0], [0, 0]]\n")
+    (tmp_path / "loop.yaml").write_text("kind: simulate\nscenarios: [sc.yaml]\nalgorithms: [astar]\n")
+    with pytest.raises(ScenarioError, match="needs 'local_planners'"):
+        load_spec(tmp_path / "loop.yaml")
     (tmp_path / "list.yaml").write_text("- a\n- b\n")
     with pytest.raises(ScenarioError, match="must be a YAML mapping"):
         load_spec(tmp_path / "list.yaml")

@@ -355,6 +355,14 @@ def _parse_targets(kind: str, raw: dict, base_dir: Path, where: str) -> list[Tar
                 raise ScenarioError(f"{where}: a scenario is a shipped scenario name or a YAML file path, got {it!r}")
             resolved = base_dir / it
             sc = str(resolved.resolve()) if resolved.is_file() else it
+            if not resolved.is_file():
+                try:
+                    from ..world.scenario import scenario_names
+                except ImportError:  # no scenario layer: the run itself reports it
+                    scenario_names = None
+                if scenario_names is not None and Path(it).stem not in scenario_names():
+                    raise ScenarioError(f"{where}: scenario {it!r} is neither a file (relative to the spec) nor a "
+                                        f"shipped scenario ({', '.join(scenario_names()) or 'none shipped'})")
             out.append(TargetSpec(Path(it).stem if it.endswith((".yaml", ".yml")) else it, {"scenario": sc}))
     else:
         from ..formulations.functions import NAMES
