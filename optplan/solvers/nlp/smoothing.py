@@ -217,6 +217,15 @@ def grid_nlp(grid, N: int, w_smooth: float, per_segment: int = 3, subdiv: int = 
     return cached
 
 
+def clear_solver_cache(*worlds) -> None:
+    """Forget built IPOPT instances (needed after changing ``IPOPT_OPTIONS``): the
+    circle-world ones, and the grid ones cached on each of ``worlds``."""
+    _CACHE.clear()
+    for w in worlds:
+        for k in [k for k in getattr(w, "_cache", {}) if isinstance(k, tuple) and k and k[0] == "grid"]:
+            del w._cache[k]
+
+
 # ------------------------------------------------------------------------ solve
 def nearest_circles(world, Q: np.ndarray, K: int) -> np.ndarray:
     """Indices ``(len(Q), K)`` of the ``K`` circles whose grown edge is nearest to each point."""

@@ -82,6 +82,7 @@ def smooth_path_qp(world, seed_path, clearance: float = 0.0, n_points: int | Non
         xmin, ymin, xmax, ymax = world.bounds
         max_step = 0.1 * min(xmax - xmin, ymax - ymin)
     reasons = []
+    solves = 0
     for attempt in range(2):
         shrink = attempt > 0
         opts = dict(k=k_halfplanes, max_cells=max(1, max_cells // 2) if shrink else max_cells,
@@ -95,6 +96,7 @@ def smooth_path_qp(world, seed_path, clearance: float = 0.0, n_points: int | Non
             prog = corridor_program(corridor.n_points, corridor.k_slots, w_smooth, backend)
             sol = prog.solve(corridor) if backend == "cvxpy" else prog.solve(corridor, y0=y)
             iters += sol.iterations
+            solves += 1
             if not sol.ok:
                 note = f"round {rnd + 1}: QP status {sol.status}"
                 break
@@ -111,6 +113,6 @@ def smooth_path_qp(world, seed_path, clearance: float = 0.0, n_points: int | Non
             msg = "" if attempt == 0 else "succeeded on retry"
             if note:
                 msg = (msg + "; " if msg else "") + f"kept the last valid round ({note})"
-            return SmoothResult(best, True, msg, time.perf_counter() - t0, iters, best_J)
+            return SmoothResult(best, True, msg, time.perf_counter() - t0, iters, best_J, solves)
         reasons.append(f"attempt {attempt + 1}: {note}")
-    return SmoothResult(P, False, "; ".join(reasons), time.perf_counter() - t0, 0, objective_value(P, w_smooth))
+    return SmoothResult(P, False, "; ".join(reasons), time.perf_counter() - t0, 0, objective_value(P, w_smooth), solves)
