@@ -10,11 +10,13 @@ points and its length. When the current path fails,
    points around it, which inherit its connections with paths re-planned around the
    obstacle;
 3. Dijkstra from the virtual point nearest the robot gives the shortest chain to the
-   goal, and the chain of stored paths becomes the new global path.
+   goal, and the chain of stored paths becomes the new global path (here: the best of
+   the few nearest points, counting the way to reach it, see :meth:`route`).
 
 The paper places its 8 virtual points by hand in a room map (its Figure 2). Here they
 are chosen automatically and deterministically: farthest-point sampling over the free
-cell centres (discs: free lattice points) that keep ``2 x clearance`` from obstacles,
+cell centres (discs: free lattice points) that keep one cell (at least ``2 x clearance``)
+from obstacles and the border,
 seeded with start and goal; each point is connected to its ``k`` nearest neighbours by
 the known map's shortest path (A* on grids, the tangent graph on circle worlds) with
 the robot radius as clearance.
@@ -63,7 +65,10 @@ def _candidate_points(world, clearance: float) -> np.ndarray:
         step = max((xmax - xmin) / 40, (ymax - ymin) / 40)
         X, Y = np.meshgrid(np.arange(xmin + step / 2, xmax, step), np.arange(ymin + step / 2, ymax, step))
         pts = np.stack([X.ravel(), Y.ravel()], axis=1)
-    return pts[np.asarray(world.clearance(pts)) >= 2 * clearance]
+    # prefer open space (a free cell all round), as the paper's hand-placed points are
+    clear = np.asarray(world.clearance(pts))
+    roomy = pts[clear >= max(2 * clearance, getattr(world, "resolution", 0.5))]
+    return roomy if len(roomy) >= 16 else pts[clear >= 2 * clearance]
 
 
 class VirtualPointGraph:
@@ -137,10 +142,14 @@ class VirtualPointGraph:
                         break
 
     # --------------------------------------------------------------------- routing
-    def route(self, world, position) -> np.ndarray | None:
-        """Shortest chain of stored paths from the virtual point nearest ``position`` (that
-        ``position`` can be connected to) to the goal, as one path starting at
-        ``position``; ``None`` when the goal cannot be reached through the graph."""
+    def route(self, world, position, candidates: int = 4) -> np.ndarray | None:
+        """Shortest chain of stored paths from a virtual point near ``position`` to the goal,
+        as one path starting at ``position``; ``None`` when the graph has no route.
+
+        yuan2021 starts Dijkstra at the virtual point nearest the robot. That point can lie
+        behind the robot, so here the ``candidates`` nearest points that ``position`` connects
+        to are all tried and the one with the shortest total (lead-in + chain) is kept.
+        """
         n = len(self.nodes)
         if not self.edges:
             return None
@@ -149,23 +158,29 @@ class VirtualPointGraph:
         I = np.array([k[0] for k in keys])
         J = np.array([k[1] for k in keys])
         G = coo_matrix((np.r_[w, w], (np.r_[I, J], np.r_[J, I])), shape=(n, n)).tocsr()
+        # distances to the goal (node 1) from every node: one Dijkstra on the undirected graph
+        dist, pred = dijkstra(G, indices=1, return_predecessors=True)
         P = np.array(self.nodes)
         order = [int(j) for j in np.argsort(np.hypot(*(P - np.asarray(position)).T)) if self.alive[j]]
-        for s in order[:4]:
+        best = None
+        for s in order[:candidates]:
+            if not np.isfinite(dist[s]):
+                continue
             lead = _connect(world, np.asarray(position, float), self.nodes[s], self.clearance)
             if lead is None:
                 continue
-            dist, pred = dijkstra(G, indices=s, return_predecessors=True)
-            if not np.isfinite(dist[1]):
-                continue
-            chain = [1]
-            while chain[-1] != s:
-                chain.append(int(pred[chain[-1]]))
-            chain.reverse()
-            pieces = [lead]
-            for a, b in zip(chain[:-1], chain[1:]):
-                E = self.edges[(min(a, b), max(a, b))]
-                pieces.append((E if a < b else E[::-1])[1:])
-            self.last_chain = chain
-            return np.vstack(pieces)
-        return None
+            total = _path_length(lead) + dist[s]
+            if best is None or total < best[0]:
+                best = (total, s, lead)
+        if best is None:
+            return None
+        _, s, lead = best
+        chain = [s]
+        while chain[-1] != 1:
+            chain.append(int(pred[chain[-1]]))
+        pieces = [lead]
+        for a, b in zip(chain[:-1], chain[1:]):
+            E = self.edges[(min(a, b), max(a, b))]
+            pieces.append((E if a < b else E[::-1])[1:])
+        self.last_chain = chain
+        return np.vstack(pieces)
