@@ -87,3 +87,39 @@ def test_presets_cite_sources():
         assert p.source
     with pytest.raises(op.UnknownAlgorithmError):
         get_preset("nope")
+
+
+@pytest.mark.parametrize("preset", ["li2023", "yuan2021-smooth", "chen2025"])
+@pytest.mark.parametrize("constraint", ["penalty", "feasibility"])
+def test_tabulated_column_scores_equal_decoded_path_scores(grid, preset, constraint):
+    """Per-segment tables (length, collisions, headings) give the same objective as the
+    shared terms on decoded paths, turn terms included."""
+    enc = ColumnNodes(grid, np.array([0.5, 0.5]), np.array([19.5, 19.5]))
+    X = np.random.default_rng(5).uniform(0, 20, (80, enc.dim))
+    prob = PathProblem(enc, preset, constraint=constraint, clearance=0.2)
+    f, v = prob.evaluate(X)
+    paths = enc.decode(X)
+    expected = prob.cost_terms(paths)
+    coll = terms.collisions(grid, paths, 0.2)
+    pen = v - coll                       # violation = collision count + penetration
+    assert np.all(pen >= -1e-12)
+    if constraint == "penalty":
+        expected = expected + prob._collision_penalty * coll + prob.preset.penetration_penalty * pen
+    np.testing.assert_allclose(f, expected, rtol=1e-12, atol=1e-9)
+
+
+def test_column_dynamic_programme_finds_the_shortest_expressible_path():
+    """optimal_rows equals brute force over every row choice on a small map."""
+    import itertools
+
+    g = op.GridMap.from_rows([[0, 0, 0, 0, 0, 0], [0, 1, 1, 0, 1, 0], [0, 0, 0, 0, 1, 0],
+                              [0, 1, 0, 0, 0, 0], [0, 0, 0, 1, 0, 0]])
+    enc = ColumnNodes(g, np.array([0.5, 0.5]), np.array([5.5, 4.5]))
+    cost, rows = enc.optimal_rows()
+    choices = np.array(list(itertools.product(range(g.height), repeat=enc.dim))) + 0.5
+    paths = enc.decode(choices)
+    ok = np.array([bool(op.validate_path(g, p)) for p in paths])
+    L = terms.length(paths)
+    assert cost == pytest.approx(L[ok].min(), rel=1e-12)
+    assert op.validate_path(g, enc.waypoints(rows + 0.5))
+    assert terms.length(enc.decode(rows[None] + 0.5))[0] == pytest.approx(cost, rel=1e-12)

@@ -174,3 +174,15 @@ def test_q_learning_tuning_is_reproducible_and_stays_on_the_grid():
     b = tune_lambdas(steps=6, seed=1, runs=1, iters=15)
     assert a[:2] == b[:2] and 1 <= a[0] <= 10 and 1 <= a[1] <= 10
     assert a[2][a[:2]] == min(a[2].values())  # the returned state is the best scored
+
+
+def test_sparrows_are_evaluated_once_per_iteration():
+    """hou2024 §2.2.5: producers, scroungers and scouts move, then the flock is evaluated
+    once; MISSA adds its producers' elite opposition and one Cauchy-t candidate."""
+    F = get_function("F9", shifted=True, dim=6)
+    pop, iters = 20, 7
+    ssa = op.optimize(F, F.bounds, algorithm="ssa", pop=pop, iters=iters, seed=0)
+    missa = op.optimize(F, F.bounds, algorithm="missa", pop=pop, iters=iters, seed=0)
+    producers = round(0.3 * pop)
+    assert ssa.nfev == pop * (iters + 1)
+    assert missa.nfev == pop + iters * (producers + pop + 1)

@@ -7,7 +7,9 @@ import pytest
 import optplan as op
 from optplan.world.papermaps import paper_map
 
-GLOBAL = [a for a in op.algorithms() if a not in ("astar", "dijkstra", "visibility")]
+from optplan.solvers.paths import algorithm_names as global_planners
+
+GLOBAL = global_planners()  # swarm, ACO and GA path planners (op.algorithms() also lists local planners)
 
 
 @pytest.fixture(scope="module")
@@ -51,3 +53,13 @@ def test_unknown_planner_and_bad_refine():
         op.plan(world, s, g, algorithm="nope")
     with pytest.raises(op.ParameterError):
         op.plan(world, s, g, algorithm="astar", refine="magic")
+
+
+def test_yang2023_planners_plan_splines_on_grid_maps():
+    """yang2023 always plans a cubic spline through free points (eq 1-4), also on its
+    25x25 fusion map; other planners keep one node per column."""
+    world, s, g = paper_map("yang2023_fusion25")
+    spline = op.plan(world, s, g, algorithm="ipso", seed=0, pop=20, iters=30)
+    nodes = op.plan(world, s, g, algorithm="ipso", seed=0, pop=20, iters=30, encoding="columns")
+    assert len(spline.path) > world.width + 1 >= len(nodes.path)   # densely sampled curve vs grid nodes
+    assert spline.feasible == bool(op.validate_path(world, spline.path))

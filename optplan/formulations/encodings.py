@@ -273,6 +273,42 @@ class ColumnNodes(PathEncoding):
         cache[key] = (first & alive, pruned, last)  # fixed per map: GA operators reuse it every generation
         return cache[key]
 
+    def optimal_rows(self, segment_cost: np.ndarray | None = None, clearance: float = 0.0) -> tuple[float, np.ndarray]:
+        """Exact minimum of a per-segment cost over every collision-free column-node path.
+
+        A dynamic programme over the columns (Viterbi): the best cost of reaching each
+        row of column ``j + 1`` is the minimum over the rows of column ``j`` plus the
+        segment between them. ``segment_cost`` is in the flat layout (default
+        :meth:`segment_lengths`, metres). This is the best any solver of this encoding
+        can return before post-processing; terms over segment pairs (turns) are not
+        per-segment and are not covered. Returns ``(cost, rows)`` with integer rows ``(d,)``.
+
+        Raises InfeasibleQueryError when no collision-free column-node path exists.
+        """
+        from ..errors import InfeasibleQueryError
+
+        H, d = self.world.height, self.dim
+        if d == 0:
+            raise ParameterError("optimal_rows needs at least one column between start and goal")
+        cost = self.segment_lengths() if segment_cost is None else np.asarray(segment_cost, dtype=float)
+        first, inner, last = self.feasible_transitions(clearance)
+        best = np.where(first, cost[:H], np.inf)              # best cost to each row of column 0
+        inner_cost = cost[H:H + (d - 1) * H * H].reshape(max(d - 1, 0), H, H)
+        back = np.empty((max(d - 1, 0), H), dtype=np.int64)
+        for j in range(d - 1):
+            total = best[:, None] + np.where(inner[j], inner_cost[j], np.inf)
+            back[j] = total.argmin(axis=0)
+            best = total.min(axis=0)
+        best = best + np.where(last, cost[-H:], np.inf)
+        r = int(best.argmin())
+        if not np.isfinite(best[r]):
+            raise InfeasibleQueryError("no collision-free path with one node per column exists between start and goal")
+        rows = np.empty(d, dtype=np.int64)
+        rows[-1] = r
+        for j in range(d - 2, -1, -1):
+            rows[j] = back[j, rows[j + 1]]
+        return float(best[r]), rows
+
     def sample_feasible(self, n: int, rng: np.random.Generator, clearance: float = 0.0,
                         spread: float = 2.0) -> np.ndarray:
         """``n`` random collision-free individuals (rows + 0.5).
