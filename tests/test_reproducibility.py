@@ -45,11 +45,8 @@ for refine in ("casadi", "qp"):
         r = op.plan(world, s, g, algorithm=algorithm, seed=3, refine=refine)
         assert r.refined, (refine, label, r.message)  # audit the refinement itself, not a fallback
         out[f"refine-{refine}/{label}"] = digest(r.path, [r.length])
-try:
-    from optplan.local import algorithm_names as local_names
-    scenario = op.load_scenario("li2023_exp1")
-except Exception:  # the local layer is audited once it exists
-    local_names, scenario = (lambda: []), None
+from optplan.local import algorithm_names as local_names
+scenario = op.load_scenario("li2023_exp2_2")  # two moving obstacles
 for name in local_names():
     sim = op.simulate(scenario, global_planner="astar", local_planner=name, seed=3, time_limit=8.0)
     out[f"local-{name}"] = digest(sim.trajectory, [sim.collisions, sim.steps])
@@ -75,4 +72,5 @@ def test_every_planner_is_bit_identical_across_processes():
     global_names = [n for n in op.algorithms() if not n.endswith("dwa")]
     assert all(f"{n}/grid" in first for n in global_names)
     assert {"refine-casadi/grid", "refine-qp/circles"} <= first.keys()
+    assert {f"local-{n}" for n in ("dwa", "missa-dwa", "idwa", "ba-dwa", "iga-dwa", "qp-dwa")} <= first.keys()
 
