@@ -155,7 +155,7 @@ def run_reproduce(args) -> int:
     names = shipped_specs(args.paper)
     if not names:
         raise ParameterError(f"no shipped specs for {args.paper} in optplan/data/specs")
-    specs = [load_spec(n, quick=args.quick, runs=args.runs) for n in names]
+    specs = sorted((load_spec(n, quick=args.quick, runs=args.runs) for n in names), key=lambda s: (s.order, s.name))
     parts = sorted({s.part for s in specs if s.part})
     if args.part is not None:
         if args.part not in parts:

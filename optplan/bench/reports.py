@@ -224,6 +224,83 @@ def closed_loop(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path |
     return "\n".join(out + _notes(res) + _path_overlays(res, plots_dir)).rstrip("\n") + "\n"
 
 
+def local_runs(res: ExperimentResults) -> list:
+    """``optplan.sim.experiments.LocalRuns`` per scenario and local planner, rebuilt from the database
+    (trajectories left out), for the example scripts' closed-loop tables."""
+    from ..results import SimResult
+    from ..sim.experiments import LocalRuns
+
+    out = []
+    for t in res.spec.targets:
+        for (label, refine, local), recs in res.groups(t.name).items():
+            lr = LocalRuns(t.name, local if len(res.spec.algorithms) == 1 else f"{label}+{local}")
+            for r in recs:
+                row = res.rows.get(r.key)
+                if row is None:
+                    continue
+                if row["status"] != "ok":
+                    lr.error = lr.error or row["error"] or "failed"
+                    continue
+                lr.results.append(SimResult(
+                    reached=bool(row["reached"]), collisions=int(row["collisions"] or 0), time_s=_f(row["time_s"]),
+                    path_length=_f(row["path_length"]), min_clearance=_f(row["min_clearance"]),
+                    max_abs_accel=_f(row["max_abs_accel"]), max_abs_ang_accel=_f(row["max_abs_ang_accel"]),
+                    steps=int(row["steps"] or 0), mean_step_ms=_f(row["mean_step_ms"]), trajectory=np.zeros((0, 6)),
+                    status=row.get("result_status") or "", message=row.get("message") or "",
+                    global_planner=r.algorithm, local_planner=local or "", refine=refine, seed=r.seed,
+                    replans=int(row.get("replans") or 0), max_abs_jerk=_f(row.get("max_abs_jerk"))))
+            out.append(lr)
+    return out
+
+
+def _f(v) -> float:
+    return float("nan") if v is None else float(v)
+
+
+def local_tables(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path | None = None) -> str:
+    """The closed-loop table of the example scripts' ``--part local`` (``optplan.sim.experiments``):
+    success, reached, collisions, timeouts, stuck runs, time, path length, step time, clearance."""
+    from ..sim.experiments import local_table
+
+    spec = res.spec
+    a = spec.algorithms[0]
+    head = (f"global planner: {a.name} {a.params.get('global_options') or ''}; seeds {spec.seeds[0]}.."
+            f"{spec.seeds[-1]}; local planners: {', '.join(str(p) for p in spec.local_planners)}\n")
+    return head + "\n" + local_table(local_runs(res), spec.formatted_title()) + "\n" + _tail(res, plots_dir)
+
+
+def yuan2021_local(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path | None = None) -> str:
+    """yuan2021 §5.2-5.3: the closed-loop table plus path switches and re-plans per local planner."""
+    from ..sim.experiments import path_switches
+
+    table = Table(["local planner", "runs", "mean path switches", "mean re-plans (incl. switches)"])
+    for s in local_runs(res):
+        if s.results:
+            sw = [path_switches(r) for r in s.results]
+            table.rows.append([s.planner, str(len(s.results)), f"{sum(sw) / len(s.results):.2f}",
+                               f"{sum(r.replans for r in s.results) / len(s.results):.2f}"])
+    return local_tables(res, fmt, plots_dir) + "\n" + table.render(fmt) + "\n"
+
+
+def li2023_local(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path | None = None) -> str:
+    """li2023 Experiment II: the closed-loop table plus the Figure 17 analog (mean path length of the
+    successful runs against the number of moving obstacles, scenario names ``..._<movers>``)."""
+    sets = local_runs(res)
+    scenarios = [t.name for t in res.spec.targets]
+    movers = [n.rsplit("_", 1)[-1] for n in scenarios]
+    table = Table(["local planner", *(f"{m} movers" for m in movers)])
+    for p in dict.fromkeys(s.planner for s in sets):
+        cells = []
+        for sc in scenarios:
+            s = next(x for x in sets if x.planner == p and x.scenario == sc)
+            ok = s.successes
+            cells.append(f"{np.mean([r.path_length for r in ok]):.2f} ({len(ok)}/{len(s.results)})" if ok
+                         else f"- (0/{len(s.results)})")
+        table.rows.append([p, *cells])
+    return (local_tables(res, fmt, plots_dir) + "\n## li2023 Figure 17 analog: mean path length [m] of successful "
+            "runs by number of moving obstacles\n\n" + table.render(fmt) + "\n\n(successful runs / runs in brackets)\n")
+
+
 def summary_layout(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path | None = None) -> str:
     """The generic summary (:func:`optplan.bench.summary.format_summary`)."""
     notes = [res.spec.notes.strip()] if res.spec.notes.strip() else []
@@ -239,6 +316,9 @@ LAYOUTS: dict[str, Callable[..., str]] = {
     "yuan2021-turns": yuan2021_turns,
     "li2023-global": li2023_global,
     "closed-loop": closed_loop,
+    "local": local_tables,
+    "yuan2021-local": yuan2021_local,
+    "li2023-local": li2023_local,
 }
 
 

@@ -71,16 +71,41 @@ def _run_optimize(rec) -> tuple[Any, dict]:
     return res, {"f_error": float(res.f - F.f_opt), "f_opt": float(F.f_opt)}
 
 
+@functools.lru_cache(maxsize=16)
+def _scenario_target(target_json: str):
+    from ..world.scenario import load_scenario
+
+    return load_scenario(json.loads(target_json)["scenario"])
+
+
+@functools.lru_cache(maxsize=64)
+def _shared_global_plan(target_json: str, algorithm: str, refine: str | None, seed: int, options_json: str):
+    """The global plan of one (scenario, planner, refine, seed), made once per worker process and
+    shared by the runs that differ only in the local planner (as ``optplan.sim.experiments`` does);
+    planning is seeded, so sharing changes no number, it only saves the metaheuristic's time."""
+    from ..sim.experiments import _plan_once
+
+    return _plan_once(_scenario_target(target_json), algorithm, refine, seed, json.loads(options_json))
+
+
 def _run_simulate(rec) -> tuple[Any, dict]:
     try:
         from ..sim import simulate
-        from ..world.scenario import load_scenario
     except ImportError as exc:
-        raise NotImplementedError(f"closed-loop runs need op.simulate and op.load_scenario, which this version of "
-                                  f"optplan does not have ({exc})") from None
-    scenario = load_scenario(rec.target_spec["scenario"])
+        raise NotImplementedError(f"closed-loop runs need op.simulate, which this version of optplan does not "
+                                  f"have ({exc})") from None
+    target_json = json.dumps(rec.target_spec, sort_keys=True)
+    scenario = _scenario_target(target_json)
+    params = dict(rec.params)
+    try:
+        plan = _shared_global_plan(target_json, rec.algorithm, rec.refine, rec.seed,
+                                   json.dumps(params.get("global_options") or {}, sort_keys=True))
+    except ImportError:  # no shared-plan helper in this version: simulate plans by itself
+        plan = None
+    if plan is not None and "global_plan" not in params:
+        params["global_plan"] = plan
     res = simulate(scenario, global_planner=rec.algorithm, local_planner=rec.local_planner, refine=rec.refine,
-                   seed=rec.seed, **rec.params)
+                   seed=rec.seed, **params)
     extra = {"success": bool(res.reached and res.collisions == 0)}
     return res, extra
 
@@ -120,6 +145,8 @@ def execute_run(record: Mapping[str, Any]) -> dict[str, Any]:
         d = result.to_dict()
         metrics = {k: v for k, v in d.items() if v is None or isinstance(v, (bool, int, float, str))}
         metrics.update(extra)
+        if "status" in metrics:  # the result's own status (timeout, max_evals, ...); 'status' is the run's
+            metrics["result_status"] = metrics.pop("status")
         traces = {k: v for k, v in d.items() if k in TRACE_COLUMNS and v is not None}
         return {"key": key, "status": "ok", "error": None, "metrics": metrics, "traces": traces,
                 "wall_s": time.perf_counter() - t0, "worker": worker}

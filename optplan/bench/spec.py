@@ -43,9 +43,9 @@ REFINE_NAMES = ("none", "casadi", "qp")
 
 TOP_KEYS = {"name", "title", "paper", "part", "report", "kind", "maps", "scenarios", "functions", "shifted", "dim",
             "algorithms", "params", "refine", "local_planners", "runs", "seed", "seeds", "reference", "metric",
-            "alpha", "quick", "notes"}
+            "alpha", "quick", "notes", "order"}
 QUICK_KEYS = {"runs", "params", "maps", "scenarios", "functions", "algorithms", "refine", "local_planners", "seeds",
-              "title"}
+              "title", "reference"}
 ALGO_KEYS = {"name", "label", "params", "runs"}
 MAP_KEYS = {"name", "map", "start", "goal"}
 
@@ -143,6 +143,7 @@ class ExperimentSpec:
     notes: str = ""
     params: Mapping[str, Any] = field(default_factory=dict)
     source: Path | None = None
+    order: int = 0
 
     @property
     def runs(self) -> int:
@@ -161,14 +162,15 @@ class ExperimentSpec:
             return self.title
 
     def expand(self) -> list[RunRecord]:
-        """Every run of the grid, in a fixed order (target, algorithm, refine, local planner, seed)."""
+        """Every run of the grid, in a fixed order: target, algorithm, refine, then seed and local
+        planner (local planner innermost, so that runs sharing a global plan run close together)."""
         out = []
         for t in self.targets:
             for a in self.algorithms:
                 seeds = self.seeds if a.runs is None else [self.seeds[0] + k for k in range(a.runs)]
                 for r in self.refine:
-                    for lp in self.local_planners:
-                        for s in seeds:
+                    for s in seeds:
+                        for lp in self.local_planners:
                             out.append(RunRecord(self.name, self.kind, t.name, dict(t.spec), a.name, a.label, r, lp,
                                                  int(s), dict(a.params)))
         return out
@@ -317,7 +319,7 @@ def _parse(raw: dict, path: Path | None, where: str) -> ExperimentSpec:
         name=name, kind=kind, targets=targets, algorithms=algos, refine=refine, local_planners=local, seeds=seeds,
         reference=reference, metric=metric, alpha=float(alpha), title=str(raw.get("title") or ""),
         paper=raw.get("paper"), part=raw.get("part"), report=str(raw.get("report") or "summary"),
-        notes=str(raw.get("notes") or ""), params=dict(shared), source=path)
+        notes=str(raw.get("notes") or ""), params=dict(shared), source=path, order=_order(raw.get("order", 0), where))
 
 
 def _parse_targets(kind: str, raw: dict, base_dir: Path, where: str) -> list[TargetSpec]:
@@ -463,6 +465,12 @@ def _check_local(lp, where: str) -> str:
     if names and lp.lower() not in names:
         raise UnknownAlgorithmError(f"{where}: unknown local planner {lp!r}; known: {', '.join(names)}")
     return lp.lower()
+
+
+def _order(v, where: str) -> int:
+    if not isinstance(v, int) or isinstance(v, bool):
+        raise ScenarioError(f"{where}: order (position among a paper's specs) must be an integer, got {v!r}")
+    return v
 
 
 def _parse_seeds(raw: dict, where: str) -> list[int]:
