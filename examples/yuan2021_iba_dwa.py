@@ -1,6 +1,7 @@
 """Reproduce yuan2021 (IBA-DWA) with optplan.
 
---part global: Tables 1-2 analog on the 25x25 stand-in map: BA vs IBA, 20 runs.
+--part global: Tables 1-2 analog on the 25x25 stand-in map: BA vs IBA, 20 runs,
+50 bats and 100 iterations (§5.1; --iters changes it).
 Table 1 is the shortest collision-free path (mu = 0 in eq 13, preset
 ``yuan2021``); Table 2 adds the turning cost (mu = 1, preset ``yuan2021-smooth``)
 and reports turns. Each length is shown next to the exact any-angle optimum.
@@ -35,7 +36,7 @@ def main(argv=None) -> int:
     if args.part == "local":
         return part_local(args)
     runs = 3 if args.quick else args.runs
-    iters = 60 if args.quick else 300
+    iters = 60 if args.quick else (args.iters or 100)  # §5.1: population 50, 100 iterations
     paper_global("yuan2021 Table 1 analog: shortest collision-free path (mu = 0)", ["yuan2021_25"], ["ba", "iba"],
                  runs, reference="ba", pop=50, iters=iters, preset="yuan2021")
     sets = paper_global("yuan2021 Table 2 analog: with the turning cost (mu = 1)", ["yuan2021_25"], ["ba", "iba"],
