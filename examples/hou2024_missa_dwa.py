@@ -47,7 +47,7 @@ def part_local(args) -> int:
 
     if args.quick:
         paper_local("hou2024 Table 4 analog (quick: 1 random obstacle, A* global path)", ["hou2024_table4_1"], 1,
-                    planners=["dwa", "missa-dwa"])
+                    planners=["dwa", "missa-dwa"], time_limit=40)
     else:
         runs = args.runs if args.runs != 50 else 20
         gopts = {"pop": 60, "iters": args.iters or 300}

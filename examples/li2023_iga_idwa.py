@@ -97,7 +97,7 @@ def part_local(args) -> int:
 
     if args.quick:
         paper_local("li2023 Experiment I analog (quick): traditional DWA vs IGA-DWA, A* global path", ["li2023_exp1"], 1,
-                    planners=["dwa", "iga-dwa"])
+                    planners=["dwa", "iga-dwa"], time_limit=40)
     else:
         gopts = {"pop": 50, "iters": args.iters or 100}
         paper_local("li2023 Experiment I analog: static 11x11 map (IGA global path)", ["li2023_exp1"], args.runs,
@@ -119,7 +119,7 @@ def part_local(args) -> int:
             print(f"| {p} | " + " | ".join(cells) + " |")
         print("\n(successful runs / runs in brackets)")
     if args.gif:
-        print(write_gif("li2023_exp2_3", "iga-dwa", args.gif))
+        print(write_gif("li2023_exp2_3", "iga-dwa", args.gif, **({"time_limit": 20} if args.quick else {})))
     return 0
 
 

@@ -53,7 +53,7 @@ def part_local(args) -> int:
 
     if args.quick:
         sets = paper_local("yuan2021 §5.3 analog (quick): path switch, A* global path", ["yuan2021_path_switch"], 1,
-                           planners=["dwa", "ba-dwa"])
+                           planners=["dwa", "ba-dwa"], time_limit=60)
     else:
         gopts = {"pop": 50, "iters": args.iters or 100}
         paper_local("yuan2021 §5.2 analog: newly added obstacles (IBA global path)", ["yuan2021_added_obstacles"],

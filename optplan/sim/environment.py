@@ -8,7 +8,9 @@
   ``sensor_range`` of the robot centre; moving obstacles are reported (position and
   velocity) while they are within that range. There is no occlusion.
 * The local planner's static distance is the known map's distance field
-  (``grid_distance_field`` on grids, the analytic disc distance on circle worlds,
+  (``grid_distance_field`` with 8 samples per cell on grids; it may overestimate the
+  distance by up to ~0.02 cells near obstacle corners, so planners need a small
+  margin; the analytic disc distance on circle worlds,
   where the planning safety margin is *not* included) combined with the exact
   distance to what has been sensed so far.
 * Collisions are decided per period by the exact rule on the segment the robot
@@ -23,6 +25,9 @@ import numpy as np
 from ..world.circles import CircleWorld
 from ..world.fields import grid_distance_field
 from ..world.scenario import Scenario, circle_distance
+
+
+FIELD_SUBDIV = 8
 
 
 def box_distance(points: np.ndarray, lo: np.ndarray, size: float, chunk: int = 64) -> np.ndarray:
@@ -81,7 +86,9 @@ class SimEnvironment:
             self.res = grid.resolution
             self.cell_lo = grid.to_world(scenario.unknown_cells.astype(float)) if len(scenario.unknown_cells) \
                 else np.zeros((0, 2))
-            self._known_distance = grid_distance_field(grid)
+            # 8 samples per cell: the bilinear field overestimates the distance near convex
+            # corners by at most ~0.02 cells (0.04 with the default 4); built once per map
+            self._known_distance = grid_distance_field(grid, FIELD_SUBDIV)
             iy, ix = np.nonzero(grid.occ)
             self._known_points = grid.cell_center(np.stack([ix, iy], axis=1)) if len(ix) else np.zeros((0, 2))
         else:

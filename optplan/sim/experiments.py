@@ -147,14 +147,15 @@ def paper_local(title: str, scenarios, runs: int, planners=None, global_planner:
 
 
 def write_gif(scenario, local_planner: str, filename, global_planner: str = "astar", seed: int = 0,
-              global_options: dict | None = None) -> str:
-    """Simulate one run and write its animation; returns a one-line summary."""
+              global_options: dict | None = None, **options) -> str:
+    """Simulate one run (``options`` go to ``op.simulate``) and write its animation; returns
+    a one-line summary."""
     from ..viz.animate import animate_run
     from ..world.scenario import load_scenario
     from .closed_loop import simulate
 
     sc = load_scenario(scenario)
     res = simulate(sc, global_planner=global_planner, local_planner=local_planner, seed=seed,
-                   global_options=global_options)
+                   global_options=global_options, **options)
     animate_run(sc, res, filename, seed=seed)
     return f"wrote {filename}: {sc.name}, {global_planner} + {local_planner}, seed {seed}: {res.message}"
