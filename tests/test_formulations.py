@@ -123,3 +123,16 @@ def test_column_dynamic_programme_finds_the_shortest_expressible_path():
     assert cost == pytest.approx(L[ok].min(), rel=1e-12)
     assert op.validate_path(g, enc.waypoints(rows + 0.5))
     assert terms.length(enc.decode(rows[None] + 0.5))[0] == pytest.approx(cost, rel=1e-12)
+
+
+def test_segment_tables_are_shared_by_map_content_only():
+    """A reloaded copy of a map reuses its tables; another map of the same size does not."""
+    s, g = np.array([0.5, 0.5]), np.array([29.5, 29.5])
+    a = ColumnNodes(op.load_map("li2023_30"), s, g).segment_tables(0.0)
+    again = ColumnNodes(op.load_map("li2023_30"), s, g).segment_tables(0.0)
+    other_world = op.load_map("chen2025_30")
+    other = ColumnNodes(other_world, s, g).segment_tables(0.0)
+    assert again is a and other is not a
+    X = np.random.default_rng(0).uniform(0, 30, (100, 28))
+    enc = ColumnNodes(other_world, s, g)
+    np.testing.assert_array_equal(enc.lookup(other, X), terms.collisions(other_world, enc.decode(X)))

@@ -12,11 +12,30 @@ array operations over the population.
 """
 from __future__ import annotations
 
+import hashlib
+from collections import OrderedDict
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..errors import ParameterError
+
+
+# Segment tables by map content, kept across map objects in this process (a few maps'
+# worth: a 90x90 map's tables are about 10 MB). Penetration tables depend only on the
+# clearance and the encoding's samples per segment, both part of the key.
+_SHARED_TABLES: OrderedDict = OrderedDict()
+_SHARED_TABLES_MAX = 8
+
+
+def _map_fingerprint(grid) -> tuple:
+    """Content key of a grid map: occupancy digest, shape, resolution and origin."""
+    fp = grid._cache.get("fingerprint")
+    if fp is None:
+        digest = hashlib.sha1(np.ascontiguousarray(grid.occ, dtype=np.uint8).tobytes()).hexdigest()
+        fp = grid._cache["fingerprint"] = (digest, grid.occ.shape, float(grid.resolution),
+                                           tuple(float(o) for o in grid.origin))
+    return fp
 
 
 @dataclass
@@ -144,6 +163,12 @@ class ColumnNodes(PathEncoding):
                 and np.array_equal(cache[key]["columns"], self.columns) \
                 and np.array_equal(cache[key]["ends"], np.concatenate([self.start, self.goal])):
             return cache[key]
+        # the same map loaded again (another run, another task in a worker) reuses its tables
+        shared_key = (_map_fingerprint(self.world), key, self.penetration_samples, self.columns.tobytes(),
+                      np.concatenate([self.start, self.goal]).tobytes())
+        if shared_key in _SHARED_TABLES:
+            cache[key] = _SHARED_TABLES[shared_key]
+            return cache[key]
         grid, H, d = self.world, self.world.height, self.dim
         rows = np.arange(H) + 0.5
         col_x = self.columns + 0.5
@@ -178,6 +203,9 @@ class ColumnNodes(PathEncoding):
             c, p = evaluate(last, np.repeat(g_goal[None], H, 0))
             out["last"], out["last_pen"] = c, p
         cache[key] = out
+        _SHARED_TABLES[shared_key] = out
+        while len(_SHARED_TABLES) > _SHARED_TABLES_MAX:
+            _SHARED_TABLES.popitem(last=False)
         return out
 
     def lookup(self, tables: dict, X: np.ndarray, what: str = "") -> np.ndarray:
