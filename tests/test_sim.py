@@ -220,3 +220,29 @@ def test_cli_json_has_exactly_the_contract_keys(tmp_path, capsys, monkeypatch):
     assert out["reached"] is True and len(out["trajectory"]) == out["steps"] + 1
     assert len(out["trajectory"][0]) == 6
     assert gif.stat().st_size > 1000 and gif.read_bytes()[:3] == b"GIF"
+
+
+def test_omni_robot_slides_sideways_in_the_loop():
+    sc = open_room(robot={"model": "omni", "radius": 0.2, "vy_max": 0.5, "a_max": 10.0}, start=[2.5, 0.5, 90],
+                   time_limit=1.0)
+    res = op.simulate(sc, local_planner=Replay([Command(0.0, 0.0, vy=-0.5)] * 10), subgoals="goal")
+    # facing +y, a negative sideways speed moves the robot towards +x
+    assert np.allclose(res.trajectory[-1, 1:4], [3.0, 0.5, math.pi / 2])
+    assert res.max_abs_accel == pytest.approx(5.0)  # the sideways change counts as acceleration
+
+
+def test_circle_world_scenario_with_an_unknown_disc():
+    sc = load_scenario({"map": "yang2023_env1", "start": [0.6, 0.6, 0], "goal": [9.4, 9.4],
+                        "robot": dict(FAST), "unknown_obstacles": [{"circle": [4.5, 0.6, 0.3]}]})
+    env = SimEnvironment(sc)
+    centre = np.array([4.5, 0.6])
+    assert env.static_distance(centre) > 0.5 and not env.sense(np.array([0.6, 0.6]))
+    assert env.sense(np.array([1.3, 0.6]))
+    assert env.static_distance(centre) == pytest.approx(-0.3)
+    # straight through the unknown disc: the swept check counts it
+    res = op.simulate(sc, local_planner=Replay([Command(1.0, 0.0)] * 60), subgoals="goal", time_limit=6.0)
+    d = np.hypot(*(res.trajectory[:, 1:3] - centre).T)
+    assert res.collisions >= int((d < 0.5).sum()) - 1 > 0
+    # the obstacle-blind test double needs a roomy path: plan with twice the radius
+    ok = op.simulate(sc, local_planner=GoToSubgoal(sc.robot, sc.dt), global_options={"clearance": 0.4})
+    assert ok.reached and ok.collisions == 0 and ok.global_planner == "visibility"

@@ -101,7 +101,8 @@ class Navigator:
 
     # ------------------------------------------------------------------ global plan
     def plan_initial(self, given: PlanResult | None = None) -> PlanResult:
-        """Plan on the known map (robot radius as clearance, else zero clearance), or adopt
+        """Plan on the known map (the requested clearance, default the robot radius; if that
+        gives no valid path, the robot radius, then zero clearance), or adopt
         ``given`` (a PlanResult planned earlier for the same map, start and goal)."""
         if given is not None:
             self.plan_result = given
@@ -110,21 +111,26 @@ class Navigator:
             self._adopt(self._with_ends(given.path, self.start))
             return given
         opts = dict(self.global_options)
-        opts.setdefault("clearance", self.robot.radius)
-        try:
-            res = plan(self.world, self.start, self.goal, algorithm=self.global_planner, refine=self.refine,
-                       seed=self.seed, **opts)
-        except InfeasibleQueryError:
-            res = None
-        if res is None or not res.feasible:
-            if opts["clearance"] > 0:
-                self.messages.append(f"no valid global path with clearance {opts['clearance']:g} m; "
-                                     "planned with clearance 0")
-            opts["clearance"] = 0.0
-            res = plan(self.world, self.start, self.goal, algorithm=self.global_planner, refine=self.refine,
-                       seed=self.seed, **opts)
-            if not res.feasible:
-                self.messages.append(f"the global path is not valid ({res.message}); following it anyway")
+        wanted = float(opts.pop("clearance", self.robot.radius))
+        # the requested clearance, then the robot radius, then none: the first valid path wins
+        tries = [c for c in (wanted, self.robot.radius, 0.0) if c <= wanted]
+        tries = list(dict.fromkeys(tries))
+        res = None
+        for k, clearance in enumerate(tries):
+            last = k == len(tries) - 1
+            try:
+                res = plan(self.world, self.start, self.goal, algorithm=self.global_planner, refine=self.refine,
+                           seed=self.seed, clearance=clearance, **opts)
+            except InfeasibleQueryError:
+                if last:
+                    raise
+                continue
+            if res.feasible or last:
+                break
+        if tries.index(clearance) > 0:
+            self.messages.append(f"no valid global path with clearance {wanted:g} m; planned with {clearance:g} m")
+        if not res.feasible:
+            self.messages.append(f"the global path is not valid ({res.message}); following it anyway")
         self.plan_result = res
         self._adopt(self._with_ends(res.path, self.start))
         return res
