@@ -193,12 +193,13 @@ def test_summary_tables_have_gap_reference_and_tally():
 
 
 def test_plots_are_written(tmp_path):
-    from optplan.bench.plots import experiment_plots
+    from optplan.bench import experiment_plots, render_report, run_experiment
 
-    spec = load_spec({**SMALL, "algorithms": ["gwo", "msiar-gwo"]})
-    store = ResultStore()
-    run_records(spec.expand(), store, workers=1, progress=False)
-    files = experiment_plots(load_results(spec, store), tmp_path)
+    res = run_experiment({**SMALL, "algorithms": ["gwo", "msiar-gwo"]}, workers=1, progress=False)
+    assert len(res.rows) == 6 and res.missing == 0
+    tex = render_report(res, fmt="latex")
+    assert tex.startswith("% small") and r"\end{table}" in tex and "##" not in tex
+    files = experiment_plots(res, tmp_path)
     assert sorted(f.name for f in files) == ["small_chen2025_20_box.png", "small_chen2025_20_convergence.png",
                                              "small_chen2025_20_paths.png"]
     assert all(f.stat().st_size > 5000 for f in files)

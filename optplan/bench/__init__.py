@@ -1,1 +1,44 @@
-"""See DESIGN.md for what this layer holds."""
+"""Experiments at scale (DESIGN.md layer 7).
+
+* :mod:`~optplan.bench.spec` — YAML experiment specs, expanded into keyed, seeded runs;
+* :mod:`~optplan.bench.runner` — runs them in a local process pool or on Dask, storing each result;
+* :mod:`~optplan.bench.store` — the SQLite results database (one row per run, resume by key);
+* :mod:`~optplan.bench.summary`, :mod:`~optplan.bench.stats`, :mod:`~optplan.bench.tables` —
+  grouping, min/mean/max/std, Wilcoxon rank-sum with +/=/-, markdown and LaTeX tables;
+* :mod:`~optplan.bench.reports` — the papers' table layouts; :mod:`~optplan.bench.plots` — figures;
+* :mod:`~optplan.bench.global_runs` — the in-process loops of the example scripts;
+* :mod:`~optplan.bench.command` — ``optplan bench`` and ``optplan reproduce``.
+
+The names below are imported lazily so that ``import optplan.bench`` stays light.
+"""
+from __future__ import annotations
+
+import importlib
+from typing import Any
+
+_LAZY = {
+    "load_spec": "optplan.bench.spec",
+    "ExperimentSpec": "optplan.bench.spec",
+    "RunRecord": "optplan.bench.spec",
+    "run_records": "optplan.bench.runner",
+    "ResultStore": "optplan.bench.store",
+    "load_results": "optplan.bench.summary",
+    "render_report": "optplan.bench.reports",
+    "experiment_plots": "optplan.bench.plots",
+    "run_experiment": "optplan.bench.experiment",
+}
+
+__all__ = sorted(_LAZY)
+
+
+def __getattr__(name: str) -> Any:
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'optplan.bench' has no attribute {name!r}")
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return __all__

@@ -30,7 +30,8 @@ def _common_run_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--executor", default="local", metavar="EXEC",
                    help=f"where runs execute: {EXECUTORS_HELP} (default local: a process pool)")
     p.add_argument("--workers", type=int, default=None, metavar="N",
-                   help="worker processes for local/dask-local (default: CPU count; 1 runs in this process)")
+                   help="worker processes for local/dask-local (default: CPU count, 1 with --quick; 1 runs in "
+                        "this process)")
     p.add_argument("--runs", type=int, default=None, metavar="N", help="seeds per (target, algorithm), overriding "
                    "the spec")
     p.add_argument("--quick", action="store_true", help="apply the spec's quick overrides (few runs, short budgets)")
@@ -156,6 +157,8 @@ def run_reproduce(args) -> int:
     if not names:
         raise ParameterError(f"no shipped specs for {args.paper} in optplan/data/specs")
     specs = sorted((load_spec(n, quick=args.quick, runs=args.runs) for n in names), key=lambda s: (s.order, s.name))
+    if args.quick and args.workers is None and args.executor == "local":
+        args.workers = 1  # a quick grid takes seconds; starting worker processes would cost more than it saves
     parts = sorted({s.part for s in specs if s.part})
     if args.part is not None:
         if args.part not in parts:

@@ -330,4 +330,8 @@ def render_report(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path
     name = layout or res.spec.report
     if name not in LAYOUTS:
         raise ParameterError(f"unknown report layout {name!r}; known: {', '.join(LAYOUTS)}")
-    return LAYOUTS[name](res, fmt, plots_dir)
+    text = LAYOUTS[name](res, fmt, plots_dir)
+    if fmt == "latex":  # headings and notes become LaTeX comments around the table environments
+        text = "\n".join(("% " + line.lstrip("#").strip()) if line.startswith("#") else line
+                          for line in text.splitlines()) + "\n"
+    return text
