@@ -246,3 +246,26 @@ def test_circle_world_scenario_with_an_unknown_disc():
     # the obstacle-blind test double needs a roomy path: plan with twice the radius
     ok = op.simulate(sc, local_planner=GoToSubgoal(sc.robot, sc.dt), global_options={"clearance": 0.4})
     assert ok.reached and ok.collisions == 0 and ok.global_planner == "visibility"
+
+
+def test_a_non_finite_command_is_reported_not_simulated():
+    with pytest.raises(ParameterError, match="non-finite command"):
+        op.simulate(open_room(), local_planner=Replay([Command(float("nan"), 0.0)]), subgoals="goal")
+
+
+def test_stop_on_collision_and_actuator_limits():
+    rows = [[0] * 10 for _ in range(6)]
+    rows[5][4] = 1
+    sc = load_scenario({"map": rows, "start": [0.52, 0.5, 0], "goal": [9.5, 5.5], "robot": dict(FAST),
+                        "time_limit": 3.0})
+    res = op.simulate(sc, local_planner=Replay([Command(3.0, 0.0)] * 30), subgoals="goal", stop_on_collision=True)
+    assert res.status == "collision" and res.collisions == 1 and not res.reached
+    P = res.trajectory[:, 1:3]
+    hits = brute_static_hits(P, np.array([4.0, 0.0]), np.array([5.0, 1.0]), 0.2)
+    assert hits[-1] and not hits[:-1].any()  # it stopped on the first colliding period
+    # with actuator limits the 3 m/s request becomes a ramp at a_max up to v_max
+    lim = op.simulate(sc, local_planner=Replay([Command(3.0, 2.0)] * 5), subgoals="goal", actuator_limits=True,
+                      time_limit=0.5)
+    assert np.allclose(lim.trajectory[1:, 4], [0.1, 0.2, 0.3, 0.4, 0.5])
+    assert lim.max_abs_accel == pytest.approx(sc.robot.a_max)
+    assert lim.max_abs_ang_accel == pytest.approx(sc.robot.alpha_max)

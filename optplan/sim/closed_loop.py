@@ -169,10 +169,14 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
         t0 = time.perf_counter()
         cmd = planner.command(ctx)
         step_ms.append((time.perf_counter() - t0) * 1e3)
+        if not np.all(np.isfinite([cmd.v, cmd.w, cmd.vy])):
+            raise ParameterError(f"local planner {local_name!r} returned a non-finite command "
+                                 f"(v={cmd.v}, w={cmd.w}, vy={cmd.vy}) at t={t:.1f} s; this is a planner bug")
         if limits:
             v, w, vy = _apply_limits(cmd, state, robot, dt)
         else:
-            v, w, vy = float(cmd.v), float(cmd.w), float(cmd.vy) if robot.model == "omni" else 0.0
+            v, w = float(cmd.v), float(cmd.w)
+            vy = float(cmd.vy) if robot.model == "omni" else 0.0
         x1, y1, th1 = step_pose(robot.model, state.x, state.y, state.theta, v, w, dt, vy)
         new_pos = np.array([float(x1), float(y1)])
         t_next = (k + 1) * dt
