@@ -49,14 +49,13 @@ def velocity_obstacle_hits(position: np.ndarray, velocity: np.ndarray, obstacles
         Boolean ``(k,)``: True where the relative velocity lies in the collision cone.
     """
     ob = np.asarray(obstacles, dtype=float).reshape(-1, 5)
-    rel_p = ob[:, :2] - position                     # obstacle seen from the robot
-    rel_v = velocity - ob[:, 2:4]                    # robot's velocity relative to the obstacle
-    R = ob[:, 4] + robot_radius
-    vv = np.einsum("ij,ij->i", np.broadcast_to(rel_v, rel_p.shape), np.broadcast_to(rel_v, rel_p.shape))
-    t_star = np.where(vv > 0, np.einsum("ij,ij->i", rel_p, np.broadcast_to(rel_v, rel_p.shape)) / np.where(vv > 0, vv, 1), 0.0)
-    t_star = np.maximum(t_star, 0.0)
+    rel_p = ob[:, :2] - np.asarray(position, float)          # obstacle seen from the robot
+    rel_v = np.asarray(velocity, float) - ob[:, 2:4]         # robot's velocity relative to each obstacle
+    vv = np.einsum("ij,ij->i", rel_v, rel_v)
+    # time of closest approach along the ray (0 when not approaching)
+    t_star = np.maximum(np.einsum("ij,ij->i", rel_p, rel_v) / np.where(vv > 0, vv, 1.0), 0.0)
     closest = rel_p - t_star[:, None] * rel_v
-    return np.hypot(closest[:, 0], closest[:, 1]) < R
+    return np.hypot(closest[:, 0], closest[:, 1]) < ob[:, 4] + robot_radius
 
 
 class SubgoalStrategy:
@@ -133,8 +132,8 @@ class NavigationPoints(SubgoalStrategy):
         robot_radius: metres.
         spacing: distance ``ds`` between navigation points along the path, metres.
         lookahead_time: ``n`` covers the distance driven in this many seconds at the
-            current speed (the paper: "n depends on the velocity of the robot")...
-        min_lookahead: ...but never less than this many metres.
+            current speed (yang2023 §6 lets ``n`` grow with the robot's speed), ...
+        min_lookahead: ... but never less than this many metres.
         avoid_distance: a moving obstacle closer than this (centre distance minus both
             radii, metres) is checked with the velocity obstacle.
     """
@@ -172,7 +171,8 @@ class NavigationPoints(SubgoalStrategy):
             if np.any(near):
                 hits = velocity_obstacle_hits(position, velocity, dynamic[near], self.radius)
                 if np.any(hits):
-                    # k: reach past the obstacle's influence (avoidance distance plus its diameter)
+                    # yang2023 ties k to the avoidance distance and the obstacle size; here the
+                    # jump reaches past both: avoidance distance + obstacle diameter + robot radius
                     size = float(dynamic[near][hits, 4].max())
                     k = max(2, math.ceil((self.avoid_distance + 2 * size + self.radius) / (n * self.spacing)))
         self.last_k = k
