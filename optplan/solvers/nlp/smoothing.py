@@ -50,6 +50,8 @@ IPOPT_OPTIONS = {
     "tol": 1e-6,
     "max_iter": 300,
 }
+# grids: no segment may grow beyond this multiple of the seed's point spacing
+SEGMENT_STRETCH = 1.5
 # from a previous primal-dual solution: keep the point where it is (tiny bound pushes)
 # and start with a small barrier parameter instead of re-centring
 IPOPT_WARM_OPTIONS = {
@@ -121,9 +123,10 @@ def resample(path: np.ndarray, n: int) -> np.ndarray:
 
 
 def default_points(path: np.ndarray, spacing: float) -> int:
-    """Number of points for a path: about one per ``spacing`` metres, 20 to 100."""
+    """Number of points for a path: about one per ``spacing`` metres, rounded up to
+    a multiple of 10 (so paths of similar length share one built NLP), 20 to 100."""
     L = float(np.hypot(*np.diff(np.asarray(path, float), axis=0).T).sum())
-    return int(np.clip(np.ceil(L / spacing) + 1, 20, 100))
+    return int(np.clip(10 * np.ceil((L / spacing + 1) / 10), 20, 100))
 
 
 def smoothing_objective(points: np.ndarray, w_smooth: float) -> float:
@@ -151,7 +154,8 @@ def _path_expressions(ca, z, ends, N: int, w_smooth: float, per_segment: int = 1
     fr = [(j + 1) / (per_segment + 1) for j in range(per_segment)]
     qx = ca.vertcat(xs[1:-1], *[(1 - f) * xs[:-1] + f * xs[1:] for f in fr])
     qy = ca.vertcat(ys[1:-1], *[(1 - f) * ys[:-1] + f * ys[1:] for f in fr])
-    return J, qx, qy
+    seg2 = (xs[1:] - xs[:-1]) ** 2 + (ys[1:] - ys[:-1]) ** 2
+    return J, qx, qy, seg2
 
 
 def _two_solvers(name: str, nlp: dict) -> dict:
@@ -176,7 +180,7 @@ def circle_nlp(N: int, K: int, w_smooth: float) -> dict:
         M = 2 * N - 3
         z = ca.SX.sym("z", 2 * (N - 2))
         p = ca.SX.sym("p", 4 + 3 * M * K)
-        J, qx, qy = _path_expressions(ca, z, p[:4], N, w_smooth)
+        J, qx, qy, _ = _path_expressions(ca, z, p[:4], N, w_smooth)
         cx = ca.reshape(p[4:4 + M * K], M, K)
         cy = ca.reshape(p[4 + M * K:4 + 2 * M * K], M, K)
         R = ca.reshape(p[4 + 2 * M * K:], M, K)
@@ -200,8 +204,10 @@ def _grid_interpolant(grid, subdiv: int):
 
 def grid_nlp(grid, N: int, w_smooth: float, per_segment: int = 3, subdiv: int = 4) -> dict:
     """NLP for a grid map, built once per ``(map, N, w, per_segment)``: parameters
-    ``p = (ends (4), margin)``; clearance constraints at the interior points and at
-    ``per_segment`` points inside each segment."""
+    ``p = (ends (4), margin, longest segment)``; clearance constraints at the
+    interior points and at ``per_segment`` points inside each segment, and every
+    segment at most the given length (so the samples stay as close as the
+    cushion assumes)."""
     key = ("grid", N, float(w_smooth), per_segment, subdiv)
     cached = grid._cache.get(key)
     if cached is None:
@@ -209,9 +215,11 @@ def grid_nlp(grid, N: int, w_smooth: float, per_segment: int = 3, subdiv: int = 
 
         interp = _grid_interpolant(grid, subdiv)
         z = ca.MX.sym("z", 2 * (N - 2))
-        p = ca.MX.sym("p", 5)
-        J, qx, qy = _path_expressions(ca, z, p[:4], N, w_smooth, per_segment)
+        p = ca.MX.sym("p", 6)
+        J, qx, qy, seg2 = _path_expressions(ca, z, p[:4], N, w_smooth, per_segment)
         g = interp(ca.horzcat(qx, qy).T).T - p[4]
+        if SEGMENT_STRETCH is not None:
+            g = ca.vertcat(g, p[5] ** 2 - seg2)
         cached = grid._cache[key] = {"key": ("grid", id(grid)) + key[1:],
                                      **_two_solvers("smooth_grid", {"x": z, "p": p, "f": J, "g": g})}
     return cached
@@ -312,12 +320,13 @@ def _solve_circles(world, X0, clearance, cushion, w_smooth, K, run, warm: WarmSt
     return X, None, "neighbour reassignment did not settle"
 
 
-def _solve_grid(world, X0, clearance, cushion, w_smooth, per_segment, run, warm: WarmStart | None):
+def _solve_grid(world, X0, clearance, cushion, w_smooth, per_segment, max_segment, run, warm: WarmStart | None):
     N = len(X0)
     ends = np.stack([X0[0], X0[-1]])
     nlp = grid_nlp(world, N, w_smooth, per_segment)
     lbx, ubx = _box_bounds(world, N, 0.0)
-    args = dict(p=np.concatenate([ends.ravel(), [clearance + cushion]]), lbx=lbx, ubx=ubx, lbg=0.0, ubg=np.inf)
+    args = dict(p=np.concatenate([ends.ravel(), [clearance + cushion, max_segment]]), lbx=lbx, ubx=ubx, lbg=0.0,
+                ubg=np.inf)
     if warm is not None and warm.key == nlp["key"]:
         X = np.vstack([ends[0], warm.points[1:-1], ends[1]])
         sol = run(nlp["warm"], x0=_pack(X), lam_x0=warm.lam_x, lam_g0=warm.lam_g, **args)
@@ -378,8 +387,10 @@ def smooth_path(world, seed_path, clearance: float = 0.0, n_points: int | None =
         L = float(np.hypot(*np.diff(P, axis=0).T).sum())
         seg = L / (N - 1)
         r_min = float(world.radii.min()) if not is_grid and len(world.circles) else 1.0
-        # spacing of the constrained samples: grid_samples (grids) or 1 midpoint (circles) per segment
-        base = 0.55 * seg / (grid_samples + 1) if is_grid else (seg / 2) ** 2 / (8 * r_min) + 1e-6
+        # spacing of the constrained samples: grid_samples per segment of at most
+        # SEGMENT_STRETCH x the seed's spacing (grids), or 1 midpoint per segment (circles)
+        base = (0.55 * (SEGMENT_STRETCH or 1.0) * seg / (grid_samples + 1) if is_grid
+                else (seg / 2) ** 2 / (8 * r_min) + 1e-6)
     reasons = []
     run = _Solve()
     for attempt in range(2):
@@ -389,7 +400,9 @@ def smooth_path(world, seed_path, clearance: float = 0.0, n_points: int | None =
         ws = warm if attempt == 0 else None
         try:
             if is_grid:
-                X, ws_out, note = _solve_grid(world, X0, clearance, cush, w_smooth, grid_samples, run, ws)
+                L = float(np.hypot(*np.diff(P, axis=0).T).sum())
+                X, ws_out, note = _solve_grid(world, X0, clearance, cush, w_smooth, grid_samples,
+                                              (SEGMENT_STRETCH or 1.0) * L / (n - 1), run, ws)
             else:
                 X, ws_out, note = _solve_circles(world, X0, clearance, cush, w_smooth, k_nearest, run, ws)
         except RuntimeError as exc:  # IPOPT failures surface as RuntimeError

@@ -1,0 +1,134 @@
+"""What an optimisation-based refinement adds to each paper's global planner.
+
+For every paper's own global planner (hou2024 MISSA, yang2023 IPSO, yuan2021 IBA,
+li2023 IGA, chen2025 MSIAR-GWO) and for A* (grid maps only), on each paper's
+shipped stand-in maps: the pure path, the same path refined by the CasADi/IPOPT
+smoother (``refine="casadi"``) and by the QP corridor smoother (``refine="qp"``).
+Per variant: length, gap to the exact any-angle optimum, total turning angle,
+maximum discrete curvature, minimum clearance, runtime (planner + refinement)
+and how many paths validate. Then, per map, the share of runs whose
+casadi-refined path is within 1 % of the optimum (issue 5 asks for >= 90 % on
+every map), and a figure per map with the paths of the first run overlaid.
+
+    python examples/refined_vs_pure.py [--runs 10] [--quick] [--out refined_vs_pure]
+
+Both smoothers are local: a seed in another homotopy class than the optimum
+(around the other side of an obstacle) stays there, which is what keeps a run
+above 1 %. The QP smoother in addition never leaves its seed's corridor.
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+
+from optplan.bench.global_runs import exact_optimum
+from optplan.planning import plan
+from optplan.solvers.refine import refine_result
+from optplan.viz.plots import plot_paths
+from optplan.world.metrics import max_curvature
+from optplan.world.papermaps import maps_of, paper_map
+
+PLANNER_OF = {"hou2024": "missa", "yang2023": "ipso", "yuan2021": "iba", "li2023": "iga", "chen2025": "msiar-gwo"}
+VARIANTS = ("pure", "casadi", "qp")
+
+
+def variants_of(world, pure):
+    """The pure result and its two refinements (each refinement is timed on its own)."""
+    out = {"pure": pure}
+    for method in ("casadi", "qp"):
+        out[method] = refine_result(world, pure, method=method)
+    return out
+
+
+def runs_on_map(world, s, g, name: str, planner: str, runs: int, iters: int, pop: int) -> list[dict]:
+    seeds = range(runs) if planner != "astar" else range(1)  # A* is deterministic
+    out = []
+    for k in seeds:
+        pure = plan(world, s, g, algorithm=planner, seed=k, pop=pop, iters=iters)
+        out.append(variants_of(world, pure))
+        print(f"\r  {name} {planner}: {k + 1}/{len(seeds)}", end="", file=sys.stderr, flush=True)
+    print(file=sys.stderr)
+    return out
+
+
+def summary_row(name, planner, variant, results, opt) -> list[str]:
+    res = [r[variant] for r in results]
+    ok = [r for r in res if r.feasible]
+    refined = sum(bool(r.refined) for r in res)
+
+    def mean(values):
+        return f"{np.mean(values):.3f}" if len(values) else "-"
+
+    lengths = np.array([r.length for r in ok])
+    return [name, planner, variant, mean(lengths), mean(100 * (lengths / opt - 1)),
+            mean([r.turn_angle_deg for r in ok]), mean([float(max_curvature(r.path)) for r in ok]),
+            mean([r.min_clearance for r in ok]), f"{np.mean([r.runtime_s for r in res]):.4f}",
+            f"{len(ok)}/{len(res)}", "-" if variant == "pure" else f"{refined}/{len(res)}"]
+
+
+def share_within(results, variant: str, opt: float, tol: float = 0.01) -> tuple[int, int]:
+    res = [r[variant] for r in results]
+    good = sum(r.feasible and r.refined and r.length <= (1 + tol) * opt for r in res)
+    return good, len(res)
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--runs", type=int, default=10, help="seeded runs of each metaheuristic per map")
+    ap.add_argument("--quick", action="store_true", help="one map per paper, 3 runs, 60 iterations")
+    ap.add_argument("--iters", type=int, default=None, help="planner iterations (default 200; --quick 60)")
+    ap.add_argument("--pop", type=int, default=30)
+    ap.add_argument("--out", default="refined_vs_pure", help="folder for the figures and the markdown table")
+    args = ap.parse_args(argv)
+    runs = 3 if args.quick else args.runs
+    iters = args.iters or (60 if args.quick else 200)
+    out = Path(args.out)
+    header = ["map", "planner", "variant", "mean length [m]", "mean gap [%]", "mean turn [deg]",
+              "mean max curvature [1/m]", "mean min clearance [m]", "mean time [s]", "valid", "refined"]
+    rows, shares = [], []
+    for paper, planner in PLANNER_OF.items():
+        names = maps_of(paper)
+        for name in names[:1] if args.quick else names:
+            world, s, g = paper_map(name)
+            opt = exact_optimum(world, s, g)
+            planners = [planner] + (["astar"] if hasattr(world, "occ") else [])
+            # build the per-map structures (distance field, spline interpolant, solvers) before timing
+            warm_up = plan(world, s, g, algorithm=planners[-1], seed=0, pop=args.pop, iters=5)
+            variants_of(world, warm_up)
+            by_planner = {p: runs_on_map(world, s, g, name, p, runs, iters, args.pop) for p in planners}
+            for p, results in by_planner.items():
+                rows += [summary_row(name, p, v, results, opt) for v in VARIANTS]
+            everything = [r for results in by_planner.values() for r in results]
+            shares.append((name, opt, {p: share_within(rs, "casadi", opt) for p, rs in by_planner.items()},
+                           share_within(everything, "casadi", opt), share_within(everything, "qp", opt)))
+            first = by_planner[planner][0]
+            paths = {f"{planner} pure": first["pure"].path, f"{planner} + casadi": first["casadi"].path,
+                     f"{planner} + qp": first["qp"].path}
+            if "astar" in by_planner:
+                paths["A* + casadi"] = by_planner["astar"][0]["casadi"].path
+            plot_paths(world, paths, out / f"{name}.png", title=f"{name}: pure vs refined (optimum {opt:.2f} m)")
+    table = "\n".join(["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+                      + ["| " + " | ".join(r) + " |" for r in rows])
+    lines = ["| map | optimum [m] | casadi within 1 %, by planner | casadi within 1 %, all runs | >= 90 % | "
+             "qp within 1 %, all runs |", "|---|---|---|---|---|---|"]
+    for name, opt, per, (good, n), (qgood, qn) in shares:
+        by = ", ".join(f"{p} {a}/{b}" for p, (a, b) in per.items())
+        lines.append(f"| {name} | {opt:.3f} | {by} | {good}/{n} ({100 * good / n:.0f} %) | "
+                     f"{'yes' if good >= 0.9 * n else 'NO'} | {qgood}/{qn} ({100 * qgood / qn:.0f} %) |")
+    report = (f"## Pure vs refined ({runs} runs per metaheuristic, pop {args.pop}, {iters} iterations; A* once)\n\n"
+              "Time is planner + refinement per run; the per-map distance field, spline interpolant and solver\n"
+              "set-ups are built once before timing (a first call on a new map pays for them).\n\n"
+              f"{table}\n\n## Share of runs within 1 % of the exact optimum after refinement\n\n" + "\n".join(lines))
+    print(report)
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "refined_vs_pure.md").write_text(report + "\n")
+    print(f"\nfigures and table in {out}/", file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
