@@ -294,3 +294,18 @@ def test_closed_loop_runs_through_simulate(tmp_path):
     assert "### tiny" in text and "collision-free" in text and "astar/dwa" in text
     local = render_report(res, layout="local")
     assert "| tiny | dwa | 2 |" in local and "| tiny | idwa | 2 |" in local
+
+
+@pytest.mark.slow
+def test_full_chen2025_paths_reproduction(tmp_path, capsys):
+    """Full Tables 8-11 analog (360 runs; about 2 minutes on 2 cores): every run feasible and
+    MSIAR-GWO's best path within 1 % of the exact optimum and shorter than A* on every map.
+    The CI version is test_reproduce_prints_the_example_scripts_numbers."""
+    assert main(["reproduce", "chen2025", "--part", "paths", "--no-progress", "--db", str(tmp_path / "c.sqlite")]) == 0
+    out = capsys.readouterr().out
+    assert out.count("| 20/20 |") == 18
+    table8 = [line for line in out.splitlines() if line.startswith("| chen2025_")]
+    assert len(table8) == 3
+    for line in table8:
+        astar, best, optimum = (float(c) for c in line.strip("|").split("|")[1:4])
+        assert optimum <= best < min(1.01 * optimum, astar)

@@ -6,7 +6,9 @@ Executors:
   the forkserver start method where the platform has it, spawn elsewhere);
   ``workers=1`` runs in this process, which avoids the start-up cost for small grids.
 * ``"dask://HOST:PORT"`` (or ``"tcp://HOST:PORT"``): the Dask distributed
-  scheduler at that address; its workers need optplan installed.
+  scheduler at that address; its workers need the same optplan installed, and map
+  or scenario files named by path must exist at that path on the workers (shipped
+  maps and scenarios always do).
 * ``"dask-local"``: a Dask ``LocalCluster`` of ``workers`` processes on this machine.
 * a ``distributed.Client`` object (Python API only).
 
@@ -388,7 +390,11 @@ def _run_dask(todo: list[dict], kind: str, target: Any, workers: int | None, rec
             raise ParameterError(f"cannot reach the Dask scheduler at {target} ({exc}); start one with "
                                  f"'dask scheduler' and 'dask worker {target}', or use --executor local") from None
     try:
-        client.run(warm_up)
+        try:
+            client.run(warm_up)
+        except Exception as exc:  # typically: optplan is not installed where the workers run
+            raise ParameterError(f"the Dask workers cannot run optplan ({type(exc).__name__}: {exc}); install the "
+                                 f"same optplan version on every worker (pip install optplan[dask])") from None
         n_workers = max(1, len(client.scheduler_info().get("workers", {})) or (workers or 1))
         window = 4 * n_workers
         queue = list(reversed(todo))
