@@ -125,7 +125,7 @@ def run_bench(args) -> int:
                     raise
             print(f"{spec.name}: {rep.describe()}; database {args.db}", file=sys.stderr)
             failed = rep.failed
-        print(_tables(spec, store, args, args.layout))
+        print(_tables(spec, store, args, args.layout).rstrip("\n"))
         if args.csv:
             n = store.to_csv(args.csv, [r.key for r in spec.expand()])
             print(f"wrote {n} rows to {args.csv}", file=sys.stderr)

@@ -218,17 +218,18 @@ def summary_tables(res: ExperimentResults, metric: str | None = None) -> list[Ta
                   caption=f"{spec.name}: Wilcoxon rank-sum tally against the reference at alpha {spec.alpha}")
         for name, c in tally.items():
             t.rows.append([name, str(c["+"]), str(c["="]), str(c["-"])])
-        t.notes.append(f"+: the reference ({_ref_text(spec)}) is significantly better at alpha {spec.alpha}; "
+        t.notes.append(f"+: the reference ({_ref_text(res)}) is significantly better at alpha {spec.alpha}; "
                        f"-: significantly worse; =: no significant difference (targets counted; {metric}, minimised)")
         tables.append(t)
     return tables
 
 
-def _ref_text(spec: ExperimentSpec) -> str:
-    ref = spec.reference
+def _ref_text(res: ExperimentResults) -> str:
+    ref = res.spec.reference
     if isinstance(ref, dict):
-        return ", ".join(f"{k} {v}" for k, v in ref.items() if v is not None)
-    return str(ref)
+        return res.group_name(ref["algorithm"], ref.get("refine"), ref.get("local_planner"))
+    return f"{ref}, same refine mode and local planner" if (len(res.spec.refine) > 1
+                                                           or len(res.spec.local_planners) > 1) else str(ref)
 
 
 def format_summary(res: ExperimentResults, fmt: str = "markdown", metric: str | None = None) -> str:
