@@ -83,7 +83,7 @@ def circle_timings(reps: int) -> None:
             n = smoothing.default_points(seed, 0.25)
             smoothing.clear_solver_cache()
             t = time.perf_counter()
-            smoothing.circle_nlp(n, min(4, len(world.circles)), 0.5)
+            smoothing.circle_nlp(n, min(2, len(world.circles)), 0.5)
             build = time.perf_counter() - t
             first, cold = timed(lambda: smooth_path(world, seed), reps)
             warm, warm_its = warm_times(world, seed, first, reps)
