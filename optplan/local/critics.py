@@ -92,13 +92,104 @@ class Heading(Critic):
 
     def score(self, step: Step) -> np.ndarray:
         roll = step.roll
+        target = step.target
         k = None
-        if self.one_step_within is not None and abs(step.target - roll.z0) < self.one_step_within:
+        if self.one_step_within is not None and abs(target - roll.z0) < self.one_step_within:
             k = max(1, int(round(step.ctx.dt / roll.dt)))
             step.aux["heading_one_step"] = True
         z = roll.position(k)
-        bearing = np.angle(step.target - z)
+        bearing = np.angle(target - z)
         return np.pi - np.abs(wrap_angle(bearing - roll.heading(k)))
+
+
+def project_on_path(path: np.ndarray, z: np.ndarray, near: complex | None = None,
+                    reach: float = np.inf) -> tuple[np.ndarray, np.ndarray]:
+    """Arc length (m) along the polyline ``path`` of the path point nearest to each complex
+    point ``z`` (any shape), and the distance (m) to it. With ``near`` and ``reach`` only the
+    segments within ``reach`` of ``near`` are searched (the nearest one if none is)."""
+    p = np.asarray(path, dtype=float).reshape(-1, 2)
+    pc = p[:, 0] + 1j * p[:, 1]
+    z = np.asarray(z, dtype=complex)
+    if len(pc) == 1:
+        return np.zeros(z.shape), np.abs(z - pc[0])
+    a, ab = pc[:-1], np.diff(pc)
+    L = np.abs(ab)
+    along = np.r_[0.0, np.cumsum(L)]
+    segments = range(len(a))
+    if near is not None and np.isfinite(reach):
+        t = np.clip(((near - a) * np.conj(ab)).real / np.maximum(L * L, 1e-18), 0.0, 1.0)
+        d_near = np.abs(near - (a + t * ab))
+        segments = np.flatnonzero(d_near <= reach) if (d_near <= reach).any() else [int(np.argmin(d_near))]
+    best_d = np.full(z.shape, np.inf)
+    best_s = np.zeros(z.shape)
+    for i in segments:  # nearby segments of the global path, each over all points at once
+        t = np.clip(((z - a[i]) * np.conj(ab[i])).real / max(L[i] ** 2, 1e-18), 0.0, 1.0)
+        d = np.abs(z - (a[i] + t * ab[i]))
+        closer = d < best_d
+        best_d = np.where(closer, d, best_d)
+        best_s = np.where(closer, along[i] + t * L[i], best_s)
+    return best_s, best_d
+
+
+def point_at_arc(path: np.ndarray, s: np.ndarray) -> np.ndarray:
+    """Complex points at arc lengths ``s`` (m) along the polyline ``path`` (clamped to its ends)."""
+    p = np.asarray(path, dtype=float).reshape(-1, 2)
+    pc = p[:, 0] + 1j * p[:, 1]
+    if len(pc) == 1:
+        return np.full(np.shape(s), pc[0])
+    ab = np.diff(pc)
+    L = np.abs(ab)
+    along = np.r_[0.0, np.cumsum(L)]
+    s = np.clip(s, 0.0, along[-1])
+    j = np.clip(np.searchsorted(along, s, side="right") - 1, 0, len(ab) - 1)
+    return pc[j] + (s - along[j]) / np.maximum(L[j], 1e-18) * ab[j]
+
+
+def path_carrot(path: np.ndarray, z: np.ndarray, look_ahead: float, near: complex | None = None,
+                reach: float = np.inf) -> np.ndarray:
+    """For each complex point ``z``, the path point ``look_ahead`` metres beyond the path point
+    nearest to it (the path's end if that is closer); ``near``, ``reach`` as in
+    :func:`project_on_path`."""
+    s, _ = project_on_path(path, z, near, reach)
+    return point_at_arc(path, s + look_ahead)
+
+
+def _reach(step: Step) -> float:
+    """How far (m) from the robot any rollout point can be, plus a metre of slack."""
+    roll = step.roll
+    return float(roll.speed.max(initial=0.0) * roll.t[-1]) + 1.0
+
+
+@dataclass
+class PathHeading(Heading):
+    """Heading towards a carrot on the global path: for each trajectory, the path point
+    ``look_ahead`` metres beyond the path point nearest to the trajectory's end (the
+    pure-pursuit target; Nav2 DWB's path-align idea), instead of the subgoal. The robot then
+    follows the path around corners that the straight line to a subgoal would cut, and a
+    trajectory never "passes" its target."""
+
+    name: ClassVar[str] = "path_heading"
+    look_ahead: float = 1.0
+
+    def score(self, step: Step) -> np.ndarray:
+        roll = step.roll
+        end = roll.position()
+        bearing = np.angle(path_carrot(step.ctx.global_path, end, self.look_ahead, roll.z0, _reach(step)) - end)
+        return np.pi - np.abs(wrap_angle(bearing - roll.heading()))
+
+
+@dataclass
+class PathProgress(Critic):
+    """How far (m) the trajectory's end has advanced along the global path: arc length of
+    its nearest path point minus that of the robot's (Nav2 DWB's path-progress idea). It
+    rewards moving on along the path even when every trajectory is short (low speed)."""
+
+    name: ClassVar[str] = "path_progress"
+
+    def score(self, step: Step) -> np.ndarray:
+        roll = step.roll
+        s, _ = project_on_path(step.ctx.global_path, np.r_[roll.z0, roll.position()], roll.z0, _reach(step))
+        return s[1:] - s[0]
 
 
 @dataclass
@@ -269,5 +360,5 @@ class EndClearance(Critic):
 
 
 CRITICS: dict[str, type[Critic]] = {c.name: c for c in (
-    Heading, Clearance, Velocity, PathDeviation, StaticInverseDistance, DynamicInverseDistance,
+    Heading, PathHeading, PathProgress, Clearance, Velocity, PathDeviation, StaticInverseDistance, DynamicInverseDistance,
     BinaryDistance, HeadingChange, GlobalPathDistance, GoalDistance, EndClearance)}

@@ -12,8 +12,9 @@ One control step (Fox et al. 1997; the papers' §3 / §5 descriptions):
    the best admissible, legal sample is commanded.
 
 When critics or filters leave no candidate, their vetoes are relaxed (admissibility is
-kept); when nothing is admissible the robot brakes as hard as the window allows. Both
-are reported in ``Command.info["mode"]``.
+kept); when every trajectory meets a predicted mover, the admissible ones whose contact
+comes latest are scored ("evade"); when nothing is admissible the sample that misses its
+stopping distance by the least is taken. The case is reported in ``Command.info["mode"]``.
 """
 from __future__ import annotations
 
@@ -29,7 +30,7 @@ from .base import LocalContext
 from .critics import CRITICS, Critic
 from .mechanisms import MECHANISMS, Mechanism
 from .rollout import Step, assess, rollout
-from .window import Window, dynamic_window, sample_grid
+from .window import Window, dynamic_window, sample_grid, stopping_distance
 
 
 @dataclass(frozen=True)
@@ -94,6 +95,8 @@ class DWAPlanner:
         "normalise": "sum",   # "sum" | "minmax" | "none"
         "omni": False,        # sample vy too when the robot is omnidirectional (hou2024 eq 19)
         "mover_range": 3.0,   # movers provably farther than this (edge to edge) are skipped, m
+        "mover_growth": 0.0,  # predicted movers grow by this times their speed per second ...
+        "growth_cap": 0.0,    # ... up to this much, m
     }
 
     def __init__(self, preset: Preset, robot: RobotSpec, dt: float, **params: Any) -> None:
@@ -167,7 +170,7 @@ class DWAPlanner:
         o["horizon"] = self._number("horizon", o["horizon"])
         if o["rollout_dt"] is not None:
             o["rollout_dt"] = self._number("rollout_dt", o["rollout_dt"])
-        for k in ("margin", "reaction", "mover_range"):
+        for k in ("margin", "reaction", "mover_range", "mover_growth", "growth_cap"):
             o[k] = self._number(k, o[k], allow_zero=True)
         if o["normalise"] not in ("sum", "minmax", "none"):
             raise ParameterError(f"normalise must be 'sum', 'minmax' or 'none', got {o['normalise']!r}")
@@ -200,8 +203,16 @@ class DWAPlanner:
         o = self.options
         lin_v, lin_vy, w = sample_grid(window, o["n_v"], o["n_w"], o["n_vy"] if self.omni else 1)
         roll = rollout(ctx.state, lin_v, lin_vy, w, self.rollout_dt, self.steps)
-        return assess(ctx, self.robot, roll, margin=o["margin"], reaction=self._reaction(),
-                      mover_range=o["mover_range"])
+        step = self._assess(ctx, roll)
+        if self.omni:  # the acceleration limit bounds the (v, vy) vector: keep the disc of the box
+            dv = np.hypot(roll.v - ctx.state.v, roll.vy - ctx.state.vy)
+            step.admissible &= dv <= self.robot.a_max * ctx.dt * (1 + 1e-9)
+        return step
+
+    def _assess(self, ctx: LocalContext, roll) -> Step:
+        o = self.options
+        return assess(ctx, self.robot, roll, margin=o["margin"], reaction=self._reaction(), mover_range=o["mover_range"],
+                      mover_growth=o["mover_growth"], growth_cap=o["growth_cap"])
 
     def _reaction(self) -> float:
         return self.options["reaction"]
@@ -217,13 +228,26 @@ class DWAPlanner:
             ok = critic.legal(step)
             if ok is not None:
                 legal &= ok
-        cand = step.admissible & legal
+        safe = step.admissible & step.mover_free
+        cand = safe & legal
         mode = "sample"
         if not cand.any():
-            cand = step.admissible
-            mode = "sample-relaxed"  # the critics' vetoes left nothing: keep admissibility only
+            cand = safe
+            mode = "sample-relaxed"  # the critics' vetoes left nothing: keep the safety rules only
+        if not cand.any() and step.admissible.any():
+            # every trajectory meets a predicted mover: among those that can stop before static
+            # obstacles, keep the ones whose contact comes latest (evade rather than wait)
+            contact = np.where(step.admissible, step.mover_contact, -1)
+            cand = contact == contact.max()
+            mode = "evade"
         if not cand.any():
-            return None, {"mode": "brake-no-admissible"}
+            # no sample can stop before its predicted collision (a mover may be closing in):
+            # take the one that misses the stopping distance by the least, rather than
+            # braking in place, which leaves the robot in a crossing mover's way
+            shortfall = step.free_distance - stopping_distance(step.roll.speed, self.robot.a_max, self._reaction())
+            best = int(np.argmax(shortfall))
+            return best, {"mode": "least-inadmissible", "index": best,
+                          "free_distance": float(step.free_distance[best])}
         total = np.zeros(step.roll.n)
         how = self.options["normalise"]
         for critic, weight in self.terms:

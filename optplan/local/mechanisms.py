@@ -210,7 +210,8 @@ class InitialHeading(Mechanism):
     def reset(self, planner, state, global_path) -> None:
         p = np.asarray(global_path, dtype=float).reshape(-1, 2)
         d = np.hypot(p[:, 0] - state.x, p[:, 1] - state.y)
-        ahead = np.flatnonzero(d > 1e-6)
+        nearest = int(np.argmin(d)) if len(d) else 0
+        ahead = nearest + np.flatnonzero(d[nearest:] > 1e-6)  # first node past the robot's
         if len(ahead) == 0:
             planner.initial_heading, self.aligned = None, True
             return

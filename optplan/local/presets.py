@@ -59,9 +59,10 @@ PRESETS: dict[str, Preset] = {p.name: p for p in (
         source="this project: sampled DWA (Fox terms + hou2024 eq 25 path deviation + hou2024 eq 28 "
                "mover clearance) -> QP refinement with linearised clearance (OSQP) -> Ruckig "
                "jerk-limited velocity profile",
-        terms=(Term("heading", 1.0), Term("path_deviation", 0.6), Term("clearance", 0.6),
-               Term("velocity", 0.4)),
-        options={"omni": True, "normalise": "minmax", "margin": 0.05},
+        # raw physical units (no normalisation): weights are per metre / per radian
+        terms=(Term("path_progress", 1.0), Term("path_deviation", 0.5), Term("path_heading", 0.3),
+               Term("clearance", 1.0, {"cap": 0.5})),
+        options={"omni": True, "normalise": "none", "margin": 0.05, "mover_growth": 1.0, "growth_cap": 1.0},
         refine="qp",
     ),
 )}

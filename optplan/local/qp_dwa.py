@@ -42,7 +42,7 @@ from ..world.robot import RobotSpec, RobotState
 from .base import LocalContext
 from .dwa import DWAPlanner, Preset
 from .limiter import RuckigLimiter
-from .rollout import Step, assess, rollout
+from .rollout import Step, rollout
 from .window import Window, dynamic_window
 
 _SLACK_LINEAR, _SLACK_QUADRATIC = 1e2, 1e4
@@ -58,7 +58,7 @@ class QPDWAPlanner(DWAPlanner):
         "qp_activate": 0.6,      # obstacles closer than this to the chosen trajectory become rows, m
         "qp_rows_moving": 4,     # at most this many mover rows ...
         "qp_rows_static": 4,     # ... and static rows
-        "qp_max_iter": 200,      # OSQP iteration budget (a non-solved status falls back)
+        "qp_max_iter": 1000,     # OSQP iteration budget (a non-solved status falls back)
         "ang_jerk_max": None,    # rad/s^3; None = jerk_max * alpha_max / a_max (same ramp time)
     }
 
@@ -79,7 +79,11 @@ class QPDWAPlanner(DWAPlanner):
             self.jerk = (robot.jerk_max, ang)
         # components: v, w (, vy)
         self.n_u = 3 if self.omni else 2
-        acc = [robot.a_max, robot.alpha_max, robot.a_max][:self.n_u]
+        # omni: the limits bound the (v, vy) vector, so each component gets 1/sqrt(2) of them
+        self.a_lin = robot.a_max / math.sqrt(2) if self.n_u == 3 else robot.a_max
+        lin_jerk = None if self.jerk[0] is None else self.jerk[0] * self.a_lin / robot.a_max
+        self.jerk = (lin_jerk, self.jerk[1])
+        acc = [self.a_lin, robot.alpha_max, self.a_lin][:self.n_u]
         jerk = [self.jerk[0], self.jerk[1], self.jerk[0]][:self.n_u]
         self.limiter = RuckigLimiter(self.dt, acc, [math.inf if j is None else j for j in jerk])
         self._setup_qp(acc)
@@ -106,11 +110,11 @@ class QPDWAPlanner(DWAPlanner):
         self._qp.setup(P, np.zeros(n), A, np.full(dense.shape[0], -np.inf), np.full(dense.shape[0], np.inf),
                        verbose=False, warm_starting=True, polishing=False, max_iter=self.options["qp_max_iter"],
                        eps_abs=1e-5, eps_rel=1e-5, check_termination=5)
-        self._solved = osqp.constant("OSQP_SOLVED")
+        self._solved = osqp.SolverStatus.OSQP_SOLVED
 
     # ------------------------------------------------------------------ overrides
     def _reaction(self) -> float:
-        ramp = 0.0 if self.jerk[0] is None else self.robot.a_max / self.jerk[0]
+        ramp = 0.0 if self.jerk[0] is None else self.a_lin / self.jerk[0]
         return self.options["reaction"] + self.dt + ramp
 
     def reset(self, state: RobotState, global_path: np.ndarray) -> None:
@@ -124,14 +128,14 @@ class QPDWAPlanner(DWAPlanner):
         self._resynced = self.limiter.sync(self._vel(ctx.state))
         acc = np.r_[self.limiter.acceleration, 0.0, 0.0][:3]
         a3 = (acc[0], acc[1], acc[2] if self.n_u == 3 else 0.0)
-        win = dynamic_window(self.robot, ctx.state, ctx.dt, omni=self.omni, accel=a3, jerk=self.jerk)
+        win = dynamic_window(self.robot, ctx.state, ctx.dt, omni=self.omni, accel=a3, jerk=self.jerk, a_lin=self.a_lin)
         for m in self.mechanisms:
             win = m.adjust_window(self, ctx, win)
         return win
 
     def finish(self, ctx, window, u, step, info):
         target = u
-        if step is not None and info.get("mode") == "sample":
+        if step is not None and info.get("mode") in ("sample", "sample-relaxed", "evade"):
             target = self.refine(ctx, window, u, step, info)
         comp = np.array([target[0], target[1], target[2]][:self.n_u])
         out, result = self.limiter.step(comp)
@@ -226,10 +230,11 @@ class QPDWAPlanner(DWAPlanner):
             return u0
         x = np.clip(res.x[:n_u], lo, hi)
         u = (float(x[0]), float(x[1]), float(x[2]) if n_u == 3 else 0.0)
-        check = assess(ctx, self.robot, rollout(ctx.state, np.array([u[0]]), np.array([u[2]]), np.array([u[1]]),
-                                                step.roll.dt, step.roll.z.shape[1]),
-                       margin=o["margin"], reaction=self._reaction(), mover_range=o["mover_range"])
-        if not check.admissible[0] or check.gap[0].min() < min(step.gap[i].min(), o["qp_margin"]) - 1e-9:
+        check = self._assess(ctx, rollout(ctx.state, np.array([u[0]]), np.array([u[2]]), np.array([u[1]]),
+                                          step.roll.dt, step.roll.z.shape[1]))
+        H = max(1, min(step.roll.z.shape[1], int(round(o["qp_horizon"] / step.roll.dt))))
+        worse = check.gap[0, :H].min() < min(step.gap[i, :H].min(), o["qp_margin"]) - 1e-9
+        if not check.admissible[0] or check.mover_contact[0] < step.mover_contact[i] or worse:
             info["qp"] = "fallback: refined command failed the rollout check"
             return u0
         info["qp"] = "solved"

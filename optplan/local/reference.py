@@ -48,6 +48,12 @@ def reference_dwa(robot: RobotSpec, ctx: LocalContext, *, n_v: int = 11, n_w: in
     w_hi = min(max(robot.w_max, st.w - robot.alpha_max * dt), st.w + robot.alpha_max * dt)
     gx, gy = float(ctx.subgoal[0]), float(ctx.subgoal[1])
     movers = [tuple(map(float, row)) for row in np.asarray(ctx.dynamic, dtype=float).reshape(-1, 5)]
+    # where the robot stands already closer than the margin, only getting closer counts
+    static_now = float(np.asarray(ctx.static_distance(np.array([[st.x, st.y]]))).ravel()[0]) - R
+    moving_now = math.inf
+    for ox, oy, _, _, orad in movers:
+        moving_now = min(moving_now, math.hypot(st.x - ox, st.y - oy) - orad - R)
+    static_limit, moving_limit = min(margin, static_now), min(margin, moving_now)
 
     records = []  # (v, w, heading, clearance, velocity)
     for v in np.linspace(v_lo, v_hi, n_v):
@@ -61,27 +67,31 @@ def reference_dwa(robot: RobotSpec, ctx: LocalContext, *, n_v: int = 11, n_w: in
                 th += w * rdt
                 traj.append((x, y, th))
             static = ctx.static_distance(np.array([(px, py) for px, py, _ in traj]))
-            min_gap, first_hit = math.inf, None
+            min_gap, first_hit, meets_mover = math.inf, None, False
             for k, (px, py, _) in enumerate(traj):
                 t = (k + 1) * rdt
                 gap = float(static[k]) - R
+                if first_hit is None and gap < static_limit:
+                    first_hit = k
                 for ox, oy, ovx, ovy, orad in movers:
                     d = math.hypot(px - (ox + ovx * t), py - (oy + ovy * t)) - orad - R
+                    if d < moving_limit:
+                        meets_mover = True
                     if d < gap:
                         gap = d
                 if gap < min_gap:
                     min_gap = gap
-                if first_hit is None and gap < margin:
-                    first_hit = k
             free = math.inf if first_hit is None else first_hit * abs(v) * rdt
             if abs(v) > math.sqrt(2.0 * robot.a_max * free) + 1e-12:  # eq 22: cannot stop in time
+                continue
+            if meets_mover:  # a trajectory into a predicted mover is discarded
                 continue
             heading = math.pi - abs(_wrap(math.atan2(gy - y, gx - x) - th))
             clearance = min(max(min_gap, 0.0), cap)
             records.append((v, w, heading, clearance, v))
 
-    if not records:
-        return min(max(0.0, v_lo), v_hi), min(max(0.0, w_lo), w_hi), {"mode": "brake-no-admissible"}
+    if not records:  # (the vectorised planner has finer fallbacks; the reference just brakes)
+        return min(max(0.0, v_lo), v_hi), min(max(0.0, w_lo), w_hi), {"mode": "brake"}
     sums = [sum(abs(r[c]) for r in records) for c in (2, 3, 4)]
     best, best_score = None, -math.inf
     for r in records:

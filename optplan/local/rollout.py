@@ -110,9 +110,13 @@ class Step:
         dyn_gap: ``(S, H)`` distance from the robot's edge to the nearest moving obstacle's
             edge at the same predicted time, m (``inf`` without movers).
         movers, mover_vel, mover_r: predicted centres ``(K, H)``, velocities ``(K,)``, radii ``(K,)``.
-        free_distance: ``(S,)`` path length before the first predicted collision, m
-            (``inf`` when the horizon is collision-free).
+        free_distance: ``(S,)`` path length before the first predicted collision with a
+            static obstacle, m (``inf`` when there is none within the horizon).
         admissible: ``(S,)`` the robot can stop before that collision (hou2024 eq 22).
+        mover_contact: ``(S,)`` index of the first rollout point in predicted contact with a
+            mover (``H`` = none). Braking does not help against a mover, so instead of eq 22
+            such trajectories are discarded, as the papers discard colliding trajectories
+            (yuan2021 §3.3); ``mover_free`` is the mask of the others.
         target: current subgoal as a complex number.
         aux: scratch space mechanisms use to pass findings to cost terms (e.g. the VO threat).
     """
@@ -127,8 +131,13 @@ class Step:
     mover_r: np.ndarray
     free_distance: np.ndarray
     admissible: np.ndarray
+    mover_contact: np.ndarray
     target: complex
     aux: dict = field(default_factory=dict)
+
+    @property
+    def mover_free(self) -> np.ndarray:
+        return self.mover_contact >= self.roll.z.shape[1]
 
     @property
     def gap(self) -> np.ndarray:
@@ -136,13 +145,15 @@ class Step:
         return np.minimum(self.static_gap, self.dyn_gap)
 
 
-def dynamic_gaps(z: np.ndarray, movers: np.ndarray, radii: np.ndarray, robot_radius: float) -> np.ndarray:
-    """Edge-to-edge distance from each rollout point to the nearest mover at the same time."""
+def dynamic_gaps(z: np.ndarray, movers: np.ndarray, radii: np.ndarray, robot_radius: float,
+                 growth: np.ndarray | None = None) -> np.ndarray:
+    """Edge-to-edge distance from each rollout point to the nearest mover at the same time;
+    ``growth`` ``(K, H)`` is added to the movers' radii (prediction uncertainty)."""
     gap = np.full(z.shape, np.inf)
     buf = np.empty(z.shape)
-    for centre, r in zip(movers, radii):  # one pass per obstacle over all samples x horizon
+    for k, (centre, r) in enumerate(zip(movers, radii)):  # one pass per obstacle over all samples x horizon
         np.abs(z - centre, out=buf)
-        buf -= r
+        buf -= r if growth is None else r + growth[k]
         np.minimum(gap, buf, out=gap)
     gap -= robot_radius
     return gap
@@ -159,25 +170,50 @@ def relevant_movers(z0: complex, movers: np.ndarray, radii: np.ndarray, t: np.nd
     return lower.min(axis=1) <= beyond
 
 
+def current_gaps(ctx: LocalContext, robot: RobotSpec) -> tuple[float, float]:
+    """Clearance (m, edge to edge) of the robot where it stands: to static obstacles, to movers."""
+    z0 = np.array([[ctx.state.x, ctx.state.y]])
+    static = float(np.asarray(ctx.static_distance(z0)).ravel()[0]) - robot.radius
+    d = np.asarray(ctx.dynamic, dtype=float).reshape(-1, 5)
+    moving = float((np.hypot(d[:, 0] - z0[0, 0], d[:, 1] - z0[0, 1]) - d[:, 4]).min()) - robot.radius if len(d) else np.inf
+    return static, moving
+
+
+def first_hit(hit: np.ndarray) -> np.ndarray:
+    """Index of the first ``True`` of each row (the row length when there is none)."""
+    return np.where(hit.any(axis=1), np.argmax(hit, axis=1), hit.shape[1])
+
+
 def assess(ctx: LocalContext, robot: RobotSpec, roll: Rollouts, *, margin: float = 0.0, reaction: float = 0.0,
-           mover_range: float = 3.0) -> Step:
+           mover_range: float = 3.0, mover_growth: float = 0.0, growth_cap: float = 0.0) -> Step:
     """Clearance of every rollout point, the free distance and the admissibility of every sample.
+
+    A rollout point collides when its clearance is below ``margin``; when the robot already
+    stands closer than that (``current_gaps``), only points closer than where it stands count,
+    so trajectories that lead out of a tight spot stay admissible.
 
     Args:
         margin: extra clearance, m, below which a point counts as a collision.
         reaction: reaction time in the stopping distance (see ``window.max_admissible_speed``).
         mover_range: movers that provably stay more than this far (edge to edge) from every
             rollout are skipped; cost terms therefore see mover clearances up to this value.
+        mover_growth, growth_cap: each predicted mover's radius grows by
+            ``mover_growth * |velocity| * t`` up to ``growth_cap`` metres: a mover may turn or
+            reverse (waypoint movers do), which the constant-velocity prediction does not see.
     """
     static_gap = np.asarray(ctx.static_distance(roll.xy), dtype=float) - robot.radius
     movers, vel, radii = predict_movers(ctx.dynamic, roll.t)
     speed = roll.speed
     keep = relevant_movers(roll.z0, movers, radii, roll.t, float(speed.max(initial=0.0)), robot.radius,
-                           max(mover_range, margin))
-    dyn_gap = dynamic_gaps(roll.z, movers[keep], radii[keep], robot.radius)
-    hit = (static_gap < margin) | (dyn_gap < margin)
-    first = np.argmax(hit, axis=1)  # index of the first colliding point (0 = after one step)
-    free = np.where(hit.any(axis=1), first * speed * roll.dt, np.inf)
+                           max(mover_range, margin) + growth_cap)
+    growth = None
+    if mover_growth > 0:
+        growth = np.minimum(mover_growth * np.abs(vel[keep])[:, None] * roll.t[None, :], growth_cap)
+    dyn_gap = dynamic_gaps(roll.z, movers[keep], radii[keep], robot.radius, growth)
+    now_static, now_moving = current_gaps(ctx, robot)
+    first = first_hit(static_gap < min(margin, now_static))  # 0 = the point after one step
+    free = np.where(first < roll.z.shape[1], first * speed * roll.dt, np.inf)
     admissible = speed <= max_admissible_speed(free, robot.a_max, reaction) + 1e-12
+    contact = first_hit(dyn_gap < min(margin, now_moving))
     target = complex(*np.asarray(ctx.subgoal, dtype=float)[:2])
-    return Step(ctx, robot, roll, static_gap, dyn_gap, movers, vel, radii, free, admissible, target)
+    return Step(ctx, robot, roll, static_gap, dyn_gap, movers, vel, radii, free, admissible, contact, target)

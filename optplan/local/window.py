@@ -78,7 +78,7 @@ def _interval(current: float, lo_limit: float, hi_limit: float, up: float, down:
 
 def dynamic_window(robot: RobotSpec, state: RobotState, dt: float, *, omni: bool = False,
                    accel: tuple[float, float, float] = (0.0, 0.0, 0.0),
-                   jerk: tuple[float | None, float | None] = (None, None)) -> Window:
+                   jerk: tuple[float | None, float | None] = (None, None), a_lin: float | None = None) -> Window:
     """``V_m`` intersected with ``V_d`` (hou2024 eq 20-21).
 
     Args:
@@ -88,16 +88,19 @@ def dynamic_window(robot: RobotSpec, state: RobotState, dt: float, *, omni: bool
         omni: also open the sideways speed ``vy`` (hou2024 eq 19); otherwise ``vy`` is 0.
         accel: current accelerations ``(dv, dw, dvy)``, only used with a jerk limit.
         jerk: ``(linear, angular)`` jerk limits (m/s^3, rad/s^3); ``None`` = unlimited.
+        a_lin: acceleration limit of each linear component ``v``, ``vy`` (default ``a_max``;
+            an omni robot whose limit applies to the vector may pass ``a_max / sqrt(2)``).
     """
     jl, ja = jerk
-    v = _interval(state.v, robot.v_min, robot.v_max,
-                  reachable_change(accel[0], robot.a_max, jl, dt), reachable_change(-accel[0], robot.a_max, jl, dt))
+    a = robot.a_max if a_lin is None else a_lin
+    v = _interval(state.v, robot.v_min, robot.v_max, reachable_change(accel[0], a, jl, dt),
+                  reachable_change(-accel[0], a, jl, dt))
     w = _interval(state.w, -robot.w_max, robot.w_max,
                   reachable_change(accel[1], robot.alpha_max, ja, dt),
                   reachable_change(-accel[1], robot.alpha_max, ja, dt))
     if omni and robot.model == "omni" and robot.vy_max > 0:
-        vy = _interval(state.vy, -robot.vy_max, robot.vy_max,
-                       reachable_change(accel[2], robot.a_max, jl, dt), reachable_change(-accel[2], robot.a_max, jl, dt))
+        vy = _interval(state.vy, -robot.vy_max, robot.vy_max, reachable_change(accel[2], a, jl, dt),
+                       reachable_change(-accel[2], a, jl, dt))
     else:
         vy = (0.0, 0.0)
     return Window(v, w, vy)

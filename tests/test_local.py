@@ -1,0 +1,237 @@
+"""Local planners: the DWA core, the papers' presets and their mechanisms, errors."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import optplan as op
+from optplan.local import PRESETS, algorithm_names, make_local_planner
+from optplan.local.base import LocalContext
+from optplan.local.mechanisms import VelocityObstacle
+from optplan.local.reference import reference_dwa
+from optplan.local.rollout import assess, rollout
+from optplan.world.fields import grid_distance_field
+from optplan.world.robot import RobotSpec, RobotState
+
+DT = 0.1
+NAMES = ["dwa", "missa-dwa", "idwa", "ba-dwa", "iga-dwa", "qp-dwa"]
+ROWS = ["000000000000",
+        "000000000000",
+        "000110000000",
+        "000110000110",
+        "000000000110",
+        "000000000000",
+        "011000000000",
+        "011000011000",
+        "000000011000",
+        "000000000000",
+        "000000000000",
+        "000000000000"]
+
+
+@pytest.fixture(scope="module")
+def field():
+    return grid_distance_field(op.GridMap.from_rows([[int(c) for c in r] for r in ROWS]))
+
+
+def ctx_at(field, state, goal=(10.5, 10.5), dynamic=(), path=None):
+    goal = np.asarray(goal, float)
+    path = np.array([[state.x, state.y], goal]) if path is None else np.asarray(path, float)
+    return LocalContext(state=state, subgoal=goal, goal=goal, global_path=path, static_distance=field,
+                        dynamic=np.asarray(dynamic, float).reshape(-1, 5), dt=DT)
+
+
+def random_contexts(field, n, seed, movers=3):
+    rng = np.random.default_rng(seed)
+    out = []
+    while len(out) < n:
+        p = rng.uniform(1.0, 11.0, 2)
+        if field(p) < 0.6:
+            continue
+        st = RobotState(p[0], p[1], rng.uniform(-np.pi, np.pi), rng.uniform(0.0, 0.8), rng.uniform(-0.4, 0.4))
+        dyn = np.c_[rng.uniform(0, 12, (movers, 2)), rng.uniform(-0.5, 0.5, (movers, 2)), np.full(movers, 0.3)]
+        out.append(ctx_at(field, st, rng.uniform(1, 11, 2), dyn))
+    return out
+
+
+def test_names_registry_and_errors():
+    assert algorithm_names() == NAMES
+    assert set(NAMES) <= set(op.algorithms())
+    robot = RobotSpec()
+    with pytest.raises(op.UnknownAlgorithmError, match="dwa, missa-dwa"):
+        make_local_planner("teb", robot, DT)
+    for bad in ({"n_v": 0}, {"horizon": -1.0}, {"normalise": "z"}, {"colour": 1}, {"weights": {"nope": 1.0}},
+                {"heading": {"bogus": 1}}, {"brake_and_wait": 3}):
+        name = "iga-dwa" if "brake_and_wait" in bad else "dwa"
+        with pytest.raises(op.ParameterError):
+            make_local_planner(name, robot, DT, **bad)
+    with pytest.raises(op.ParameterError, match="dt"):
+        make_local_planner("dwa", robot, 0.0)
+    with pytest.raises(op.ParameterError, match="qp_max_iter"):
+        make_local_planner("qp-dwa", robot, DT, qp_max_iter=0)
+
+
+def test_context_dt_must_match(field):
+    planner = make_local_planner("dwa", RobotSpec(), 0.2)
+    st = RobotState(1.5, 1.5, 0.0)
+    planner.reset(st, np.array([[1.5, 1.5], [10.5, 10.5]]))
+    with pytest.raises(op.ParameterError, match="dt"):
+        planner.command(ctx_at(field, st))
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_window_and_admissibility_hold(field, name):
+    robot = RobotSpec()
+    planner = make_local_planner(name, robot, DT)
+    for ctx in random_contexts(field, 6, seed=len(name)):
+        planner.reset(ctx.state, ctx.global_path)
+        cmd = planner.command(ctx)
+        st, tol = ctx.state, 1e-9
+        assert abs(cmd.v - st.v) <= robot.a_max * DT + tol
+        assert abs(cmd.w - st.w) <= robot.alpha_max * DT + tol
+        assert robot.v_min - tol <= cmd.v <= robot.v_max + tol and abs(cmd.w) <= robot.w_max + tol
+        if cmd.info["mode"] in ("sample", "sample-relaxed", "evade"):
+            target = cmd.info.get("target", [cmd.v, cmd.w, cmd.vy])
+            r = rollout(st, np.array([target[0]]), np.array([target[2]]), np.array([target[1]]),
+                        planner.rollout_dt, planner.steps)
+            check = planner._assess(ctx, r)
+            assert check.admissible[0], cmd.info  # hou2024 eq 22 with the real deceleration
+            if cmd.info["mode"] != "evade":
+                assert check.mover_free[0], cmd.info
+
+
+def test_vectorised_core_matches_reference(field):
+    robot = RobotSpec()
+    planner = make_local_planner("dwa", robot, DT)
+    compared = 0
+    for ctx in random_contexts(field, 25, seed=7):
+        planner.reset(ctx.state, ctx.global_path)
+        cmd = planner.command(ctx)
+        v, w, info = reference_dwa(robot, ctx)
+        if cmd.info["mode"] == "sample":
+            compared += 1
+            assert (cmd.v, cmd.w) == pytest.approx((v, w), abs=1e-12)
+            assert cmd.info["n_candidates"] == info["n_candidates"]
+    assert compared >= 20
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_same_inputs_same_commands(field, name):
+    robot = RobotSpec(jerk_max=2.0) if name == "qp-dwa" else RobotSpec()
+    runs = []
+    for _ in range(2):
+        planner = make_local_planner(name, robot, DT)
+        ctxs = random_contexts(field, 4, seed=3)
+        planner.reset(ctxs[0].state, ctxs[0].global_path)
+        runs.append([(c.v, c.w, c.vy) for c in map(planner.command, ctxs)])
+    assert runs[0] == runs[1]
+
+
+def test_idwa_velocity_obstacle_rejects_a_crossing_mover(field):
+    robot = RobotSpec()
+    st = RobotState(2.0, 5.0, 0.0, 0.5, 0.0)
+    # at 0.5 m/s east the robot meets this northbound mover at (4.5, 5) after 5 s
+    mover = [4.5, 2.0, 0.0, 0.6, 0.3]
+    ctx = ctx_at(field, st, (9.5, 5.0), [mover])
+    r = rollout(st, np.array([0.5, 0.2]), np.zeros(2), np.zeros(1), DT, 30)
+    step = assess(ctx, robot, r)
+    vo = VelocityObstacle()
+    planner = make_local_planner("idwa", robot, DT)
+    keep = vo.filter(planner, step)
+    assert keep.tolist() == [False, True]  # 0.5 m/s leads into the mover, 0.2 m/s lets it pass
+    assert step.aux["vo_threat"] == 0  # the current velocity is in the cone: lambda = 1.5 alpha (eq 19)
+    planner.reset(st, ctx.global_path)
+    cmd = planner.command(ctx)
+    assert cmd.info["vo_threat"] == 0
+    # a mover that moves away leaves the robot's velocity outside every cone
+    step2 = assess(ctx_at(field, st, (9.5, 5.0), [[4.5, 2.0, 0.0, -0.6, 0.3]]), robot, r)
+    assert vo.filter(planner, step2).all() and step2.aux["vo_threat"] is None
+
+
+def test_idwa_one_step_heading_near_the_goal(field):
+    planner = make_local_planner("idwa", RobotSpec(), DT)
+    st = RobotState(5.5, 5.5, 0.0, 0.3, 0.0)
+    for goal, near in (((6.2, 5.9), True), ((9.5, 5.5), False)):
+        step = planner.evaluate(ctx_at(field, st, goal), planner.window(ctx_at(field, st, goal)))
+        planner.terms[0][0].score(step)
+        assert step.aux.get("heading_one_step", False) is near
+
+
+def test_iga_dwa_brakes_and_waits_for_a_crossing_mover(field):
+    robot = RobotSpec()
+    st = RobotState(2.0, 5.0, 0.0, 0.5, 0.0)
+    path = [[2.0, 5.0], [9.5, 5.0]]
+    planner = make_local_planner("iga-dwa", robot, DT)
+    planner.reset(st, path)
+    crossing = [3.2, 4.4, 0.0, 0.5, 0.3]  # ahead, 1.3 m away, moving across the robot's path
+    cmd = planner.command(ctx_at(field, st, (9.5, 5.0), [crossing], path))
+    assert cmd.info["mode"] == "brake-and-wait" and cmd.v == pytest.approx(0.5 - robot.a_max * DT)
+    # it keeps waiting at standstill while the mover is in front, then drives on
+    still = RobotState(2.0, 5.0, 0.0, 0.0, 0.0)
+    assert planner.command(ctx_at(field, still, (9.5, 5.0), [crossing], path)).v == 0.0
+    gone = [3.2, 6.6, 0.0, 0.5, 0.3]  # past the path and more than 60 deg off the heading
+    assert planner.command(ctx_at(field, still, (9.5, 5.0), [gone], path)).info["mode"] == "sample"
+    head_on = [3.2, 5.0, -0.5, 0.0, 0.3]  # coming head-on: left to the DWA (condition 4)
+    assert planner.command(ctx_at(field, st, (9.5, 5.0), [head_on], path)).info["mode"] != "brake-and-wait"
+
+
+def test_iga_dwa_turns_to_the_first_subgoal_first(field):
+    planner = make_local_planner("iga-dwa", RobotSpec(), DT)
+    st = RobotState(2.0, 5.0, 0.0, 0.0, 0.0)
+    path = [[2.0, 5.0], [2.0, 9.0], [9.0, 9.0]]
+    planner.reset(st, path)
+    assert planner.initial_heading == pytest.approx(math.pi / 2)  # li2023 eq 11
+    cmd = planner.command(ctx_at(field, st, (2.0, 9.0), path=path))
+    assert cmd.info["mode"] == "align-initial-heading" and cmd.v == 0.0 and cmd.w > 0
+
+
+def test_ba_dwa_gdist_pulls_towards_the_global_path():
+    robot = RobotSpec()
+    open_field = grid_distance_field(op.GridMap(np.zeros((20, 20), dtype=bool)))
+    st = RobotState(6.0, 9.3, 0.0, 0.5, 0.0)
+    path = [[2.0, 10.0], [18.0, 10.0]]  # the global path runs 0.7 m to the robot's left
+    ctx = ctx_at(open_field, st, (16.0, 9.3), path=path)
+    with_g = make_local_planner("ba-dwa", robot, DT).command(ctx)
+    without = make_local_planner("ba-dwa", robot, DT, weights={"gdist": 0.0}).command(ctx)
+    assert with_g.w > without.w  # turns left, towards the path (yuan2021 eq 23)
+
+
+def test_missa_dwa_rules(field):
+    robot = RobotSpec()
+    planner = make_local_planner("missa-dwa", robot, DT)
+    # adaptive velocity (eq 23-24): a cluttered spot caps the speed lower than open space
+    caps = []
+    for x, y in ((6.0, 6.0), (5.5, 10.5)):  # open space; between blocks and the map border
+        st = RobotState(x, y, 0.0, 0.5, 0.0)
+        planner.reset(st, np.array([[x, y], [10.5, 10.5]]))
+        planner.window(ctx_at(field, st))
+        caps.append(planner.mechanisms[0].v_r)
+    assert caps[1] < caps[0] <= robot.v_max
+    # eq 26-27: trajectories closer than 1.15 R to a static obstacle are discarded
+    st = RobotState(4.0, 7.45, np.pi / 2, 0.2, 0.0)  # 0.55 m below a block, facing it
+    ctx = ctx_at(field, st, (4.0, 11.0))
+    planner.reset(st, ctx.global_path)
+    step = planner.evaluate(ctx, planner.window(ctx))
+    static = [c for c, _ in planner.terms if c.name == "static_inverse"][0]
+    d = step.static_gap.min(axis=1) + robot.radius
+    assert np.array_equal(static.legal(step), d >= 1.15 * robot.radius) and not static.legal(step).all()
+
+
+def test_missa_dwa_uses_the_omni_model(field):
+    robot = RobotSpec(model="omni", vy_max=0.5)
+    planner = make_local_planner("missa-dwa", robot, DT)
+    st = RobotState(5.5, 5.0, 0.0, 0.3, 0.0, 0.2)
+    ctx = ctx_at(field, st, (9.5, 9.5))
+    planner.reset(st, ctx.global_path)
+    step = planner.evaluate(ctx, planner.window(ctx))
+    assert np.ptp(step.roll.vy) > 0  # sideways speeds are sampled (hou2024 eq 19)
+    cmd = planner.command(ctx)
+    # the acceleration limit bounds the (v, vy) vector
+    assert math.hypot(cmd.v - st.v, cmd.vy - st.vy) <= robot.a_max * DT + 1e-9
+
+
+def test_presets_are_data():
+    for name, preset in PRESETS.items():
+        assert preset.name == name and preset.source and preset.terms
