@@ -112,35 +112,38 @@ def sample_for_corridor(world, path: np.ndarray, n: int, clearance: float = 0.0)
     return X
 
 
-def _insert_on_pieces(points: np.ndarray, pieces: np.ndarray, fractions: list[np.ndarray]) -> np.ndarray:
-    """Insert points at the given fractions (0 < f < 1) of the given pieces."""
-    if not len(pieces):
+def _insert_on_pieces(points: np.ndarray, owner: np.ndarray, fractions: np.ndarray) -> np.ndarray:
+    """Insert a point at fraction ``fractions[k]`` (0 < f < 1) of piece ``owner[k]``."""
+    if not len(owner):
         return points
-    counts = np.array([len(f) for f in fractions])
-    owner = np.repeat(pieces, counts)
-    f = np.concatenate(fractions) if counts.sum() else np.zeros(0)
-    new = points[owner] + f[:, None] * (points[owner + 1] - points[owner])
-    order = np.argsort(np.concatenate([np.arange(len(points), dtype=float), owner + f]), kind="stable")
+    new = points[owner] + fractions[:, None] * (points[owner + 1] - points[owner])
+    order = np.argsort(np.concatenate([np.arange(len(points), dtype=float), owner + fractions]), kind="stable")
     return np.vstack([points, new])[order]
 
 
-def grid_line_fractions(ga: np.ndarray, gb: np.ndarray) -> list[np.ndarray]:
-    """For each segment (grid units) the fractions where it crosses a cell line.
+def grid_line_fractions(ga: np.ndarray, gb: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Where segments ``ga[i] -> gb[i]`` (grid units) cross cell lines: ``(segment index, fraction)``.
 
     Between two consecutive crossings a segment stays inside one closed cell,
     which is free when the segment is, so its bounding box is free.
     """
-    out = []
-    for a, b in zip(ga, gb):  # only the few pieces whose box failed reach here
-        fr = []
-        for axis in (0, 1):
-            lo, hi = sorted((a[axis], b[axis]))
-            ks = np.arange(np.floor(lo) + 1, np.ceil(hi))
-            if len(ks) and b[axis] != a[axis]:
-                fr.append((ks - a[axis]) / (b[axis] - a[axis]))
-        f = np.unique(np.concatenate(fr)) if fr else np.zeros(0)
-        out.append(f[(f > 1e-12) & (f < 1 - 1e-12)])
-    return out
+    owners, fracs = [], []
+    for axis in (0, 1):
+        a, b = ga[:, axis], gb[:, axis]
+        first = np.floor(np.minimum(a, b)) + 1
+        count = np.maximum(np.ceil(np.maximum(a, b)) - first, 0).astype(np.int64)
+        count[a == b] = 0
+        seg = np.repeat(np.arange(len(a)), count)
+        k = first[seg] + (np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count))
+        owners.append(seg)
+        fracs.append((k - a[seg]) / (b[seg] - a[seg]))
+    seg, f = np.concatenate(owners), np.concatenate(fracs)
+    keep = (f > 1e-12) & (f < 1 - 1e-12)
+    seg, f = seg[keep], f[keep]
+    order = np.lexsort((f, seg))
+    seg, f = seg[order], f[order]
+    distinct = np.concatenate([[True], (np.diff(seg) != 0) | (np.diff(f) > 1e-12)]) if len(f) else np.zeros(0, bool)
+    return seg[distinct], f[distinct]
 
 
 # ----------------------------------------------------------------------- grids
@@ -197,7 +200,13 @@ def grid_boxes(grid, points: np.ndarray, clearance: float, max_cells: int, split
             break
         bad = np.nonzero(~ok)[0]
         split = False  # one splitting pass; pieces still failing are pinned
-        points = _insert_on_pieces(points, bad, grid_line_fractions(g[bad], g[bad + 1]))
+        owner, fractions = grid_line_fractions(g[bad], g[bad + 1])
+        points = _insert_on_pieces(points, bad[owner], fractions)
+        # a crossing computed in floating point lands up to an ulp off its cell line, which
+        # the exact rule can see as entering the neighbouring cell: put it on the line
+        gp = grid.to_grid(points)
+        line = np.round(gp)
+        points = grid.to_world(np.where(np.abs(gp - line) < 1e-9, line, gp))
     pinned = ~ok
     # grow every free box outward, one cell line per side and step, all pieces at once
     for _ in range(max_cells):
