@@ -186,3 +186,15 @@ def test_sparrows_are_evaluated_once_per_iteration():
     producers = round(0.3 * pop)
     assert ssa.nfev == pop * (iters + 1)
     assert missa.nfev == pop + iters * (producers + pop + 1)
+
+
+def test_ipso_inertia_adapts_to_fitness():
+    """yang2023 eq 8 / §4.1: the best particle gets w_min, better-than-average particles
+    less inertia the better they are, average or worse particles w_max."""
+    ipso = get_algorithm("ipso")()
+    st = _state(n=10, d=3)
+    st.F, st.V = np.array([1.0, 2.0, 3.0, 4.0, 10.0, 10.0, 10.0, 10.0, 10.0, 10.0]), np.zeros(10)
+    w = ipso.inertia(st).ravel()              # average fitness 7.0
+    assert w[0] == pytest.approx(ipso.w_min) and np.all(w[4:] == ipso.w_max)
+    assert np.all(np.diff(w[:5]) > 0)
+    assert w[3] == pytest.approx(ipso.w_min + (ipso.w_max - ipso.w_min) * 3 / 6)

@@ -7,9 +7,14 @@ clamped to ``v_max_frac`` of the box; yang2023 §7.1 settings are the defaults
 
 IPSO changes, in the order of yang2023 §4:
 
-* eq 8, adaptive inertia per particle: worse than average ->
-  ``w_min + (w_max - w_min) (F_i - F_g) / (F_ave - F_g)``; better ->
-  ``w_min + (w_max - w_min) (F_ave - F_g) / (F_i - F_g)`` (capped at w_max).
+* eq 8, adaptive inertia per particle, read as the text of §4.1 says (poor
+  particles get more inertia, good ones less): better than average ->
+  ``w_min + (w_max - w_min) (F_i - F_g) / (F_ave - F_g)``, from w_min at the best
+  particle up to w_max at the average; average or worse -> w_max. As printed,
+  eq 8 puts ``(F_ave - F_g) / (F_i - F_g)`` in the better-than-average case; that
+  ratio is > 1 there, so every particle would get w >= w_max (after clipping a
+  constant 0.9, no adaptation at all), which contradicts the text. For the worse
+  case the printed ``(F_i - F_g) / (F_ave - F_g)`` is >= 1 and also gives w_max.
 * eq 9, velocity rule by performance: poor particles (worst third, F > F_bad)
   damp the social term by ``eta ~ U(0, 1)``; good particles (best third, F < F_good)
   damp the cognitive term; the rest use the plain rule.
@@ -89,14 +94,14 @@ class IPSO(PSO):
         self.best_seen, self.since_best, self.last_good = state.best_f, 0, 0
 
     def inertia(self, state: State) -> np.ndarray:
-        """Eq 8: per-particle inertia from its fitness relative to the swarm."""
+        """Eq 8 (see the module docstring): w_min at the best particle rising linearly to
+        w_max at the swarm's average fitness; w_max for average or worse particles."""
         F = np.where(np.isfinite(state.F), state.F, np.nan)
         Fg, Fa = np.nanmin(F), np.nanmean(F)
         span = self.w_max - self.w_min
         with np.errstate(divide="ignore", invalid="ignore"):
-            worse = self.w_min + span * (F - Fg) / (Fa - Fg)
-            good = self.w_min + span * (Fa - Fg) / (F - Fg)
-        w = np.where(F >= Fa, worse, good)
+            good = self.w_min + span * (F - Fg) / (Fa - Fg)
+        w = np.where(F < Fa, good, self.w_max)
         return np.clip(np.nan_to_num(w, nan=self.w_max), self.w_min, self.w_max)[:, None]
 
     def velocity(self, state: State, w) -> np.ndarray:
