@@ -198,3 +198,19 @@ def test_ipso_inertia_adapts_to_fitness():
     assert w[0] == pytest.approx(ipso.w_min) and np.all(w[4:] == ipso.w_max)
     assert np.all(np.diff(w[:5]) > 0)
     assert w[3] == pytest.approx(ipso.w_min + (ipso.w_max - ipso.w_min) * 3 / 6)
+
+
+def test_bat_velocity_pulls_towards_the_best():
+    """yuan2021 eq 2: V = V + (x_* - x_i) f with f >= 0, so a bat at rest moves towards the best."""
+    ba = get_algorithm("ba")(pulse0=1.0)      # pulse rate 1: no local walks, only the velocity rule
+    st = _state(n=6, d=2, it=1)
+    st.X = np.random.default_rng(0).uniform(-5, 5, (6, 2))
+    st.F, st.V = st.problem.f(st.X), np.zeros(6)
+    st.best_x = np.array([0.0, 0.0])
+    ba.setup(st)
+    X0 = st.X.copy()
+    captured = []
+    st.eval_new = lambda X: (captured.append(X.copy()), (X, np.full(len(X), np.inf), np.zeros(len(X))))[1]
+    ba.step(st)
+    step = captured[0] - X0
+    assert np.all(np.einsum("ij,ij->i", step, st.best_x - X0) >= 0)

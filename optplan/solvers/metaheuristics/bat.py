@@ -1,11 +1,13 @@
 """Bat algorithm (Yang 2010) and IBA (yuan2021 §2.2).
 
 BA (yuan2021 eq 1-5): frequency ``f = f_min + (f_max - f_min) beta``, velocity
-``V = V + (X - X_best) f``, position ``X + V``; with probability ``1 - r_i`` a bat
+``V = V + (X_best - X) f``, position ``X + V``; with probability ``1 - r_i`` a bat
 instead walks locally around the best, ``X_best + eps * <A>`` (``eps ~ U(-1, 1)``,
 ``<A>`` the mean loudness). A new position is accepted if it is better and
 ``rand < A_i``; then loudness shrinks (``A_i = alpha A_i``) and the pulse rate grows
-(``r_i = r0 (1 - exp(-gamma t))``).
+(``r_i = r0 (1 - exp(-gamma t))``). The velocity pulls towards the best as
+yuan2021 eq 2 and eq 7 write it, ``(x_* - x_i) f_i``; Yang's 2010 original prints
+the opposite sign ``(x_i - x_*) f_i``.
 
 IBA changes:
 
@@ -51,7 +53,7 @@ class BA(Algorithm):
         rng = state.rng
         n, d = state.X.shape
         freq = self.f_min + (self.f_max - self.f_min) * rng.random((n, 1))
-        self.Vel = self.inertia(state) * self.Vel + (state.X - state.best_x) * freq
+        self.Vel = self.inertia(state) * self.Vel + (state.best_x - state.X) * freq   # eq 2 / eq 7
         cand = state.X + self.Vel
         walk = rng.random(n) > self.r
         if walk.any():
