@@ -80,6 +80,10 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
              refine: str | None = None, seed=0, **options) -> SimResult:
     """Run the robot of ``scenario`` from start to goal in closed loop.
 
+    The global path is planned first; the scenario's random parts are then drawn from
+    ``seed`` on that path (``Scenario.realize(seed, path)``; :func:`realized_scenario`
+    gives the same world for plotting).
+
     Args:
         scenario: a :class:`Scenario` or a path / shipped name for ``load_scenario``.
         global_planner: ``op.plan`` algorithm on the known map (``astar`` means
@@ -111,7 +115,7 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
     unknown = sorted(set(options) - set(OPTIONS))
     if unknown:
         raise ParameterError(f"unknown simulate option(s) {unknown}; known: {', '.join(OPTIONS)}")
-    sc = load_scenario(scenario).realize(seed)
+    sc = load_scenario(scenario)
     if "time_limit" in options:
         sc = replace(sc, time_limit=options["time_limit"])
     robot, dt = sc.robot, sc.dt
@@ -125,6 +129,9 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
                     max_replans=options.get("max_replans", 5), global_options=options.get("global_options"),
                     subgoal_options=options.get("subgoal_options"))
     planner = make_planner(local_planner, robot, dt, dict(options.get("planner_params") or {}))
+    # the global plan comes first: random obstacles are placed on the path the robot is given
+    nav.plan_initial(options.get("global_plan"))
+    sc = sc.realize(seed, path=nav.path)
     env = SimEnvironment(sc)
     progress = options.get("progress")
     if progress is True:
@@ -134,7 +141,6 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
     stop_on_collision = bool(options.get("stop_on_collision", False))
     limits = bool(options.get("actuator_limits", False))
 
-    nav.plan_initial(options.get("global_plan"))
     state = RobotState(float(sc.start[0]), float(sc.start[1]), float(sc.start[2]))
     planner.reset(state, nav.path)
     n_max = int(np.ceil(time_limit / dt - 1e-9))
@@ -217,6 +223,15 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
         min_clear = float(env.true_clearance(traj[0, 1:3])) - env.radius
     return _result(sc, traj, np.array(vys), step_ms, collisions, min_clear, status, nav, global_planner,
                    local_name, refine, seed)
+
+
+def realized_scenario(scenario, seed, global_plan) -> Scenario:
+    """The world a run of ``op.simulate(scenario, seed=seed, global_plan=global_plan)`` meets:
+    random obstacles drawn from ``seed`` on the global path (with the exact start and goal)."""
+    sc = load_scenario(scenario)
+    nav = Navigator(sc.world, sc.robot, sc.start[:2], sc.goal)
+    nav.plan_initial(global_plan)
+    return sc.realize(seed, path=nav.path)
 
 
 def _result(sc: Scenario, traj: np.ndarray, vys: np.ndarray, step_ms, collisions: int, min_clear: float, status: str,

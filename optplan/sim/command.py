@@ -35,12 +35,16 @@ def run_simulate(args) -> int:
     if args.progress:
         options["progress"] = True
     refine = None if args.refine == "none" else args.refine
+    from .closed_loop import realized_scenario
+    from .experiments import plan_global
+
+    plan = plan_global(scenario, args.global_planner, refine, args.seed)
     res = simulate(scenario, global_planner=args.global_planner, local_planner=args.local_planner, refine=refine,
-                   seed=args.seed, **options)
+                   seed=args.seed, global_plan=plan, **options)
     if args.gif:
         from ..viz.animate import animate_run
 
-        animate_run(scenario, res, args.gif, seed=args.seed)
+        animate_run(realized_scenario(scenario, args.seed, plan), res, args.gif)
     if args.json:
         print(json.dumps(res.to_json_dict()))
         return 0

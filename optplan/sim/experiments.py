@@ -33,12 +33,17 @@ class LocalRuns:
         return [r for r in self.results if r.reached and r.collisions == 0]
 
 
-def _plan_once(scenario, global_planner: str, refine, seed: int, global_options: dict):
+def plan_global(scenario, global_planner: str = "astar", refine=None, seed: int = 0, global_options: dict | None = None):
+    """The global plan ``op.simulate`` would make for ``scenario`` and ``seed`` (a PlanResult to
+    pass back as ``global_plan=``, so several local planners share it)."""
     from ..nav.navigator import Navigator
 
     nav = Navigator(scenario.world, scenario.robot, scenario.start[:2], scenario.goal, global_planner=global_planner,
-                    refine=refine, seed=seed, global_options=global_options)
+                    refine=refine, seed=seed, global_options=dict(global_options or {}))
     return nav.plan_initial()
+
+
+_plan_once = plan_global  # the benchmark runner's name for it
 
 
 def run_local(scenarios, planners, runs: int, global_planner: str = "astar", refine=None, seed0: int = 0,
@@ -66,7 +71,7 @@ def run_local(scenarios, planners, runs: int, global_planner: str = "astar", ref
         sets = {p: LocalRuns(sc.name, p) for p in planners}
         for k in range(runs):
             seed = seed0 + k
-            gp = _plan_once(sc, global_planner, refine, seed, dict(global_options or {}))
+            gp = plan_global(sc, global_planner, refine, seed, global_options)
             for p in planners:
                 if sets[p].error:
                     continue
@@ -152,10 +157,10 @@ def write_gif(scenario, local_planner: str, filename, global_planner: str = "ast
     a one-line summary."""
     from ..viz.animate import animate_run
     from ..world.scenario import load_scenario
-    from .closed_loop import simulate
+    from .closed_loop import realized_scenario, simulate
 
     sc = load_scenario(scenario)
-    res = simulate(sc, global_planner=global_planner, local_planner=local_planner, seed=seed,
-                   global_options=global_options, **options)
-    animate_run(sc, res, filename, seed=seed)
+    gp = plan_global(sc, global_planner, None, seed, global_options)
+    res = simulate(sc, global_planner=global_planner, local_planner=local_planner, seed=seed, global_plan=gp, **options)
+    animate_run(realized_scenario(sc, seed, gp), res, filename)
     return f"wrote {filename}: {sc.name}, {global_planner} + {local_planner}, seed {seed}: {res.message}"

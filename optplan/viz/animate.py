@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 
-def animate_run(scenario, result, filename: str | Path, seed=0, fps: int = 10, max_frames: int = 150,
+def animate_run(scenario, result, filename: str | Path, fps: int = 10, max_frames: int = 150,
                 title: str | None = None) -> Path:
     """Write a GIF of ``result`` (a SimResult of ``op.simulate``) in ``scenario``.
 
@@ -21,10 +21,10 @@ def animate_run(scenario, result, filename: str | Path, seed=0, fps: int = 10, m
     the robot footprint and heading, the sensor range and the moving obstacles.
 
     Args:
-        scenario: the Scenario that was simulated (random parts are realised with ``seed``).
+        scenario: the world of the run, with its random parts realised
+            (``optplan.sim.closed_loop.realized_scenario``).
         result: its SimResult.
         filename: ``.gif`` to write.
-        seed: the seed of the run (for random obstacles).
         fps: frames per second of the GIF.
         max_frames: the run is subsampled to at most this many frames.
 
@@ -41,7 +41,12 @@ def animate_run(scenario, result, filename: str | Path, seed=0, fps: int = 10, m
     from .plots import draw_world
     from ..sim.environment import SimEnvironment
 
-    sc = scenario.realize(seed)
+    sc = scenario
+    if sc.random_obstacles or sc.random_dynamic or sc.timing_jitter:
+        from ..errors import ParameterError
+
+        raise ParameterError("animate_run needs the realised scenario of the run; "
+                             "use optplan.sim.closed_loop.realized_scenario(scenario, seed, global_plan)")
     env = SimEnvironment(sc)
     traj = np.asarray(result.trajectory)
     frames = np.unique(np.linspace(0, len(traj) - 1, min(max_frames, len(traj))).astype(int))

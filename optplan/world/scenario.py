@@ -38,12 +38,13 @@ Optional keys added by optplan (all validated like the rest):
   where the disc first touches the border) or ``pass`` (leave the map).
 * ``random_obstacles: {count, size, keep_away}``: ``count`` unknown square blocks of
   ``size`` x ``size`` cells (circle worlds: discs of diameter ``size`` m), drawn from the
-  run's seed on cells of the known map's shortest path at least ``keep_away`` m
+  run's seed on cells of the run's global path (the *reference path*: the path the
+  robot is given, or the known map's shortest path when none is) at least ``keep_away`` m
   (default 2) from start and goal; draws that would leave the goal unreachable for
   the robot's footprint are redrawn. This is hou2024 §4.4 "random obstacles".
 * ``random_dynamic: {count, radius, speed: [lo, hi], length: [lo, hi], keep_away}``:
   ``count`` obstacles drawn from the seed, each driving back and forth along a straight
-  segment of the given length range that crosses the known map's shortest path (at
+  segment of the given length range that crosses the reference path (at
   least ``keep_away`` m, default 3, from start and goal) at a random angle of 60-120
   degrees, with a random phase; segments are kept free of known obstacles by the
   obstacle radius.
@@ -53,7 +54,8 @@ Optional keys added by optplan (all validated like the rest):
   run's seed, so seeded runs of a fixed scenario meet the movers at different moments.
 
 Seed-dependent parts are realised by :meth:`Scenario.realize` (``op.simulate`` calls
-it with its ``seed``), so the same scenario file and seed always give the same world.
+it with its ``seed`` and its initial global path), so the same scenario file, seed and
+global path always give the same world.
 Malformed files raise :class:`ScenarioError` naming the key and what to write instead.
 """
 from __future__ import annotations
@@ -270,9 +272,15 @@ class Scenario:
         grid are not included; see :func:`static_clearance`."""
         return _true_world(self)
 
-    def realize(self, seed=0) -> "Scenario":
+    def realize(self, seed=0, path=None) -> "Scenario":
         """A copy whose random obstacles (``random_obstacles``, ``random_dynamic``) are
-        drawn from ``seed`` and added as ordinary unknown / moving obstacles."""
+        drawn from ``seed`` and added as ordinary unknown / moving obstacles.
+
+        Args:
+            seed: int or Generator.
+            path: ``(N, 2)`` reference path (metres) the random obstacles are placed on
+                (the run's global path); default: the known map's shortest path.
+        """
         if not self.random_obstacles and not self.random_dynamic and not self.timing_jitter:
             return self
         from ..rng import as_generator
@@ -281,7 +289,8 @@ class Scenario:
         cells, circles, dynamic = self.unknown_cells, self.unknown_circles, list(self.dynamic)
         if self.timing_jitter:
             dynamic = _jitter_movers(self, rng)
-        path = _reference_path(self) if (self.random_obstacles or self.random_dynamic) else None
+        if self.random_obstacles or self.random_dynamic:
+            path = _reference_path(self) if path is None else _densify(np.asarray(path, dtype=float).reshape(-1, 2))
         if self.random_obstacles:
             new_cells, new_circles = _draw_random_obstacles(self, self.random_obstacles, rng, path)
             cells = np.vstack([cells, new_cells]) if len(new_cells) else cells
@@ -616,9 +625,15 @@ def _reference_path(sc: Scenario) -> np.ndarray:
         res = shortest_path(sc.world, sc.start[:2], sc.goal, method=method, clearance=sc.robot.radius)
     except OptplanError:
         res = shortest_path(sc.world, sc.start[:2], sc.goal, method=method)
-    P = np.vstack([sc.start[:2], res.path, sc.goal])
+    return _densify(np.vstack([sc.start[:2], res.path, sc.goal]))
+
+
+def _densify(P: np.ndarray, step: float = 0.25) -> np.ndarray:
+    """Points every ``step`` metres (or closer) along the polyline ``P``."""
+    if len(P) < 2:
+        return P.copy()
     seg = np.diff(P, axis=0)
-    n = np.maximum(np.ceil(np.hypot(seg[:, 0], seg[:, 1]) / 0.25).astype(int), 1)
+    n = np.maximum(np.ceil(np.hypot(seg[:, 0], seg[:, 1]) / step).astype(int), 1)
     dense = [P[i] + seg[i] * (np.arange(n[i])[:, None] / n[i]) for i in range(len(seg))]
     return np.vstack(dense + [P[-1:]])
 
@@ -656,7 +671,7 @@ def _draw_random_obstacles(sc: Scenario, spec: dict, rng, path: np.ndarray) -> t
     far = (np.hypot(*(path - sc.start[:2]).T) >= keep) & (np.hypot(*(path - sc.goal).T) >= keep)
     candidates = path[far]
     if not len(candidates):
-        raise ScenarioError(f"random_obstacles: no point of the shortest path is {keep:g} m from start and goal; "
+        raise ScenarioError(f"random_obstacles: no point of the reference path is {keep:g} m from start and goal; "
                             "lower keep_away")
     for _ in range(200):
         picks = candidates[rng.choice(len(candidates), size=count, replace=len(candidates) < count)]
@@ -726,7 +741,7 @@ def _draw_random_movers(sc: Scenario, spec: dict, rng, path: np.ndarray) -> list
     far = (np.hypot(*(path - sc.start[:2]).T) >= keep) & (np.hypot(*(path - sc.goal).T) >= keep)
     idx = np.nonzero(far)[0]
     if not len(idx):
-        raise ScenarioError(f"random_dynamic: no point of the shortest path is {keep:g} m from start and goal; "
+        raise ScenarioError(f"random_dynamic: no point of the reference path is {keep:g} m from start and goal; "
                             "lower keep_away")
     world = sc.world
     out: list[DynamicObstacle] = []
