@@ -110,7 +110,7 @@ def smooth_path_qp(world, seed_path, clearance: float = 0.0, n_points: int | Non
             if improved < tol * sol.objective:
                 break
         if best is not None:
-            msg = "" if attempt == 0 else "succeeded on retry"
+            msg = "" if attempt == 0 else f"succeeded on retry ({reasons[0]})"
             if note:
                 msg = (msg + "; " if msg else "") + f"kept the last valid round ({note})"
             return SmoothResult(best, True, msg, time.perf_counter() - t0, iters, best_J, solves)
