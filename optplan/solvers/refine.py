@@ -1,13 +1,16 @@
 """Refinement stage of ``op.plan(..., refine=...)``: polish a planner's path.
 
 ``casadi`` smooths and shortens the path with IPOPT under clearance constraints
-(:mod:`optplan.solvers.nlp`): a nonconvex program that may also pull a path
-across into a shorter homotopy class. ``qp`` solves a sequence of convex QPs
-inside a safe corridor around the path (:mod:`optplan.solvers.qp`, OSQP): it
-keeps the seed's homotopy class, needs a collision-free seed, and is the faster
-of the two. The refined path replaces the seed only when it passed the exact
-check; otherwise the seed is returned with ``refined=False`` and the reason in
-``message``.
+(:mod:`optplan.solvers.nlp`); on grids the result is finished by one corridor
+pass of the QP smoother, which removes the NLP's sampling cushion. The NLP is
+not tied to a corridor around the seed and can also repair a slightly colliding
+seed. ``qp`` solves a sequence of convex QPs inside a safe corridor around the
+path (:mod:`optplan.solvers.qp`, OSQP): it needs a collision-free seed, stays in
+its homotopy class and is the faster of the two. Both are local: neither moves
+a path to the other side of an obstacle. The refined path replaces the seed
+only when it passed the exact check; otherwise the seed is returned with
+``refined=False`` and the reason in ``message``. Extra keyword options reach
+the smoother (``smooth_path`` / ``smooth_path_qp``).
 """
 from __future__ import annotations
 
