@@ -59,6 +59,14 @@ def test_topologically_wrong_seed_falls_back_or_validates():
         assert "attempt" in r.message
 
 
+def test_seed_through_a_closed_wall_falls_back_with_the_reason():
+    world = op.GridMap.from_rows([[0, 0, 0, 1, 0, 0, 0]] * 5)  # no way round the wall
+    seed = np.array([[0.5, 2.5], [6.5, 2.5]])
+    r = smooth_path(world, seed)
+    assert not r.success and "attempt 2" in r.message and "IPOPT" in r.message
+    np.testing.assert_array_equal(r.path, seed)
+
+
 def test_blocked_goal_gives_the_reason_not_a_crash():
     world = op.GridMap.from_rows([[0, 0, 0], [0, 1, 0], [0, 0, 0]])
     r = smooth_path(world, [[0.5, 0.5], [1.5, 1.5]])
