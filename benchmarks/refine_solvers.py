@@ -9,7 +9,7 @@
    0.05-0.5 m along the path, warm-started from the previous solution and its
    multipliers (median). Goals: 30 ms cold, 15 ms warm.
 2. Grid maps once the interpolant is cached: cold and warm per-solve NLP times
-   with 2 (default) and 3 constrained samples inside each segment, and the QP
+   with 1 (default) and 2 constrained samples inside each segment, and the QP
    polish on its own; goal 150 ms per solve.
 3. The same circle-world problem solved by IPOPT (casadi), scipy SLSQP (fixed
    neighbour sets, as the NLP), and by the QP corridor smoother (OSQP and cvxpy):
@@ -21,7 +21,8 @@
 4. IPOPT options: total iterations over 9 cold solves (why ``mu_strategy='adaptive'``).
 5. QP corridor smoother (``refine='qp'``) per map: time, rounds, length.
 
-Wall-clock figures depend on machine load; run it on a quiet machine.
+Wall-clock figures depend on machine load; run it on a quiet machine. The CPU
+columns (this process's CPU time) are less sensitive to other processes.
 """
 from __future__ import annotations
 
@@ -46,13 +47,15 @@ def seed_for(world, s, g):
     return op.plan(world, s, g, algorithm="pso", seed=0, pop=30, iters=60).path
 
 
-def timed(fn, reps):
-    out, ts = None, []
+def timed(fn, reps, cpu: bool = False):
+    """Last result and median wall time (and median CPU time of this process with ``cpu``)."""
+    out, ts, cs = None, [], []
     for _ in range(reps):
-        t = time.perf_counter()
+        t, c = time.perf_counter(), time.process_time()
         out = fn()
         ts.append(time.perf_counter() - t)
-    return out, float(np.median(ts))
+        cs.append(time.process_time() - c)
+    return (out, float(np.median(ts)), float(np.median(cs))) if cpu else (out, float(np.median(ts)))
 
 
 def moved_starts(path: np.ndarray, n: int) -> list[np.ndarray]:
@@ -76,9 +79,9 @@ def warm_times(world, seed, first, reps, **kw):
 
 def circle_timings(reps: int) -> None:
     print("## 1. CasADi/IPOPT on circle worlds\n")
-    print("| map | seed | N | build [s] | cold median [s] | cold its | warm median [s] | warm its | warm not clean "
-          "| rounds | length [m] | optimum [m] |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    print("| map | seed | N | build [s] | cold median [s] | cold CPU [s] | cold its | warm median [s] | warm its "
+          "| warm not clean | rounds | length [m] | optimum [m] |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for name in ("yang2023_env1", "yang2023_env2"):
         world, s, g = paper_map(name)
         opt = op.shortest_path(world, s, g, method="visibility")
@@ -88,9 +91,9 @@ def circle_timings(reps: int) -> None:
             t = time.perf_counter()
             smoothing.circle_nlp(n, min(2, len(world.circles)), 0.5)
             build = time.perf_counter() - t
-            first, cold = timed(lambda: smooth_path(world, seed), reps)
+            first, cold, cold_cpu = timed(lambda: smooth_path(world, seed), reps, cpu=True)
             warm, warm_its, fails = warm_times(world, seed, first, reps)
-            print(f"| {name} | {label} | {n} | {build:.3f} | {cold:.4f} | {first.iterations} | {warm:.4f} | {warm_its} "
+            print(f"| {name} | {label} | {n} | {build:.3f} | {cold:.4f} | {cold_cpu:.4f} | {first.iterations} | {warm:.4f} | {warm_its} "
                   f"| {fails}/{reps} | {first.rounds} | {op.path_metrics(world, first.path).length:.3f} | {opt.length:.3f} |")
     print("\ngoals: circle worlds 0.030 s cold / 0.015 s warm (median, N <= 100)\n")
 
@@ -98,22 +101,22 @@ def circle_timings(reps: int) -> None:
 def grid_timings(reps: int) -> None:
     print("## 2. CasADi/IPOPT on grid maps (interpolant cached)\n")
     print("NLP times without the QP polish; the polish (on by default on grids) is timed on its own.\n")
-    print("| map | N | samples/segment | first call [s] | cold median [s] | warm median [s] | warm not clean "
+    print("| map | N | samples/segment | first call [s] | cold median [s] | cold CPU [s] | warm median [s] | warm not clean "
           "| polish [s] | NLP length [m] | polished [m] | optimum [m] |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for name in ("chen2025_20", "hou2024_env2", "li2023_30", "hou2024_base50", "li2023_90"):
         world, s, g = paper_map(name)
         seed = seed_for(world, s, g)
         opt = op.shortest_path(world, s, g, method="visibility").length
-        for S in (2, 3):
+        for S in (1, 2):
             t = time.perf_counter()
             smooth_path(world, seed, grid_samples=S, polish=False)
             first_call = time.perf_counter() - t
-            first, cold = timed(lambda: smooth_path(world, seed, grid_samples=S, polish=False), reps)
+            first, cold, cold_cpu = timed(lambda: smooth_path(world, seed, grid_samples=S, polish=False), reps, cpu=True)
             warm, _, fails = warm_times(world, seed, first, reps, grid_samples=S, polish=False)
             polished, t_polish = timed(lambda: smooth_path_qp(world, first.path, n_points=len(first.path)), 3)
             status = "" if first.success and not first.message else " (cold: " + first.message[:60] + ")"
-            print(f"| {name} | {len(first.path)} | {S} | {first_call:.3f} | {cold:.4f}{status} | {warm:.4f} | {fails}/{reps} "
+            print(f"| {name} | {len(first.path)} | {S} | {first_call:.3f} | {cold:.4f}{status} | {cold_cpu:.4f} | {warm:.4f} | {fails}/{reps} "
                   f"| {t_polish:.4f} | {op.path_metrics(world, first.path).length:.3f} "
                   f"| {op.path_metrics(world, polished.path).length:.3f} | {opt:.3f} |")
     print("\ngoal: grids 0.150 s per solve once the interpolant is cached (first call includes the distance field)\n")
