@@ -83,11 +83,11 @@ def _scenario_target(target_json: str):
 @functools.lru_cache(maxsize=64)
 def _shared_global_plan(target_json: str, algorithm: str, refine: str | None, seed: int, options_json: str):
     """The global plan of one (scenario, planner, refine, seed), made once per worker process and
-    shared by the runs that differ only in the local planner (as ``optplan.sim.experiments`` does);
+    shared by the runs that differ only in the local planner (``optplan.sim.experiments.plan_global``);
     planning is seeded, so sharing changes no number, it only saves the metaheuristic's time."""
-    from ..sim.experiments import _plan_once
+    from ..sim.experiments import plan_global
 
-    return _plan_once(_scenario_target(target_json), algorithm, refine, seed, json.loads(options_json))
+    return plan_global(_scenario_target(target_json), algorithm, refine, seed, json.loads(options_json))
 
 
 def _run_simulate(rec) -> tuple[Any, dict]:
