@@ -10,7 +10,7 @@ and how many paths validate. Then, per map, the share of runs whose
 casadi-refined path is within 1 % of the optimum (issue 5 asks for >= 90 % on
 every map), and a figure per map with the paths of the first run overlaid.
 
-    python examples/refined_vs_pure.py [--runs 10] [--quick] [--out refined_vs_pure]
+    python examples/refined_vs_pure.py [--runs 10] [--quick] [--out refined_vs_pure] [--maps NAME ...]
 
 Both smoothers are local: a seed in another homotopy class than the optimum
 (around the other side of an obstacle) stays there, which is what keeps a run
@@ -83,6 +83,7 @@ def main(argv=None) -> int:
     ap.add_argument("--iters", type=int, default=None, help="planner iterations (default 200; --quick 60)")
     ap.add_argument("--pop", type=int, default=30)
     ap.add_argument("--out", default="refined_vs_pure", help="folder for the figures and the markdown table")
+    ap.add_argument("--maps", nargs="+", metavar="NAME", help="only these paper maps (default: all, --quick: one per paper)")
     args = ap.parse_args(argv)
     runs = 3 if args.quick else args.runs
     iters = args.iters or (60 if args.quick else 200)
@@ -92,7 +93,11 @@ def main(argv=None) -> int:
     rows, shares = [], []
     for paper, planner in PLANNER_OF.items():
         names = maps_of(paper)
-        for name in names[:1] if args.quick else names:
+        if args.maps:
+            names = [n for n in names if n in args.maps]
+        elif args.quick:
+            names = names[:1]
+        for name in names:
             world, s, g = paper_map(name)
             opt = exact_optimum(world, s, g)
             planners = [planner] + (["astar"] if hasattr(world, "occ") else [])

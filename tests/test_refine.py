@@ -103,3 +103,23 @@ def test_warm_start_of_the_wrong_type_is_refused():
     world, s, g = paper_map("yang2023_env1")
     with pytest.raises(op.OptplanError, match="warm_start"):
         smooth_path(world, np.array([s, g]), warm_start=np.zeros((3, 2)))
+
+
+def test_refined_vs_pure_example_every_refined_path_validates(tmp_path):
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    script = Path(__file__).resolve().parents[1] / "examples" / "refined_vs_pure.py"
+    proc = subprocess.run([sys.executable, str(script), "--quick", "--maps", "li2023_11", "yang2023_env1",
+                           "--iters", "30", "--out", str(tmp_path)], capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    rows = [line.split(" | ") for line in (tmp_path / "refined_vs_pure.md").read_text().splitlines()
+            if line.startswith("| li2023_11 |") or line.startswith("| yang2023_env1 |")]
+    table = [r for r in rows if len(r) == 11]
+    assert {r[2] for r in table} == {"pure", "casadi", "qp"}
+    for r in table:
+        valid = r[9].split("/")
+        assert valid[0] == valid[1], r           # every path (pure and refined) validates
+    assert (tmp_path / "li2023_11.png").stat().st_size > 0 and (tmp_path / "yang2023_env1.png").exists()
+    assert "within 1 %" in proc.stdout
