@@ -63,3 +63,18 @@ def test_yang2023_planners_plan_splines_on_grid_maps():
     nodes = op.plan(world, s, g, algorithm="ipso", seed=0, pop=20, iters=30, encoding="columns")
     assert len(spline.path) > world.width + 1 >= len(nodes.path)   # densely sampled curve vs grid nodes
     assert spline.feasible == bool(op.validate_path(world, spline.path))
+
+
+def test_column_planners_cannot_beat_the_encodings_exact_optimum():
+    """hou2024's planners return column-node paths (collinear points removed only), so no
+    run can be shorter than the encoding's exact optimum; on hou2024_env2 that optimum is
+    itself more than 3 % above the any-angle optimum (the miss global_gaps.py reports)."""
+    from optplan.formulations.encodings import ColumnNodes
+
+    world, s, g = paper_map("hou2024_env2")
+    floor, rows = ColumnNodes(world, s, g).optimal_rows()
+    opt = op.shortest_path(world, s, g, method="visibility").length
+    assert floor > 1.03 * opt
+    for algo in ("ssa", "missa"):
+        r = op.plan(world, s, g, algorithm=algo, seed=1, pop=20, iters=30)
+        assert r.feasible and r.length >= floor - 1e-9
