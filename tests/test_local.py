@@ -94,9 +94,7 @@ def test_window_and_admissibility_hold(field, name):
         assert robot.v_min - tol <= cmd.v <= robot.v_max + tol and abs(cmd.w) <= robot.w_max + tol
         if cmd.info["mode"] in ("sample", "sample-relaxed", "evade"):
             target = cmd.info.get("target", [cmd.v, cmd.w, cmd.vy])
-            r = rollout(st, np.array([target[0]]), np.array([target[2]]), np.array([target[1]]),
-                        planner.rollout_dt, planner.steps)
-            check = planner._assess(ctx, r)
+            check = planner._assess(ctx, planner.rollout_of(st, [target[0]], [target[2]], [target[1]]))
             assert check.admissible[0], cmd.info  # hou2024 eq 22 with the real deceleration
             if cmd.info["mode"] != "evade":
                 assert check.mover_free[0], cmd.info

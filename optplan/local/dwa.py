@@ -29,7 +29,7 @@ from ..world.robot import Command, RobotSpec, RobotState
 from .base import LocalContext
 from .critics import CRITICS, Critic
 from .mechanisms import MECHANISMS, Mechanism
-from .rollout import Step, assess, rollout
+from .rollout import Rollouts, Step, assess, rollout, rollout_ramped
 from .window import Window, dynamic_window, sample_grid, stopping_distance
 
 
@@ -97,6 +97,8 @@ class DWAPlanner:
         "mover_range": 3.0,   # movers provably farther than this (edge to edge) are skipped, m
         "mover_growth": 0.0,  # predicted movers grow by this times their speed per second ...
         "growth_cap": 0.0,    # ... up to this much, m
+        "lookahead": None,    # s: sample targets reachable within this time and roll out the
+                              # ramp to them (None = the classic window of one period)
     }
 
     def __init__(self, preset: Preset, robot: RobotSpec, dt: float, **params: Any) -> None:
@@ -168,6 +170,8 @@ class DWAPlanner:
                 raise ParameterError(f"{k} must be an int >= 1 (number of samples), got {o[k]!r}")
             o[k] = int(o[k])
         o["horizon"] = self._number("horizon", o["horizon"])
+        if o["lookahead"] is not None:
+            o["lookahead"] = self._number("lookahead", o["lookahead"])
         if o["rollout_dt"] is not None:
             o["rollout_dt"] = self._number("rollout_dt", o["rollout_dt"])
         for k in ("margin", "reaction", "mover_range", "mover_growth", "growth_cap"):
@@ -193,7 +197,7 @@ class DWAPlanner:
 
     def window(self, ctx: LocalContext) -> Window:
         """The dynamic window for this step, after the mechanisms' caps."""
-        win = dynamic_window(self.robot, ctx.state, ctx.dt, omni=self.omni)
+        win = dynamic_window(self.robot, ctx.state, self.options["lookahead"] or ctx.dt, omni=self.omni)
         for m in self.mechanisms:
             win = m.adjust_window(self, ctx, win)
         return win
@@ -202,12 +206,21 @@ class DWAPlanner:
         """Roll out and assess the sample grid of ``window``."""
         o = self.options
         lin_v, lin_vy, w = sample_grid(window, o["n_v"], o["n_w"], o["n_vy"] if self.omni else 1)
-        roll = rollout(ctx.state, lin_v, lin_vy, w, self.rollout_dt, self.steps)
-        step = self._assess(ctx, roll)
+        step = self._assess(ctx, self.rollout_of(ctx.state, lin_v, lin_vy, w))
         if self.omni:  # the acceleration limit bounds the (v, vy) vector: keep the disc of the box
-            dv = np.hypot(roll.v - ctx.state.v, roll.vy - ctx.state.vy)
-            step.admissible &= dv <= self.robot.a_max * ctx.dt * (1 + 1e-9)
+            dv = np.hypot(step.roll.v - ctx.state.v, step.roll.vy - ctx.state.vy)
+            step.admissible &= dv <= self.robot.a_max * (o["lookahead"] or ctx.dt) * (1 + 1e-9)
         return step
+
+    def rollout_of(self, state: RobotState, lin_v, lin_vy, w) -> Rollouts:
+        """The planner's rollouts of the grid ``(lin_v, lin_vy) x w`` (constant velocities, or
+        ramps to target velocities with the ``lookahead`` option)."""
+        if self.options["lookahead"] is None:
+            return rollout(state, np.asarray(lin_v, float), np.asarray(lin_vy, float), np.asarray(w, float),
+                           self.rollout_dt, self.steps)
+        a = self.robot.a_max
+        return rollout_ramped(state, np.asarray(lin_v, float), np.asarray(lin_vy, float), np.asarray(w, float),
+                              self.rollout_dt, self.steps, (a, self.robot.alpha_max, a))
 
     def _assess(self, ctx: LocalContext, roll) -> Step:
         o = self.options

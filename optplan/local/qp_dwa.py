@@ -42,7 +42,7 @@ from ..world.robot import RobotSpec, RobotState
 from .base import LocalContext
 from .dwa import DWAPlanner, Preset
 from .limiter import RuckigLimiter
-from .rollout import Step, rollout
+from .rollout import Step
 from .window import Window, dynamic_window
 
 _SLACK_LINEAR, _SLACK_QUADRATIC = 1e2, 1e4
@@ -126,9 +126,13 @@ class QPDWAPlanner(DWAPlanner):
 
     def window(self, ctx: LocalContext) -> Window:
         self._resynced = self.limiter.sync(self._vel(ctx.state))
-        acc = np.r_[self.limiter.acceleration, 0.0, 0.0][:3]
-        a3 = (acc[0], acc[1], acc[2] if self.n_u == 3 else 0.0)
-        win = dynamic_window(self.robot, ctx.state, ctx.dt, omni=self.omni, accel=a3, jerk=self.jerk, a_lin=self.a_lin)
+        if self.options["lookahead"] is not None:  # targets that Ruckig will ramp to
+            win = dynamic_window(self.robot, ctx.state, self.options["lookahead"], omni=self.omni, a_lin=self.a_lin)
+        else:  # what the jerk-limited profile can reach within one period
+            acc = np.r_[self.limiter.acceleration, 0.0, 0.0][:3]
+            a3 = (acc[0], acc[1], acc[2] if self.n_u == 3 else 0.0)
+            win = dynamic_window(self.robot, ctx.state, ctx.dt, omni=self.omni, accel=a3, jerk=self.jerk,
+                                 a_lin=self.a_lin)
         for m in self.mechanisms:
             win = m.adjust_window(self, ctx, win)
         return win
@@ -152,12 +156,11 @@ class QPDWAPlanner(DWAPlanner):
         roll = step.roll
         H = max(1, min(roll.z.shape[1], int(round(o["qp_horizon"] / roll.dt))))
         z = roll.z[i, :H]
-        v, w, vy = roll.v[i], roll.w[i], roll.vy[i]
-        j = np.arange(H)
-        e = np.exp(1j * (roll.theta0 + w * j * roll.dt))
-        C = np.cumsum(e) * roll.dt                             # dz/dv ; dz/dvy = i C
-        dz_dw = (v + 1j * vy) * np.cumsum(1j * j * roll.dt * e) * roll.dt
-        dz = [C, dz_dw, 1j * C][:self.n_u]
+        # dz/du by forward differences of the planner's own rollout (constant or ramped)
+        v, w, vy, h = roll.v[i], roll.w[i], roll.vy[i], 1e-4
+        r = self.rollout_of(ctx.state, [v, v + h, v], [vy, vy, vy + h], [w, w + h])
+        zz = r.z[:, :H]  # rows: (v,w) (v,w+h) (v+h,w) (v+h,w+h) (vy+h,w) (vy+h,w+h)
+        dz = [(zz[2] - zz[0]) / h, (zz[1] - zz[0]) / h, (zz[4] - zz[0]) / h][:self.n_u]
         grads, gaps = [], []
         R = self.robot.radius
         if len(step.mover_r) and o["qp_rows_moving"]:
@@ -230,8 +233,7 @@ class QPDWAPlanner(DWAPlanner):
             return u0
         x = np.clip(res.x[:n_u], lo, hi)
         u = (float(x[0]), float(x[1]), float(x[2]) if n_u == 3 else 0.0)
-        check = self._assess(ctx, rollout(ctx.state, np.array([u[0]]), np.array([u[2]]), np.array([u[1]]),
-                                          step.roll.dt, step.roll.z.shape[1]))
+        check = self._assess(ctx, self.rollout_of(ctx.state, [u[0]], [u[2]], [u[1]]))
         H = max(1, min(step.roll.z.shape[1], int(round(o["qp_horizon"] / step.roll.dt))))
         worse = check.gap[0, :H].min() < min(step.gap[i, :H].min(), o["qp_margin"]) - 1e-9
         if not check.admissible[0] or check.mover_contact[0] < step.mover_contact[i] or worse:

@@ -45,6 +45,7 @@ class Rollouts:
     z0: complex
     theta0: float
     dt: float
+    theta: np.ndarray | None = None
 
     @property
     def n(self) -> int:
@@ -63,6 +64,8 @@ class Rollouts:
     def heading(self, k: int | None = None) -> np.ndarray:
         """Heading after ``k`` steps (default: at the end of the horizon), rad."""
         k = self.z.shape[1] if k is None else k
+        if self.theta is not None:  # ramped rollouts keep their headings
+            return self.theta[:, k - 1] if k > 0 else np.full(self.n, self.theta0)
         return self.theta0 + self.w * (k * self.dt)
 
     def position(self, k: int | None = None) -> np.ndarray:
@@ -86,6 +89,34 @@ def rollout(state: RobotState, lin_v: np.ndarray, lin_vy: np.ndarray, w: np.ndar
     n_lin = len(lin_v)
     return Rollouts(v=np.repeat(lin_v, len(w)), vy=np.repeat(lin_vy, len(w)), w=np.tile(w, n_lin), z=z,
                     t=(k + 1) * dt, z0=z0, theta0=float(state.theta), dt=float(dt))
+
+
+def _ramp(current: float, target: np.ndarray, accel: float, t: np.ndarray) -> np.ndarray:
+    """``(S, H)`` velocity moving from ``current`` towards each target at ``accel``."""
+    return current + np.clip(np.asarray(target)[:, None] - current, -accel * t, accel * t)
+
+
+def rollout_ramped(state: RobotState, lin_v: np.ndarray, lin_vy: np.ndarray, w: np.ndarray, dt: float, steps: int,
+                   accel: tuple[float, float, float]) -> Rollouts:
+    """Like :func:`rollout`, but each sample is a *target* velocity that the robot approaches
+    from its current velocity at the accelerations ``accel`` ``(a_v, a_w, a_vy)`` and then
+    holds. Used when the targets span more than one period's reach (the ``lookahead``
+    option of ``qp-dwa``, whose commands follow a Ruckig profile to the target). Same grid
+    layout as :func:`rollout`; every sample is integrated with the same motion model."""
+    n_w, n_lin = len(w), len(lin_v)
+    t = np.arange(steps) * dt  # velocity held during step j is the ramp's value at j dt... (j+1) dt
+    t1 = t + dt
+    v = np.repeat(_ramp(state.v, lin_v, accel[0], t1), n_w, axis=0)
+    vy = np.repeat(_ramp(state.vy, lin_vy, accel[2], t1), n_w, axis=0)
+    wr = _ramp(state.w, w, accel[1], t1)  # (n_w, H)
+    theta_w = state.theta + np.cumsum(wr, axis=1) * dt  # heading after each step
+    start_heading = np.concatenate([np.full((n_w, 1), state.theta), theta_w[:, :-1]], axis=1)
+    theta = np.tile(theta_w, (n_lin, 1))
+    z = np.cumsum((v + 1j * vy) * np.tile(np.exp(1j * start_heading), (n_lin, 1)), axis=1) * dt
+    z0 = complex(state.x, state.y)
+    z += z0
+    return Rollouts(v=np.repeat(lin_v, n_w), vy=np.repeat(lin_vy, n_w), w=np.tile(w, n_lin), z=z, t=t1, z0=z0,
+                    theta0=float(state.theta), dt=float(dt), theta=theta)
 
 
 def predict_movers(dynamic: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -133,6 +164,7 @@ class Step:
     admissible: np.ndarray
     mover_contact: np.ndarray
     target: complex
+    growth: np.ndarray | float = 0.0
     aux: dict = field(default_factory=dict)
 
     @property
@@ -141,19 +173,18 @@ class Step:
 
     @property
     def gap(self) -> np.ndarray:
-        """``(S, H)`` clearance to any obstacle, static or moving, m."""
-        return np.minimum(self.static_gap, self.dyn_gap)
+        """``(S, H)`` clearance to any obstacle, static or moving, m; the movers' predicted
+        discs are enlarged by ``growth`` ``(H,)`` for the uncertainty of the prediction."""
+        return np.minimum(self.static_gap, self.dyn_gap - self.growth)
 
 
-def dynamic_gaps(z: np.ndarray, movers: np.ndarray, radii: np.ndarray, robot_radius: float,
-                 growth: np.ndarray | None = None) -> np.ndarray:
-    """Edge-to-edge distance from each rollout point to the nearest mover at the same time;
-    ``growth`` ``(K, H)`` is added to the movers' radii (prediction uncertainty)."""
+def dynamic_gaps(z: np.ndarray, movers: np.ndarray, radii: np.ndarray, robot_radius: float) -> np.ndarray:
+    """Edge-to-edge distance from each rollout point to the nearest mover at the same time."""
     gap = np.full(z.shape, np.inf)
     buf = np.empty(z.shape)
-    for k, (centre, r) in enumerate(zip(movers, radii)):  # one pass per obstacle over all samples x horizon
+    for centre, r in zip(movers, radii):  # one pass per obstacle over all samples x horizon
         np.abs(z - centre, out=buf)
-        buf -= r if growth is None else r + growth[k]
+        buf -= r
         np.minimum(gap, buf, out=gap)
     gap -= robot_radius
     return gap
@@ -197,23 +228,23 @@ def assess(ctx: LocalContext, robot: RobotSpec, roll: Rollouts, *, margin: float
         reaction: reaction time in the stopping distance (see ``window.max_admissible_speed``).
         mover_range: movers that provably stay more than this far (edge to edge) from every
             rollout are skipped; cost terms therefore see mover clearances up to this value.
-        mover_growth, growth_cap: each predicted mover's radius grows by
-            ``mover_growth * |velocity| * t`` up to ``growth_cap`` metres: a mover may turn or
-            reverse (waypoint movers do), which the constant-velocity prediction does not see.
+        mover_growth, growth_cap: for the cost terms (``Step.gap``) the predicted movers' discs
+            grow by ``mover_growth * (fastest mover's speed) * t`` up to ``growth_cap`` metres:
+            a mover may turn or reverse (waypoint movers do), which the constant-velocity
+            prediction does not see. The contact test uses the plain prediction.
     """
     static_gap = np.asarray(ctx.static_distance(roll.xy), dtype=float) - robot.radius
     movers, vel, radii = predict_movers(ctx.dynamic, roll.t)
     speed = roll.speed
     keep = relevant_movers(roll.z0, movers, radii, roll.t, float(speed.max(initial=0.0)), robot.radius,
                            max(mover_range, margin) + growth_cap)
-    growth = None
-    if mover_growth > 0:
-        growth = np.minimum(mover_growth * np.abs(vel[keep])[:, None] * roll.t[None, :], growth_cap)
-    dyn_gap = dynamic_gaps(roll.z, movers[keep], radii[keep], robot.radius, growth)
+    dyn_gap = dynamic_gaps(roll.z, movers[keep], radii[keep], robot.radius)
+    fastest = float(np.abs(vel[keep]).max(initial=0.0))
+    growth = np.minimum(mover_growth * fastest * roll.t, growth_cap) if mover_growth > 0 else 0.0
     now_static, now_moving = current_gaps(ctx, robot)
     first = first_hit(static_gap < min(margin, now_static))  # 0 = the point after one step
     free = np.where(first < roll.z.shape[1], first * speed * roll.dt, np.inf)
     admissible = speed <= max_admissible_speed(free, robot.a_max, reaction) + 1e-12
     contact = first_hit(dyn_gap < min(margin, now_moving))
     target = complex(*np.asarray(ctx.subgoal, dtype=float)[:2])
-    return Step(ctx, robot, roll, static_gap, dyn_gap, movers, vel, radii, free, admissible, contact, target)
+    return Step(ctx, robot, roll, static_gap, dyn_gap, movers, vel, radii, free, admissible, contact, target, growth)
