@@ -47,7 +47,8 @@ Optional keys added by optplan (all validated like the rest):
   segment of the given length range that crosses the reference path (at
   least ``keep_away`` m, default 3, from start and goal) at a random angle of 60-120
   degrees, with a random phase; segments are kept free of known obstacles by the
-  obstacle radius.
+  obstacle radius, away from start and goal, and must cross the reference path once
+  (not run along it), so a robot that cannot reverse can always wait outside the sweep.
 
 * ``timing_jitter``: seconds (default 0). Each moving obstacle of the file is advanced
   along its motion by a time drawn uniformly from ``[0, timing_jitter]`` with the
@@ -727,6 +728,14 @@ def _jitter_movers(sc: Scenario, rng) -> list[DynamicObstacle]:
     return out
 
 
+def _segment_points_distance(a, b, P: np.ndarray) -> np.ndarray:
+    """Distance from each point of ``P`` ``(n, 2)`` to the segment ``a -> b``."""
+    ab = b - a
+    L2 = float(ab @ ab)
+    t = np.zeros(len(P)) if L2 == 0 else np.clip((P - a) @ ab / L2, 0.0, 1.0)
+    return np.hypot(*(P - (a + t[:, None] * ab)).T)
+
+
 def _point_segment_distance(p, a, b) -> float:
     ab = b - a
     L2 = float(ab @ ab)
@@ -766,11 +775,19 @@ def _draw_random_movers(sc: Scenario, spec: dict, rng, path: np.ndarray) -> list
                     break
                 p = path[i] + 0.8 * (p - path[i])
                 a, b = (p, b) if end == "a" else (a, p)
-        if not bool(world.segments_free(a, b, radius)) or np.hypot(*(b - a)) < 1.0:
+        if not bool(world.segments_free(a, b, radius)) or np.hypot(*(b - a)) < max(1.0, spec["length"][0] / 2):
             continue
         # the mover must never touch the robot waiting at the start or arrived at the goal
         near = radius + sc.robot.radius + 0.5
         if min(_point_segment_distance(sc.start[:2], a, b), _point_segment_distance(sc.goal, a, b)) < near:
+            continue
+        # it must *cross* the path once, not run along it (say, up and down a corridor the path
+        # follows), so that a robot that cannot reverse can always wait before its sweep
+        swept = _segment_points_distance(a, b, path) < near
+        idx = np.nonzero(swept)[0]
+        crossing = 2 * near / math.sin(math.radians(60)) + 0.5
+        if not len(idx) or idx[-1] - idx[0] + 1 != len(idx) or \
+                float(np.hypot(*np.diff(path[idx], axis=0).T).sum()) > crossing:
             continue
         speed = rng.uniform(*spec["speed"])
         ob = DynamicObstacle(radius, waypoints=np.round(np.array([a, b]), 3), speed=round(float(speed), 3), loop=True,
