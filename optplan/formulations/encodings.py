@@ -28,6 +28,11 @@ _SHARED_TABLES: OrderedDict = OrderedDict()
 _SHARED_TABLES_MAX = 8
 
 
+def clear_shared_tables() -> None:
+    """Forget the segment tables kept across map objects (for cold-start timings)."""
+    _SHARED_TABLES.clear()
+
+
 def _map_fingerprint(grid) -> tuple:
     """Content key of a grid map: occupancy digest, shape, resolution and origin."""
     fp = grid._cache.get("fingerprint")
