@@ -178,7 +178,8 @@ class CvxpyCorridorQP:
             J = J + self.w_smooth * cp.sum_squares(X[2:] - 2 * X[1:-1] + X[:-2])
         self.X = X
         self.problem = cp.Problem(cp.Minimize(J), cons)
-        assert self.problem.is_dpp()
+        if not self.problem.is_dpp():  # would be re-canonicalised on every solve
+            raise RuntimeError("the corridor QP is not DPP; cvxpy would rebuild it on every solve")
 
     def solve(self, corridor: Corridor) -> QPSolution:
         import time
@@ -210,6 +211,7 @@ class CvxpyCorridorQP:
 
 
 _PROGRAMS: dict = {}
+MAX_CACHED_PROGRAMS = 64   # set-ups are cheap (ms); keep memory bounded in long sessions
 
 
 def corridor_program(N: int, K: int, w_smooth: float, backend: str = "osqp"):
@@ -217,8 +219,10 @@ def corridor_program(N: int, K: int, w_smooth: float, backend: str = "osqp"):
     if backend not in ("osqp", "cvxpy"):
         raise ParameterError(f"backend must be 'osqp' or 'cvxpy', got {backend!r}")
     key = (backend, N, K, float(w_smooth))
-    prog = _PROGRAMS.get(key)
+    prog = _PROGRAMS.pop(key, None)   # re-inserted below: the dict's order is least recently used first
     if prog is None:
         prog = (OsqpCorridorQP if backend == "osqp" else CvxpyCorridorQP)(N, K, w_smooth)
-        _PROGRAMS[key] = prog
+        while len(_PROGRAMS) >= MAX_CACHED_PROGRAMS:
+            _PROGRAMS.pop(next(iter(_PROGRAMS)))
+    _PROGRAMS[key] = prog
     return prog
