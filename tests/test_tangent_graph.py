@@ -3,6 +3,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import optplan as op
 from optplan.solvers.tangent_graph import plan_tangent, tangent_shortest_path
@@ -40,6 +42,34 @@ def test_never_longer_than_any_valid_polyline():
             tried += 1
             assert path_length(P) >= r.length - 1e-9
     assert tried > 20
+
+
+def test_shipped_circle_worlds_give_a_valid_optimum_path():
+    """yang2023_env2's optimum has a very short arc whose polygon once dipped 5e-9 m into a disc."""
+    from optplan.world.papermaps import paper_map
+
+    for name in ("yang2023_env1", "yang2023_env2"):
+        world, s, g = paper_map(name)
+        r = plan_tangent(world, s, g)
+        assert r.feasible, r.message
+        assert r.length <= path_length(r.path) <= r.length * (1 + 1e-3)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.integers(1, 9))
+def test_random_circle_worlds_give_valid_polylines(seed, n):
+    rng = np.random.default_rng(seed)
+    circles = np.column_stack([rng.uniform(1.5, 8.5, (n, 2)), rng.uniform(0.3, 1.5, n)])
+    w = op.CircleWorld((0, 0, 10, 10), circles, safety=float(rng.uniform(0, 0.3)))
+    s, g = np.array([0.05, 0.05]), np.array([9.95, 9.95])
+    if not (w.is_free(s) and w.is_free(g)):
+        return
+    try:
+        r = plan_tangent(w, s, g)
+    except op.InfeasibleQueryError:
+        return
+    assert r.feasible, r.message
+    assert path_length(r.path) >= r.length - 1e-9
 
 
 def test_blocked_goal_is_reported():

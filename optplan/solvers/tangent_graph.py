@@ -172,10 +172,12 @@ def tangent_shortest_path(world, start, goal, arc_step_deg: float = 2.0):
         pts.append(nodes[v])
     poly = np.array(pts, dtype=float)
     # tangent points lie exactly on their circle: nudge them outwards so rounding
-    # cannot put them a hair inside
+    # cannot put them a hair inside. Only ever outwards: the circumscribed-polygon
+    # vertices of a short arc sit less than 1e-7 outside, and pulling them in to
+    # R + 1e-9 would let the chord between their neighbours cut the disc.
     d = poly[:, None, :] - C[None, :, :]
     dist_c = np.hypot(d[..., 0], d[..., 1])
-    near = np.abs(dist_c - R) < 1e-7
+    near = (dist_c > R - 1e-7) & (dist_c < R + 1e-9)
     for k, i in zip(*np.nonzero(near)):
         poly[k] = C[i] + d[k, i] / dist_c[k, i] * (R[i] + 1e-9)
     return float(dist[1]), poly
