@@ -1,6 +1,7 @@
 """The issue-4 figure on every shipped paper map: improved vs basic variant.
 
     python benchmarks/global_gaps.py [--runs 20] [--quick] [--papers hou2024 li2023] [--maps li2023_90]
+                                     [--budget evals|iters]
 
 For each paper, its improved variant and its basic variant run on every map
 ``optplan.world.papermaps.maps_of(paper)`` lists, with the paper's own budget
@@ -26,6 +27,13 @@ yuan2021 §5.1 50 x 100; li2023 50 x 200 generations (the paper gives only the
 50-generation stagnation stop; its TGA converges near generation 120); chen2025
 30 x 500 (its §4.3 setting). ``--quick`` runs 3 seeds with a fifth of the iterations;
 ``--iters-scale K`` multiplies every paper's iterations by K (is a miss the budget?).
+
+``--budget evals`` (default) gives both variants the same number of objective
+evaluations: what the basic variant spends in the paper's iterations,
+``pop * (iters + 1)``. The improved variants evaluate more per iteration (MISSA's
+extra perturbation step, MSIAR-GWO's ARO detour and opposition steps), so equal
+iterations would hand them a larger budget. ``--budget iters`` runs the papers'
+own protocol (equal iterations); the table's evaluation columns show what each spent.
 """
 from __future__ import annotations
 
@@ -63,14 +71,16 @@ PAPERS = {
 TARGET_GAP = 3.0  # percent (issue 4)
 
 
-def lengths(world, start, goal, algorithm: str, runs: int, pop: int, iters: int, **params):
-    """Lengths of the feasible runs (seeds 0..runs-1), the number of runs, and total time."""
-    out, t0 = [], time.perf_counter()
+def lengths(world, start, goal, algorithm: str, runs: int, pop: int, iters: int | None, **params):
+    """Lengths of the feasible runs (seeds 0..runs-1), the number of runs, total time and
+    the mean number of objective evaluations per run."""
+    out, nfev, t0 = [], [], time.perf_counter()
     for seed in range(runs):
         r = op.plan(world, start, goal, algorithm=algorithm, seed=seed, pop=pop, iters=iters, **params)
+        nfev.append(r.nfev)
         if r.feasible:
             out.append(r.length)
-    return np.array(out), runs, time.perf_counter() - t0
+    return np.array(out), runs, time.perf_counter() - t0, float(np.mean(nfev))
 
 
 def gap(values: np.ndarray, optimum: float, how) -> float:
@@ -96,7 +106,7 @@ def encoding_best(world, start, goal, paper: str, optimum: float) -> float:
     return float(100.0 * (path_length(path) / optimum - 1.0))
 
 
-def compare(paper: str, name: str, runs: int, quick: bool, iters_scale: float = 1.0) -> dict:
+def compare(paper: str, name: str, runs: int, quick: bool, iters_scale: float = 1.0, budget: str = "evals") -> dict:
     """Run one map; returns the row's numbers."""
     setup = PAPERS[paper]
     iters = max(setup.iters // 5, 10) if quick else setup.iters
@@ -104,13 +114,16 @@ def compare(paper: str, name: str, runs: int, quick: bool, iters_scale: float = 
     world, s, g = paper_map(name)
     opt = exact_optimum(world, s, g)
     params = dict(setup.params)
-    imp, n, t_imp = lengths(world, s, g, setup.improved, runs, setup.pop, iters, **params)
-    bas, _, t_bas = lengths(world, s, g, setup.basic, runs, setup.pop, iters, **params)
+    if budget == "evals":
+        params.update(max_evals=setup.pop * (iters + 1))
+        iters = None
+    imp, n, t_imp, e_imp = lengths(world, s, g, setup.improved, runs, setup.pop, iters, **params)
+    bas, _, t_bas, e_bas = lengths(world, s, g, setup.basic, runs, setup.pop, iters, **params)
     p = wilcoxon_p(imp, bas)
     row = dict(paper=paper, map=name, improved=setup.improved, basic=setup.basic, optimum=opt, runs=n,
                imp_best=gap(imp, opt, np.min), imp_mean=gap(imp, opt, np.mean),
                bas_best=gap(bas, opt, np.min), bas_mean=gap(bas, opt, np.mean), p=p,
-               imp_ok=len(imp), bas_ok=len(bas), seconds=t_imp + t_bas,
+               imp_ok=len(imp), bas_ok=len(bas), seconds=t_imp + t_bas, imp_evals=e_imp, bas_evals=e_bas,
                encoding=encoding_best(world, s, g, paper, opt))
     row["within"] = bool(np.isfinite(row["imp_best"]) and row["imp_best"] <= TARGET_GAP)
     # an improved mean over fewer feasible runs does not beat the basic one
@@ -121,12 +134,13 @@ def compare(paper: str, name: str, runs: int, quick: bool, iters_scale: float = 
 def table(rows: list[dict]) -> str:
     head = ("| paper | map | improved / basic | optimum [m] | encoding best [%] | improved best gap [%] | "
             "improved mean gap [%] | basic best gap [%] | basic mean gap [%] | Wilcoxon p | feasible (imp / basic) | "
-            "best <= 3 % | mean beats basic |")
-    out = [head, "|" + "---|" * 13]
+            "mean evals (imp / basic) | best <= 3 % | mean beats basic |")
+    out = [head, "|" + "---|" * 14]
     for r in rows:
         out.append(f"| {r['paper']} | {r['map']} | {r['improved']} / {r['basic']} | {r['optimum']:.4f} | "
                    f"{fmt(r['encoding'])} | {fmt(r['imp_best'])} | {fmt(r['imp_mean'])} | {fmt(r['bas_best'])} | {fmt(r['bas_mean'])} | "
                    f"{fmt(r['p'], '.3g')} | {r['imp_ok']}/{r['runs']} / {r['bas_ok']}/{r['runs']} | "
+                   f"{r['imp_evals']:.0f} / {r['bas_evals']:.0f} | "
                    f"{'yes' if r['within'] else 'NO'} | {'yes' if r['beats'] else 'NO'} |")
     return "\n".join(out)
 
@@ -138,6 +152,8 @@ def main(argv=None) -> int:
     ap.add_argument("--papers", nargs="*", choices=sorted(PAPERS), default=sorted(PAPERS))
     ap.add_argument("--maps", nargs="*", default=None, help="only these paper maps")
     ap.add_argument("--iters-scale", type=float, default=1.0, help="multiply each paper's iterations (default 1)")
+    ap.add_argument("--budget", choices=("evals", "iters"), default="evals",
+                    help="equal objective evaluations (default) or the papers' equal iterations")
     args = ap.parse_args(argv)
     runs = 3 if args.quick else args.runs
     if runs < 1:
@@ -147,11 +163,13 @@ def main(argv=None) -> int:
         for name in maps_of(paper):
             if args.maps and name not in args.maps:
                 continue
-            rows.append(compare(paper, name, runs, args.quick, args.iters_scale))
+            rows.append(compare(paper, name, runs, args.quick, args.iters_scale, args.budget))
             r = rows[-1]
             print(f"  {paper} {name}: {r['seconds']:.1f} s", file=sys.stderr, flush=True)
     budget = ", quick budgets" if args.quick else ""
     budget += f", iterations x {args.iters_scale:g}" if args.iters_scale != 1 else ""
+    budget += ("; equal evaluations: pop x (iterations + 1) of the paper" if args.budget == "evals"
+               else "; the papers' equal iterations")
     print(f"## Improved vs basic variant on every paper map ({runs} runs per cell{budget}; "
           "lengths before refinement)\n")
     print(table(rows))

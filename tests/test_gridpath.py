@@ -79,3 +79,22 @@ def test_iga_beats_tga_on_mean_length():
     L = {imp: [plan_ga(world, s, g, improved=imp, pop=40, iters=80, seed=k).length for k in range(4)]
          for imp in (False, True)}
     assert np.mean(L[True]) < np.mean(L[False])
+
+
+def test_path_ga_honours_an_evaluation_budget():
+    """Budgets in evaluations: the GA stops within one generation of max_evals (IGA may stop
+    earlier on stagnation), and the basic GA without an iteration cap is the same run as
+    with a cap that never binds. (IGA's elite schedule, li2023 eq 5, depends on the
+    horizon, so a different cap is a different run.)"""
+    from optplan.world.papermaps import paper_map
+
+    world, s, g = paper_map("li2023_30")
+    pop, budget = 20, 1500
+    ga = op.plan(world, s, g, algorithm="ga", seed=2, pop=pop, iters=None, max_evals=budget)
+    assert budget <= ga.nfev < budget + pop
+    loose = op.plan(world, s, g, algorithm="ga", seed=2, pop=pop, iters=10_000, max_evals=budget)
+    np.testing.assert_array_equal(ga.path, loose.path)
+    iga = op.plan(world, s, g, algorithm="iga", seed=2, pop=pop, iters=None, max_evals=budget)
+    assert iga.nfev < budget + 2 * pop
+    with pytest.raises(op.ParameterError, match="budget"):
+        op.plan(world, s, g, algorithm="iga", pop=pop, iters=None)

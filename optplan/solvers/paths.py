@@ -112,7 +112,7 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
         from .gridpath.ga_path import plan_ga
 
         return plan_ga(world, s, g, improved=name == "iga", seed=seed, pop=pop, iters=iters, clearance=clearance,
-                       preset=preset or "li2023", postprocess=postprocess, **params)
+                       preset=preset or "li2023", postprocess=postprocess, max_evals=max_evals, **params)
     from . import metaheuristics
 
     if name not in _metaheuristic_names():

@@ -144,9 +144,15 @@ def _regenerate(X: np.ndarray, bad: np.ndarray, best: np.ndarray, sample, p: GAP
     return X
 
 
-def ga_path(problem: PathProblem, *, pop: int = 50, iters: int = 200, seed=0, params: GAParams = GAParams(),
-            callback=None):
+def ga_path(problem: PathProblem, *, pop: int = 50, iters: int | None = 200, seed=0, params: GAParams = GAParams(),
+            callback=None, max_evals: int | None = None):
     """Run the path GA on a column-node problem.
+
+    ``iters`` caps the generations and ``max_evals`` the path evaluations (either may
+    be ``None``, not both). The evaluation budget is checked after each generation, so
+    a run may overshoot it by less than one generation's evaluations; ``nfev`` reports
+    what was spent. li2023 eq 5 grows the elite count with ``gen / T``; without an
+    iteration cap ``T`` is the number of generations the budget affords.
 
     Returns ``(best_x, best_f, history, nfev, generations)``.
     """
@@ -155,8 +161,14 @@ def ga_path(problem: PathProblem, *, pop: int = 50, iters: int = 200, seed=0, pa
         raise ParameterError("the path GA works on snapped ColumnNodes encodings")
     if isinstance(pop, bool) or not isinstance(pop, (int, np.integer)) or pop < 2:
         raise ParameterError(f"pop must be an integer >= 2, got {pop!r}")
-    if isinstance(iters, bool) or not isinstance(iters, (int, np.integer)) or iters < 0:
-        raise ParameterError(f"iters must be an integer >= 0, got {iters!r}")
+    if iters is not None and (isinstance(iters, bool) or not isinstance(iters, (int, np.integer)) or iters < 0):
+        raise ParameterError(f"iters must be an integer >= 0 or None, got {iters!r}")
+    if max_evals is not None and (isinstance(max_evals, bool) or not isinstance(max_evals, (int, np.integer))
+                                  or max_evals < pop):
+        raise ParameterError(f"max_evals must be an integer >= pop ({pop}) or None, got {max_evals!r}")
+    if iters is None and max_evals is None:
+        raise ParameterError("give iters, max_evals or both; the GA needs a budget")
+    horizon = iters if iters is not None else max(1, max_evals // pop - 1)  # T of li2023 eq 5
     rng = as_generator(seed)
     first, inner, last = enc.feasible_transitions(problem.clearance)
     nfev = 0
@@ -181,7 +193,10 @@ def ga_path(problem: PathProblem, *, pop: int = 50, iters: int = 200, seed=0, pa
     history = [best_f]
     stalled = 0
     gen = 0
-    for gen in range(1, iters + 1):
+    for gen in range(1, (iters if iters is not None else np.iinfo(np.int64).max) + 1):
+        if max_evals is not None and nfev >= max_evals:
+            gen -= 1
+            break
         rows = np.floor(X).astype(np.int64)
         finite = np.isfinite(f)
         fs = np.where(finite, f, f[finite].max() if finite.any() else 0.0)
@@ -189,7 +204,7 @@ def ga_path(problem: PathProblem, *, pop: int = 50, iters: int = 200, seed=0, pa
             ps = adaptive_probabilities(fs, params.ps_range, protect=False)
             pc = adaptive_probabilities(fs, params.pc_range, protect=True)
             pm = adaptive_probabilities(fs, params.pm_range, protect=True)
-            k_el = elite_count(gen, iters, params.k_e, pop)
+            k_el = elite_count(min(gen, horizon), horizon, params.k_e, pop)
         else:
             ps = 1.0 / (fs - fs.min() + 1.0)     # roulette on inverse cost
             pc = np.full(pop, params.pc)
@@ -224,8 +239,8 @@ def ga_path(problem: PathProblem, *, pop: int = 50, iters: int = 200, seed=0, pa
     return best_x, best_f, np.asarray(history), nfev, gen
 
 
-def plan_ga(world, start, goal, *, improved: bool, seed=0, pop: int = 50, iters: int = 200, clearance: float = 0.0,
-            preset: str = "li2023", postprocess: str | None = None, **params):
+def plan_ga(world, start, goal, *, improved: bool, seed=0, pop: int = 50, iters: int | None = 200, clearance: float = 0.0,
+            preset: str = "li2023", postprocess: str | None = None, max_evals: int | None = None, **params):
     """``op.plan(..., algorithm="ga" | "iga")`` on a grid map (li2023 §3-4)."""
     t0 = time.perf_counter()
     s = world.check_query_point(start, "start", clearance)
@@ -235,7 +250,7 @@ def plan_ga(world, start, goal, *, improved: bool, seed=0, pop: int = 50, iters:
     if problem.encoding.dim == 0:
         return make_plan_result(world, np.stack([s, g]), name, time.perf_counter() - t0, clearance=clearance)
     p = GAParams(improved=improved, **params)
-    x, fbest, history, nfev, gens = ga_path(problem, pop=pop, iters=iters, seed=seed, params=p)
+    x, fbest, history, nfev, gens = ga_path(problem, pop=pop, iters=iters, seed=seed, params=p, max_evals=max_evals)
     raw = problem.encoding.waypoints(x)
     mode = postprocess or ("keypoints" if improved else "collinear")
     path = key_points(world, raw, clearance) if mode == "keypoints" else remove_collinear(raw) if mode == "collinear" else raw
