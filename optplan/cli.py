@@ -73,6 +73,7 @@ def _cmd_demo(args) -> int:
 
 
 def build_parser() -> argparse.ArgumentParser:
+    """The ``optplan`` argument parser with every subcommand (each with an example in its help)."""
     parser = argparse.ArgumentParser(
         prog="optplan",
         description="Mobile-robot path planning as constrained programs.",
@@ -114,6 +115,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
+    """Run the command line with ``argv`` (default ``sys.argv[1:]``); returns the exit status
+    (0 success, 2 an OptplanError whose message was printed on one line, 130 interrupted)."""
     parser = build_parser()
     args = parser.parse_args(argv)
     if not getattr(args, "command", None):

@@ -26,31 +26,39 @@ def _u(x, a, k, m):
 
 
 def f1(X):
+    """Sphere: sum of x_i^2; minimum 0 at the origin. ``X``: ``(n, d)``; returns ``(n,)``."""
     return np.einsum("ij,ij->i", X, X)
 
 
 def f2(X):
+    """Schwefel 2.22: sum |x_i| + prod |x_i|; minimum 0 at the origin. ``X``: ``(n, d)``; returns ``(n,)``."""
     A = np.abs(X)
     return A.sum(1) + A.prod(1)
 
 
 def f3(X):
+    """Schwefel 1.2: sum over i of (x_1 + ... + x_i)^2; minimum 0 at the origin. ``X``: ``(n, d)``; returns ``(n,)``."""
     return (np.cumsum(X, axis=1) ** 2).sum(1)
 
 
 def f4(X):
+    """Schwefel 2.21: max |x_i|; minimum 0 at the origin. ``X``: ``(n, d)``; returns ``(n,)``."""
     return np.abs(X).max(1)
 
 
 def f5(X):
+    """Rosenbrock: sum 100 (x_{i+1} - x_i^2)^2 + (x_i - 1)^2; minimum 0 at all ones. ``X``: ``(n, d)``; returns ``(n,)``."""
     return (100 * (X[:, 1:] - X[:, :-1] ** 2) ** 2 + (X[:, :-1] - 1) ** 2).sum(1)
 
 
 def f6(X):
+    """Step: sum floor(x_i + 0.5)^2; minimum 0 on the cube around the origin. ``X``: ``(n, d)``; returns ``(n,)``."""
     return (np.floor(X + 0.5) ** 2).sum(1)
 
 
 def make_f7(seed: int = 7):
+    """Quartic with noise: sum i x_i^4 + U[0, 1); the noise comes from a generator seeded
+    with ``seed`` and owned by the returned function, so runs repeat exactly."""
     rng = np.random.default_rng(seed)
 
     def f7(X):
@@ -61,25 +69,30 @@ def make_f7(seed: int = 7):
 
 
 def f8(X):
+    """Schwefel 2.26: -sum x_i sin(sqrt|x_i|); minimum about -418.98 d at x_i = 420.97. ``X``: ``(n, d)``; returns ``(n,)``."""
     return -(X * np.sin(np.sqrt(np.abs(X)))).sum(1)
 
 
 def f9(X):
+    """Rastrigin: sum x_i^2 - 10 cos(2 pi x_i) + 10; minimum 0 at the origin. ``X``: ``(n, d)``; returns ``(n,)``."""
     return (X ** 2 - 10 * np.cos(2 * np.pi * X) + 10).sum(1)
 
 
 def f10(X):
+    """Ackley; minimum 0 at the origin. ``X``: ``(n, d)``; returns ``(n,)``."""
     d = X.shape[1]
     return (-20 * np.exp(-0.2 * np.sqrt((X ** 2).sum(1) / d)) - np.exp(np.cos(2 * np.pi * X).sum(1) / d)
             + 20 + np.e)
 
 
 def f11(X):
+    """Griewank: sum x_i^2 / 4000 - prod cos(x_i / sqrt i) + 1; minimum 0 at the origin. ``X``: ``(n, d)``; returns ``(n,)``."""
     i = np.sqrt(np.arange(1, X.shape[1] + 1))
     return (X ** 2).sum(1) / 4000 - np.cos(X / i).prod(1) + 1
 
 
 def f12(X):
+    """Penalised 1 (Levy-type with the u penalty, a = 10); minimum 0 at x_i = -1. ``X``: ``(n, d)``; returns ``(n,)``."""
     d = X.shape[1]
     y = 1 + (X + 1) / 4
     body = (10 * np.sin(np.pi * y[:, 0]) ** 2
@@ -89,6 +102,7 @@ def f12(X):
 
 
 def f13(X):
+    """Penalised 2 (u penalty, a = 5); minimum 0 at x_i = 1. ``X``: ``(n, d)``; returns ``(n,)``."""
     body = (np.sin(3 * np.pi * X[:, 0]) ** 2
             + ((X[:, :-1] - 1) ** 2 * (1 + np.sin(3 * np.pi * X[:, 1:]) ** 2)).sum(1)
             + (X[:, -1] - 1) ** 2 * (1 + np.sin(2 * np.pi * X[:, -1]) ** 2))
@@ -100,6 +114,7 @@ _KOW_B = 1 / np.array([0.25, 0.5, 1, 2, 4, 6, 8, 10, 12, 14, 16])
 
 
 def f14(X):
+    """Kowalik (4-d least squares fit); minimum about 3.075e-4. ``X``: ``(n, d)``; returns ``(n,)``."""
     x1, x2, x3, x4 = (X[:, k:k + 1] for k in range(4))
     b = _KOW_B[None, :]
     model = x1 * (b ** 2 + b * x2) / (b ** 2 + b * x3 + x4)
@@ -107,11 +122,13 @@ def f14(X):
 
 
 def f15(X):
+    """Branin (2-d); minimum about 0.398 at three points. ``X``: ``(n, d)``; returns ``(n,)``."""
     x1, x2 = X[:, 0], X[:, 1]
     return (x2 - 5.1 / (4 * np.pi ** 2) * x1 ** 2 + 5 / np.pi * x1 - 6) ** 2 + 10 * (1 - 1 / (8 * np.pi)) * np.cos(x1) + 10
 
 
 def f16(X):
+    """Goldstein-Price (2-d); minimum 3 at (0, -1). ``X``: ``(n, d)``; returns ``(n,)``."""
     x1, x2 = X[:, 0], X[:, 1]
     a = 1 + (x1 + x2 + 1) ** 2 * (19 - 14 * x1 + 3 * x1 ** 2 - 14 * x2 + 6 * x1 * x2 + 3 * x2 ** 2)
     b = 30 + (2 * x1 - 3 * x2) ** 2 * (18 - 32 * x1 + 12 * x1 ** 2 + 48 * x2 - 36 * x1 * x2 + 27 * x2 ** 2)
@@ -125,6 +142,7 @@ _H6_P = 1e-4 * np.array([[1312, 1696, 5569, 124, 8283, 5886], [2329, 4135, 8307,
 
 
 def f17(X):
+    """Hartmann 6-d; minimum about -3.322. ``X``: ``(n, d)``; returns ``(n,)``."""
     inner = (_H6_A[None] * (X[:, None, :] - _H6_P[None]) ** 2).sum(2)
     return -(_H6_C[None] * np.exp(-inner)).sum(1)
 
@@ -135,6 +153,7 @@ _SH_C = np.array([0.1, 0.2, 0.2, 0.4, 0.4, 0.6, 0.3, 0.7, 0.5, 0.5])
 
 
 def f18(X):
+    """Shekel with ten maxima (4-d); minimum about -10.536. ``X``: ``(n, d)``; returns ``(n,)``."""
     diff = X[:, None, :] - _SH_A[None]
     return -(1 / ((diff ** 2).sum(2) + _SH_C[None])).sum(1)
 

@@ -20,6 +20,7 @@ ALGORITHMS: dict[str, type[Algorithm]] = {}
 
 
 def register(cls: type[Algorithm]) -> type[Algorithm]:
+    """Class decorator: make an :class:`Algorithm` subclass available by its ``name``."""
     ALGORITHMS[cls.name] = cls
     return cls
 
