@@ -195,13 +195,16 @@ class PathProgress(Critic):
 @dataclass
 class Clearance(Critic):
     """Fox's ``dist``: the smallest edge-to-edge distance (m) to any obstacle, static or
-    moving, along the trajectory, capped at ``cap`` (no obstacle close to the trajectory)."""
+    moving, along the trajectory, capped at ``cap`` (no obstacle close to the trajectory)
+    and floored at ``floor`` (0: every contact scores the same; a negative floor lets a
+    deeper predicted overlap with an uncertain mover disc score worse)."""
 
     name: ClassVar[str] = "clearance"
     cap: float = 2.0
+    floor: float = 0.0
 
     def score(self, step: Step) -> np.ndarray:
-        return np.clip(step.gap.min(axis=1), 0.0, self.cap)
+        return np.clip(step.gap.min(axis=1), self.floor, self.cap)
 
 
 @dataclass
@@ -218,18 +221,30 @@ class Velocity(Critic):
 # ---------------------------------------------------------------- hou2024 §3.1 (missa-dwa)
 @dataclass
 class PathDeviation(Critic):
-    """hou2024 eq 25 ``Pathdist``: mean distance (m) from ``N`` points of the trajectory to
-    the global path; every ``stride``-th rollout point is used."""
+    """hou2024 eq 25 ``Pathdist``: mean distance (m) between ``N`` sampling points of the
+    trajectory and ``N`` sampling points of the global path (every ``stride``-th rollout point).
+
+    ``paired`` (default) reads eq 25 literally: the i-th trajectory point is compared with
+    the i-th path point, the path being sampled ahead of the robot's nearest path point at
+    the spacing of a robot that follows it at ``v_max`` - so lagging behind the path costs
+    as much as leaving it sideways, and standing still is not free. ``paired=False``
+    measures each trajectory point's distance to the nearest point of the path instead."""
 
     name: ClassVar[str] = "path_deviation"
     cost: ClassVar[bool] = True
     stride: int = 3
+    paired: bool = True
 
     def score(self, step: Step) -> np.ndarray:
         roll = step.roll
-        pts = roll.z[:, self.stride - 1::self.stride]
-        reach = float(roll.speed.max(initial=0.0) * roll.t[-1]) + 1.0
-        return polyline_distance(pts, step.ctx.global_path, roll.z0, reach).mean(axis=1)
+        idx = np.arange(self.stride - 1, roll.z.shape[1], self.stride)
+        pts = roll.z[:, idx]
+        path = step.ctx.global_path
+        if self.paired:
+            s0, _ = project_on_path(path, np.array([roll.z0]), roll.z0, 1.0)
+            ref = point_at_arc(path, s0[0] + step.robot.v_max * roll.t[idx])
+            return np.abs(pts - ref[None, :]).mean(axis=1)
+        return polyline_distance(pts, path, roll.z0, _reach(step)).mean(axis=1)
 
 
 @dataclass

@@ -90,13 +90,15 @@ class DWAPlanner:
         "n_vy": 5,            # sideways speed samples (omni presets on an omni robot)
         "horizon": 3.0,       # prediction period, s (hou2024 §4.4)
         "rollout_dt": None,   # rollout step, s (None = the control period)
-        "margin": 0.0,        # extra clearance counted as collision, m
+        "margin": 0.02,       # extra clearance counted as collision, m: covers the sampled
+                              # distance field's interpolation and the straight swept segments
+                              # between rollout points, which the exact check sees
         "reaction": 0.0,      # reaction time in the stopping distance, s (eq 22)
         "normalise": "sum",   # "sum" | "minmax" | "none"
         "omni": False,        # sample vy too when the robot is omnidirectional (hou2024 eq 19)
         "mover_range": 3.0,   # movers provably farther than this (edge to edge) are skipped, m
         "mover_growth": 0.0,  # predicted movers grow by this times their speed per second ...
-        "growth_cap": 0.0,    # ... up to this much, m
+        "growth_cap": 0.0,    # ... up to this much, m (cost terms only)
         "lookahead": None,    # s: sample targets reachable within this time and roll out the
                               # ramp to them (None = the classic window of one period)
     }

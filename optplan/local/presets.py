@@ -60,9 +60,9 @@ PRESETS: dict[str, Preset] = {p.name: p for p in (
                "mover clearance) -> QP refinement with linearised clearance (OSQP) -> Ruckig "
                "jerk-limited velocity profile",
         # raw physical units (no normalisation): weights are per metre / per radian
-        terms=(Term("path_progress", 1.0), Term("path_deviation", 0.5), Term("path_heading", 0.3),
+        terms=(Term("path_progress", 1.0), Term("path_deviation", 0.5, {"paired": False}), Term("path_heading", 0.3),
                Term("clearance", 1.0, {"cap": 0.5})),
-        options={"omni": True, "normalise": "none", "margin": 0.02, "mover_growth": 1.0, "growth_cap": 1.0,
+        options={"omni": True, "normalise": "none", "mover_growth": 1.0, "growth_cap": 1.0,
                  "lookahead": 1.0},
         refine="qp",
     ),

@@ -30,7 +30,7 @@ def _wrap(a: float) -> float:
 
 def reference_dwa(robot: RobotSpec, ctx: LocalContext, *, n_v: int = 11, n_w: int = 21, horizon: float = 3.0,
                   rollout_dt: float | None = None, weights: tuple[float, float, float] = (2.0, 0.2, 0.2),
-                  cap: float = 2.0, margin: float = 0.0) -> tuple[float, float, dict]:
+                  cap: float = 2.0, margin: float = 0.02) -> tuple[float, float, dict]:
     """The textbook DWA's command ``(v, w, info)`` for one control step (unicycle model).
 
     ``weights`` are those of heading, clearance and velocity; the other arguments mean what
