@@ -5,11 +5,12 @@ One control step (Fox et al. 1997; the papers' §3 / §5 descriptions):
 1. the dynamic window ``V_m ∩ V_d`` (hou2024 eq 20-21), narrowed by the preset's mechanisms;
 2. a preset mechanism may take over for this step (brake-and-wait, initial heading);
 3. an ``n_v x n_w (x n_vy)`` grid of the window is rolled out over the horizon, all at once;
-4. clearance to static obstacles and predicted movers, free distance and admissibility
-   ``V_a`` (eq 22) for every sample;
+4. clearance to static obstacles and predicted movers for every sample; admissibility
+   ``V_a`` (eq 22) against static obstacles, and no predicted contact with a mover
+   (braking does not help there; colliding trajectories are discarded, yuan2021 §3.3);
 5. the preset's cost terms are evaluated, each normalised over the candidates (the
-   papers' sigma: divide by the sum over the candidates, or min-max), weighted and summed;
-   the best admissible, legal sample is commanded.
+   papers' sigma: divide by the sum over the candidates; or min-max; or raw units),
+   weighted and summed; the best admissible, legal sample is commanded.
 
 When critics or filters leave no candidate, their vetoes are relaxed (admissibility is
 kept); when every trajectory meets a predicted mover, the admissible ones whose contact

@@ -235,7 +235,10 @@ class QPDWAPlanner(DWAPlanner):
         u = (float(x[0]), float(x[1]), float(x[2]) if n_u == 3 else 0.0)
         check = self._assess(ctx, self.rollout_of(ctx.state, [u[0]], [u[2]], [u[1]]))
         H = max(1, min(step.roll.z.shape[1], int(round(o["qp_horizon"] / step.roll.dt))))
-        worse = check.gap[0, :H].min() < min(step.gap[i, :H].min(), o["qp_margin"]) - 1e-9
+        # the rows constrain the plain predicted gaps, so judge the result on those
+        gap_new = np.minimum(check.static_gap[0, :H], check.dyn_gap[0, :H]).min()
+        gap_old = np.minimum(step.static_gap[i, :H], step.dyn_gap[i, :H]).min()
+        worse = gap_new < min(gap_old, o["qp_margin"]) - 1e-9
         if not check.admissible[0] or check.mover_contact[0] < step.mover_contact[i] or worse:
             info["qp"] = "fallback: refined command failed the rollout check"
             return u0
