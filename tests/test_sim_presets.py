@@ -23,8 +23,7 @@ SCENARIO = {"map": ROWS, "start": [0.5, 0.5, 30], "goal": [9.5, 6.5], "time_limi
 # makes the test fail as XPASS, so the mark is removed with the fix)
 KNOWN_FAILURES = {
     "dwa": "no global guidance (goal only, as the papers' traditional DWA): stops in front of the unknown cell",
-    "missa-dwa": "chooses v = 0 from rest at the start and never moves",
-    "idwa": "binary Dist term lets it graze obstacles (overlaps of ~1 mm counted) and it gets stuck",
+    "idwa": "gets stuck by the unknown cell and times out",
     "iga-dwa": "reaches the goal but overlaps the unknown cell on the way",
 }
 
