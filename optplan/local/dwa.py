@@ -13,9 +13,10 @@ One control step (Fox et al. 1997; the papers' §3 / §5 descriptions):
    weighted and summed; the best admissible, legal sample is commanded.
 
 When critics or filters leave no candidate, their vetoes are relaxed (admissibility is
-kept); when every trajectory meets a predicted mover, the admissible ones whose contact
-comes latest are scored ("evade"); when nothing is admissible the sample that misses its
-stopping distance by the least is taken. The case is reported in ``Command.info["mode"]``.
+kept); when every trajectory meets a predicted mover, the admissible one whose contact
+comes latest and that stays farthest from the movers is taken ("evade"); when nothing is
+admissible the sample that misses its stopping distance by the least is taken. The case
+is reported in ``Command.info["mode"]``.
 """
 from __future__ import annotations
 
@@ -252,10 +253,13 @@ class DWAPlanner:
             mode = "sample-relaxed"  # the critics' vetoes left nothing: keep the safety rules only
         if not cand.any() and step.admissible.any():
             # every trajectory meets a predicted mover: among those that can stop before static
-            # obstacles, keep the ones whose contact comes latest (evade rather than wait)
+            # obstacles and whose contact comes latest, flee - take the one that stays farthest
+            # from the movers (the cost terms would trade that for progress)
             contact = np.where(step.admissible, step.mover_contact, -1)
-            cand = contact == contact.max()
-            mode = "evade"
+            flee = np.where(contact == contact.max(), step.dyn_gap.min(axis=1), -np.inf)
+            best = int(np.argmax(flee))
+            return best, {"mode": "evade", "index": best, "n_candidates": int(np.isfinite(flee).sum()),
+                          "free_distance": float(step.free_distance[best])}
         if not cand.any():
             # no sample can stop before its predicted collision (a mover may be closing in):
             # take the one that misses the stopping distance by the least, rather than

@@ -93,7 +93,7 @@ class QPDWAPlanner(DWAPlanner):
     def _setup_qp(self, acc) -> None:
         n = self.n_u + 1  # + slack
         m_rows = self.options["qp_rows_moving"] + self.options["qp_rows_static"]
-        half_width = np.asarray(acc, dtype=float) * self.dt
+        half_width = np.asarray(acc, dtype=float) * (self.options["lookahead"] or self.dt)  # of the window
         self._W = 1.0 / half_width ** 2
         P = sp.diags(np.r_[self._W, _SLACK_QUADRATIC]).tocsc()
         # box rows (identity) then clearance rows, dense in every column: the pattern is fixed
