@@ -584,6 +584,10 @@ def scenario_names() -> list[str]:
 def load_scenario(path_or_dict) -> Scenario:
     """Read a scenario from a YAML file, a shipped scenario name, or an already parsed mapping.
 
+    Lengths in the file are metres, times seconds, speeds m/s, and angles degrees
+    (``start`` heading, ``w_max_deg``, ``alpha_max_deg``); the returned :class:`Scenario`
+    holds radians.
+
     Raises:
         ScenarioError: the file is missing or malformed (the message names the key).
     """
