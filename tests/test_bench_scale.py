@@ -68,6 +68,10 @@ def test_killed_experiment_resumes_with_only_the_missing_runs(tmp_path):
         proc.wait(timeout=30)
         proc.stdout.close()
         proc.stderr.close()
+    import sqlite3
+
+    with sqlite3.connect(db) as con:  # the killed writer left a sound database
+        assert con.execute("PRAGMA integrity_check").fetchone()[0] == "ok"
     with ResultStore(db) as s:
         before = s.rows()
     assert 3 <= len(before) < 10 and all(r["status"] == "ok" for r in before.values())

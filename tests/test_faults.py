@@ -1,0 +1,102 @@
+"""Solver faults are reported with their status and handled as documented.
+
+Each fault is injected for real (an iteration cap of 1, an objective that returns
+NaN, a run that raises inside a worker), not simulated by mocking the result.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import optplan as op
+from optplan.world.papermaps import paper_map
+
+
+@pytest.fixture
+def starved_ipopt(monkeypatch):
+    """IPOPT limited to one iteration: every solve ends in Maximum_Iterations_Exceeded."""
+    from optplan.solvers.nlp import smoothing
+
+    for options in (smoothing.IPOPT_OPTIONS, smoothing.IPOPT_WARM_OPTIONS):
+        monkeypatch.setitem(options, "max_iter", 1)
+    world, s, g = paper_map("chen2025_20")
+    smoothing.clear_solver_cache(world)
+    yield world, s, g
+    smoothing.clear_solver_cache(world)
+
+
+def test_ipopt_failure_falls_back_to_the_seed_with_its_status(starved_ipopt):
+    world, s, g = starved_ipopt
+    seed = op.plan(world, s, g, algorithm="astar")
+    res = op.plan(world, s, g, algorithm="astar", refine="casadi")
+    assert not res.refined and res.feasible
+    np.testing.assert_array_equal(res.path, seed.path)
+    assert "Maximum_Iterations_Exceeded" in res.message and "fell back" in res.message
+
+
+@pytest.fixture
+def starved_osqp(monkeypatch):
+    from optplan.solvers.qp import program
+
+    monkeypatch.setitem(program.OSQP_SETTINGS, "max_iter", 1)
+    monkeypatch.setitem(program.OSQP_SETTINGS, "polishing", False)
+    program._PROGRAMS.clear()
+    yield
+    program._PROGRAMS.clear()
+
+
+def test_osqp_max_iter_falls_back_to_the_seed_with_its_status(starved_osqp):
+    world, s, g = paper_map("chen2025_20")
+    seed = op.plan(world, s, g, algorithm="astar")
+    res = op.plan(world, s, g, algorithm="astar", refine="qp")
+    assert not res.refined and res.feasible
+    np.testing.assert_array_equal(res.path, seed.path)
+    assert "maximum iterations" in res.message.lower()
+
+
+def test_nan_objective_inside_a_path_planner_is_survived():
+    """A formulation that returns NaN for some individuals: they count as worst, the run
+    finishes, and the returned path still goes through the exact check."""
+    from optplan.formulations.problem import PathProblem
+
+    world, s, g = paper_map("chen2025_20")
+    original = PathProblem.evaluate
+
+    def flaky(self, X):
+        f, v = original(self, X)
+        f = np.array(f, dtype=float)
+        f[::3] = np.nan
+        return f, v
+
+    try:
+        PathProblem.evaluate = flaky
+        res = op.plan(world, s, g, algorithm="gwo", seed=0, pop=12, iters=20)
+    finally:
+        PathProblem.evaluate = original
+    assert res.feasible == bool(op.validate_path(world, res.path))
+    assert np.isfinite(res.length) and "NaN" in res.message
+
+
+def test_an_exception_inside_a_dask_worker_is_a_failed_run_and_the_rest_continue(tmp_path):
+    from distributed import Client, LocalCluster
+
+    from optplan.bench.runner import run_records
+    from optplan.bench.spec import load_spec
+    from optplan.bench.store import ResultStore
+
+    spec = tmp_path / "faulty.yaml"
+    spec.write_text(
+        "name: faulty\nkind: plan\nmaps: [chen2025_20]\n"
+        "algorithms:\n  - gwo\n  - {name: gwo, label: broken, params: {pop: 1}}\n"
+        "params: {pop: 8, iters: 5}\nruns: 3\n"
+    )
+    records = load_spec(spec).expand()
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None) as cluster, \
+            Client(cluster) as client:
+        store = ResultStore(tmp_path / "r.sqlite")
+        run_records(records, store, executor=client, progress=False)
+        rows = store.rows()
+        store.close()
+    status = sorted(r["status"] for r in rows.values())
+    assert status == ["failed"] * 3 + ["ok"] * 3
+    assert all("pop" in (r.get("error") or "") for r in rows.values() if r["status"] == "failed")
