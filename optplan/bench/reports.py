@@ -187,15 +187,16 @@ def li2023_global(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path
 
 
 def closed_loop(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path | None = None) -> str:
-    """Closed-loop runs (``op.simulate``): per scenario and pipeline, goal reached, collisions,
-    time, distance, clearance and smoothness, with the rank-sum p-value of the time to goal."""
+    """Closed-loop runs (``op.simulate``): per scenario and pipeline, success (goal reached with
+    zero collisions), goal reached, collision-free runs, timeouts, time, distance, clearance and
+    smoothness, with the rank-sum p-value of the time to goal."""
     from .stats import compare
 
     spec = res.spec
     out = [f"## {spec.formatted_title()}\n"]
     for t in spec.targets:
         groups = res.groups(t.name)
-        table = Table(["pipeline", "runs", "failed", "reached", "collision-free", "mean time [s]",
+        table = Table(["pipeline", "runs", "failed", "success", "reached", "collision-free", "timeouts", "mean time [s]",
                        "mean distance [m]", "min clearance [m]", "max |a| [m/s^2]", "max |alpha| [rad/s^2]",
                        "mean step [ms]", "p time vs reference"])
         for g, recs in groups.items():
@@ -213,8 +214,10 @@ def closed_loop(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path |
                 p = "-" if not np.isfinite(pv) else f"{pv:.3g} ({sign})"
             table.rows.append([res.group_name(*g) + (f" ({g[2]})" if len(spec.local_planners) == 1 and g[2] else ""),
                                f"{stored}/{len(recs)}", str(failed),
+                               f"{sum(bool(r.get('reached')) and not r.get('collisions') for r in rows)}/{stored}",
                                f"{sum(bool(r.get('reached')) for r in rows)}/{stored}",
-                               f"{sum(not r.get('collisions') for r in rows)}/{stored}", col("time_s"),
+                               f"{sum(not r.get('collisions') for r in rows)}/{stored}",
+                               f"{sum(r.get('result_status') == 'timeout' for r in rows)}/{stored}", col("time_s"),
                                col("path_length"), col("min_clearance", np.min), col("max_abs_accel", np.max),
                                col("max_abs_ang_accel", np.max), col("mean_step_ms"), p])
         errors = {res.rows[r.key]["error"] for recs in groups.values() for r in recs
