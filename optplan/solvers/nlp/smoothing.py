@@ -352,6 +352,19 @@ def _polish(world, X: np.ndarray, clearance: float, w_smooth: float) -> tuple[np
     return X, f"QP polish skipped ({q.message})"
 
 
+def check_seed_ends(world, seed_path, clearance: float) -> tuple[np.ndarray, SmoothResult | None]:
+    """The seed as an ``(M, 2)`` array, and a failed :class:`SmoothResult` saying why when it
+    cannot be refined at all (bad shape, or start/goal not ``clearance`` metres clear);
+    shared by every smoother so they refuse the same inputs with the same words."""
+    P = np.asarray(seed_path, dtype=float)
+    if P.ndim != 2 or P.shape[1] != 2 or len(P) < 2:
+        return P, SmoothResult(P, False, "the seed must be an (M, 2) path with at least two points", 0.0)
+    for p, what in ((P[0], "start"), (P[-1], "goal")):
+        if not bool(world.is_free(p, clearance)):
+            return P, SmoothResult(P, False, f"the {what} is not {clearance:g} m clear of obstacles", 0.0)
+    return P, None
+
+
 def smooth_path(world, seed_path, clearance: float = 0.0, n_points: int | None = None, w_smooth: float = 0.5,
                 k_nearest: int = 2, cushion: float | None = None, grid_samples: int = 1,
                 warm_start: "WarmStart | SmoothResult | None" = None, polish: bool | None = None) -> SmoothResult:
@@ -393,12 +406,9 @@ def smooth_path(world, seed_path, clearance: float = 0.0, n_points: int | None =
         SmoothResult; ``success`` only when the result passed ``validate_path``.
     """
     t0 = time.perf_counter()
-    P = np.asarray(seed_path, dtype=float)
-    if P.ndim != 2 or P.shape[1] != 2 or len(P) < 2:
-        return SmoothResult(P, False, "the seed must be an (M, 2) path with at least two points", 0.0)
-    for p, what in ((P[0], "start"), (P[-1], "goal")):
-        if not bool(world.is_free(p, clearance)):
-            return SmoothResult(P, False, f"the {what} is not {clearance:g} m clear of obstacles", 0.0)
+    P, refused = check_seed_ends(world, seed_path, clearance)
+    if refused is not None:
+        return refused
     warm = warm_start.warm if isinstance(warm_start, SmoothResult) else warm_start
     if warm is not None and not isinstance(warm, WarmStart):
         raise ParameterError(f"warm_start must be a SmoothResult or WarmStart, got {type(warm_start).__name__}")

@@ -27,7 +27,7 @@ import numpy as np
 
 from ...errors import ParameterError
 from ...world.geometry import validate_path
-from ..nlp.smoothing import SmoothResult, default_points
+from ..nlp.smoothing import SmoothResult, check_seed_ends, default_points
 from .corridor import build_corridor, sample_for_corridor
 from .program import corridor_program, objective_value
 
@@ -64,12 +64,9 @@ def smooth_path_qp(world, seed_path, clearance: float = 0.0, n_points: int | Non
         raise ParameterError(f"backend must be 'osqp' or 'cvxpy', got {backend!r}")
     if rounds < 1:
         raise ParameterError(f"rounds must be at least 1, got {rounds}")
-    P = np.asarray(seed_path, dtype=float)
-    if P.ndim != 2 or P.shape[1] != 2 or len(P) < 2:
-        return SmoothResult(P, False, "the seed must be an (M, 2) path with at least two points", 0.0)
-    for p, what in ((P[0], "start"), (P[-1], "goal")):
-        if not bool(world.is_free(p, clearance)):
-            return SmoothResult(P, False, f"the {what} is not {clearance:g} m clear of obstacles", 0.0)
+    P, refused = check_seed_ends(world, seed_path, clearance)
+    if refused is not None:
+        return refused
     seed_check = validate_path(world, P, clearance)
     if not seed_check:
         return SmoothResult(P, False, f"the seed path is not collision-free ({seed_check.reason}); the corridor "
