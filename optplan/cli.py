@@ -114,6 +114,28 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+# options that name a file or folder the command writes
+OUTPUT_OPTIONS = ("plot", "gif", "csv", "out", "plots")
+
+
+def _check_outputs(args) -> None:
+    """Refuse an output path that cannot be written before any work is done, so a long
+    run does not end in an error with nothing to show for it."""
+    import os
+
+    for name in OUTPUT_OPTIONS:
+        value = getattr(args, name, None)
+        if not value:
+            continue
+        target = Path(value)
+        if target.is_dir() and name != "plots":
+            raise OptplanError(f"--{name} {value} is a folder; give a file name")
+        parent = target if name == "plots" else target.parent
+        existing = next((d for d in (parent, *parent.parents) if d.exists()), None)
+        if existing is None or not existing.is_dir() or not os.access(existing, os.W_OK):
+            raise OptplanError(f"--{name} {value}: cannot write there ({existing or parent} is not a writable folder)")
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run the command line with ``argv`` (default ``sys.argv[1:]``); returns the exit status
     (0 success, 2 an OptplanError whose message was printed on one line, 130 interrupted)."""
@@ -123,9 +145,14 @@ def main(argv: list[str] | None = None) -> int:
         parser.print_help()
         return 2
     try:
+        _check_outputs(args)
         return int(args.func(args) or 0)
     except OptplanError as exc:
         print(f"optplan: error: {exc}", file=sys.stderr)
+        return 2
+    except OSError as exc:  # a file the user named could not be read or written
+        where = f" {exc.filename}" if getattr(exc, "filename", None) else ""
+        print(f"optplan: error: cannot access{where}: {exc.strerror or exc}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print("optplan: interrupted", file=sys.stderr)

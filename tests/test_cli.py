@@ -76,3 +76,21 @@ def test_demo_prints_table_and_writes_png(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "| astar |" in out and "| visibility |" in out and "gap to exact optimum" in out
     assert png.stat().st_size > 5000 and png.read_bytes()[:4] == b"\x89PNG"
+
+
+@pytest.mark.parametrize("argv", [
+    ["plan", "multialgo20_template", "--start", "0.5", "0.5", "--goal", "19.5", "19.5", "--plot", "{file}/x.png"],
+    ["plan", "multialgo20_template", "--start", "0.5", "0.5", "--goal", "19.5", "19.5", "--plot", "{dir}"],
+    ["simulate", "li2023_exp1", "--gif", "{file}/run.gif"],
+    ["demo", "--out", "{file}/demo.png"],
+])
+def test_unwritable_outputs_are_refused_before_any_work(tmp_path, capsys, argv):
+    """An output under a regular file, or a folder given as a file: one line, exit 2, and
+    nothing is planned or simulated first."""
+    blocker = tmp_path / "a_file"
+    blocker.write_text("x")
+    args = [a.format(file=blocker, dir=tmp_path) for a in argv]
+    code = main(args)
+    out, err = capsys.readouterr()
+    assert code == 2 and out == ""
+    assert len(err.strip().splitlines()) == 1 and "optplan: error:" in err
