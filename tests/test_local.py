@@ -175,6 +175,25 @@ def test_iga_dwa_brakes_and_waits_for_a_crossing_mover(field):
     assert planner.command(ctx_at(field, st, (9.5, 5.0), [head_on], path)).info["mode"] != "brake-and-wait"
 
 
+def test_iga_dwa_does_not_wait_on_the_movers_track(field):
+    """A mover meeting all four li2023 §5.4 conditions but whose track passes within both
+    radii of the robot: standing still there means being run over, so the step is left to
+    the DWA (whose trajectories avoid the predicted mover) instead of braking to wait."""
+    robot = RobotSpec()
+    st = RobotState(2.0, 5.0, -0.3, 0.0, 0.0)
+    goal = (2.0 + 7.0 * np.cos(-0.3), 5.0 + 7.0 * np.sin(-0.3))  # path along the robot's heading
+    path = [[2.0, 5.0], list(goal)]
+    planner = make_local_planner("iga-dwa", robot, DT)
+    planner.reset(st, path)
+    on_track = [2.45, 4.1, 0.0, 0.5, 0.3]  # passes 0.45 m from the robot's centre (< 0.2 + 0.3)
+    mech = next(m for m in planner.mechanisms if m.name == "brake_and_wait")
+    assert len(mech.threats(ctx_at(field, st, goal, [on_track], path))) == 1
+    cmd = planner.command(ctx_at(field, st, goal, [on_track], path))
+    assert cmd.info["mode"] != "brake-and-wait"
+    off_track = [3.2, 4.1, 0.0, 0.5, 0.3]  # the same mover 1.2 m to the side: waiting is safe
+    assert planner.command(ctx_at(field, st, goal, [off_track], path)).info["mode"] == "brake-and-wait"
+
+
 def test_iga_dwa_turns_to_the_first_subgoal_first(field):
     planner = make_local_planner("iga-dwa", RobotSpec(), DT)
     st = RobotState(2.0, 5.0, 0.0, 0.0, 0.0)

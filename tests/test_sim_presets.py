@@ -24,7 +24,6 @@ SCENARIO = {"map": ROWS, "start": [0.5, 0.5, 30], "goal": [9.5, 6.5], "time_limi
 KNOWN_FAILURES = {
     "dwa": "no global guidance (goal only, as the papers' traditional DWA): stops in front of the unknown cell",
     "idwa": "gets stuck by the unknown cell and times out",
-    "iga-dwa": "reaches the goal but overlaps the unknown cell on the way",
 }
 
 

@@ -167,6 +167,12 @@ class BrakeAndWait(Mechanism):
     comes head-on (those are left to the DWA). The robot moves on once no mover meets all
     four conditions (the paper: once the mover is farther than ``d_s`` from the path ahead).
     ``d_s``, ``v_s`` and ``front_angle`` are left to the user by the paper; the defaults are ours.
+
+    Waiting is only safe off the mover's track: the paper assumes the robot stops before the
+    crossing. When the robot already stands inside a threat's swept corridor (its straight
+    track over the next ``d_s / speed`` seconds, widened by both radii and ``margin``), it
+    does not wait there to be run over; the step is left to the DWA, whose trajectories avoid
+    the predicted movers.
     """
 
     name: ClassVar[str] = "brake_and_wait"
@@ -174,6 +180,7 @@ class BrakeAndWait(Mechanism):
     v_s: float = 0.05
     front_angle: float = math.pi / 3
     cross_angle: float = 3 * math.pi / 4
+    margin: float = 0.05
 
     def threats(self, ctx: LocalContext) -> np.ndarray:
         """Indices of the movers that meet the four conditions."""
@@ -186,10 +193,24 @@ class BrakeAndWait(Mechanism):
         crossing = np.abs(wrap_angle(np.angle(vel) - ctx.state.theta)) <= self.cross_angle
         return np.flatnonzero(ahead & near & fast & crossing)
 
+    def in_swept_corridor(self, ctx: LocalContext, movers: np.ndarray, robot_radius: float) -> bool:
+        """Whether the robot's position lies on the straight track of any of ``movers`` (rows
+        ``x, y, vx, vy, r``) over the time they need to cover ``d_s``."""
+        q = np.array([ctx.state.x, ctx.state.y])
+        p, v, r = movers[:, :2], movers[:, 2:4], movers[:, 4]
+        horizon = self.d_s / np.maximum(np.hypot(v[:, 0], v[:, 1]), self.v_s)
+        seg = v * horizon[:, None]
+        t = np.clip(np.einsum("ij,ij->i", q - p, seg) / np.maximum(np.einsum("ij,ij->i", seg, seg), 1e-12), 0.0, 1.0)
+        gap = np.hypot(*(p + t[:, None] * seg - q).T) - r - robot_radius
+        return bool(np.any(gap < self.margin))
+
     def override(self, planner, ctx, window):
         k = self.threats(ctx)
         if len(k) == 0:
             return None
+        movers = np.asarray(ctx.dynamic, dtype=float).reshape(-1, 5)[k]
+        if self.in_swept_corridor(ctx, movers, planner.robot.radius):
+            return None  # waiting here would be waiting to be hit
         return 0.0, 0.0, {"mode": "brake-and-wait", "waiting_for": [int(i) for i in k]}
 
 
