@@ -5,9 +5,6 @@ stays fast and light layers do not pull in CasADi or OSQP.
 """
 from __future__ import annotations
 
-import importlib
-from typing import Any
-
 from .errors import (
     InfeasibleQueryError,
     MapFormatError,
@@ -16,6 +13,7 @@ from .errors import (
     ScenarioError,
     UnknownAlgorithmError,
 )
+from .lazy import lazy_exports
 from .results import OptimizeResult, PlanResult, SimResult
 
 __version__ = "0.1.0"
@@ -39,23 +37,7 @@ _LAZY = {
     "simulate": "optplan.sim",
 }
 
-__all__ = sorted(
-    list(_LAZY)
-    + [
-        "OptplanError", "MapFormatError", "InfeasibleQueryError", "UnknownAlgorithmError",
-        "ParameterError", "ScenarioError", "OptimizeResult", "PlanResult", "SimResult",
-    ]
-)
-
-
-def __getattr__(name: str) -> Any:
-    module = _LAZY.get(name)
-    if module is None:
-        raise AttributeError(f"module 'optplan' has no attribute {name!r}")
-    value = getattr(importlib.import_module(module), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return __all__
+__getattr__, __dir__, __all__ = lazy_exports("optplan", _LAZY, globals(), eager=[
+    "OptplanError", "MapFormatError", "InfeasibleQueryError", "UnknownAlgorithmError",
+    "ParameterError", "ScenarioError", "OptimizeResult", "PlanResult", "SimResult",
+])

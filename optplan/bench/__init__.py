@@ -13,8 +13,7 @@ The names below are imported lazily so that ``import optplan.bench`` stays light
 """
 from __future__ import annotations
 
-import importlib
-from typing import Any
+from ..lazy import lazy_exports
 
 _LAZY = {
     "load_spec": "optplan.bench.spec",
@@ -28,17 +27,4 @@ _LAZY = {
     "run_experiment": "optplan.bench.experiment",
 }
 
-__all__ = sorted(_LAZY)
-
-
-def __getattr__(name: str) -> Any:
-    module = _LAZY.get(name)
-    if module is None:
-        raise AttributeError(f"module 'optplan.bench' has no attribute {name!r}")
-    value = getattr(importlib.import_module(module), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return __all__
+__getattr__, __dir__, __all__ = lazy_exports("optplan.bench", _LAZY, globals())
