@@ -31,9 +31,16 @@ def jsonable(value: Any) -> Any:
 
 
 class _ToDict:
+    JSON_KEYS: tuple[str, ...] = ()  # the command line's ``--json`` keys, where a result has them
+
     def to_dict(self) -> dict[str, Any]:
         """All fields as a JSON-serialisable dict."""
         return {f.name: jsonable(getattr(self, f.name)) for f in fields(self)}  # type: ignore[arg-type]
+
+    def to_json_dict(self) -> dict[str, Any]:
+        """Exactly the keys of the ``--json`` contract (``JSON_KEYS``), JSON-serialisable."""
+        d = self.to_dict()
+        return {k: d[k] for k in self.JSON_KEYS}
 
 
 @dataclass
@@ -106,11 +113,6 @@ class PlanResult(_ToDict):
     JSON_KEYS = ("algorithm", "feasible", "path", "length", "turn_angle_deg", "n_turns",
                  "min_clearance", "runtime_s", "refined", "seed")
 
-    def to_json_dict(self) -> dict[str, Any]:
-        """Exactly the keys of the ``optplan plan --json`` contract."""
-        d = self.to_dict()
-        return {k: d[k] for k in self.JSON_KEYS}
-
 
 @dataclass
 class SimResult(_ToDict):
@@ -160,8 +162,3 @@ class SimResult(_ToDict):
 
     JSON_KEYS = ("reached", "collisions", "time_s", "path_length", "min_clearance", "max_abs_accel",
                  "max_abs_ang_accel", "steps", "mean_step_ms", "trajectory")
-
-    def to_json_dict(self) -> dict[str, Any]:
-        """Exactly the keys of the ``optplan simulate --json`` contract."""
-        d = self.to_dict()
-        return {k: d[k] for k in self.JSON_KEYS}
