@@ -36,8 +36,13 @@ def _cmd_plan(args) -> int:
 
     world = _load_world(args.map)
     refine = None if args.refine == "none" else args.refine
+    refine_options = {}
+    if args.tube_radius is not None:
+        if refine is None:
+            raise OptplanError("--tube-radius only applies to a refinement; add --refine casadi or --refine qp")
+        refine_options["tube_radius"] = args.tube_radius
     res = plan(world, tuple(args.start), tuple(args.goal), algorithm=args.algo, refine=refine, seed=args.seed,
-               pop=args.pop, iters=args.iters, clearance=args.clearance)
+               pop=args.pop, iters=args.iters, clearance=args.clearance, refine_options=refine_options)
     if args.plot:
         from .viz.plots import plot_paths
 
@@ -87,6 +92,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--goal", nargs=2, type=float, required=True, metavar=("X", "Y"), help="goal in metres")
     p.add_argument("--algo", default="astar", help="planner name (see 'optplan algorithms'); default astar")
     p.add_argument("--refine", default="none", choices=["none", "casadi", "qp"], help="refinement stage")
+    p.add_argument("--tube-radius", type=float, default=None, metavar="M",
+                   help="metres around the path in which refinement may pass obstacles on the other side "
+                        "(0: purely local; default: casadi twice the widest obstacle, qp 0)")
     p.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     p.add_argument("--pop", type=int, default=30, help="population size of metaheuristics")
     p.add_argument("--iters", type=int, default=500, help="iterations of metaheuristics")

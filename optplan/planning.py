@@ -26,8 +26,26 @@ def _checked_clearance(clearance) -> float:
     return c
 
 
+def _checked_refine_options(options) -> dict:
+    """``refine_options`` as a dict, its tube radius checked before any planning is done."""
+    if options is None:
+        return {}
+    if not isinstance(options, dict):
+        raise ParameterError(f"refine_options must be a dict of refinement options such as "
+                             f"{{'tube_radius': 3.0}}, got {options!r}")
+    taken = sorted({"method", "clearance", "seed"} & set(options))
+    if taken:
+        raise ParameterError(f"refine_options cannot set {', '.join(taken)}: use plan's own refine, clearance "
+                             "and seed arguments")
+    from .solvers.refine import check_tube_radius
+
+    check_tube_radius(options.get("tube_radius"))
+    return dict(options)
+
+
 def plan(world, start, goal, algorithm: str = "astar", refine: str | None = None, seed: int | None = 0,
-         pop: int = 30, iters: int = 500, clearance: float = 0.0, **params) -> PlanResult:
+         pop: int = 30, iters: int = 500, clearance: float = 0.0, refine_options: dict | None = None,
+         **params) -> PlanResult:
     """Plan a global path from ``start`` to ``goal`` (metres) on ``world``.
 
     Args:
@@ -38,6 +56,11 @@ def plan(world, start, goal, algorithm: str = "astar", refine: str | None = None
         seed: seed of stochastic planners (ignored by graph search).
         pop, iters: population size and iterations of metaheuristics.
         clearance: required distance from obstacles, metres.
+        refine_options: keyword options of the refinement (``refine_result``), e.g.
+            ``{"tube_radius": 3.0}``: metres around the seed in which the refinement may
+            move the path to the other side of an obstacle (``0``: purely local; default
+            for ``casadi``: twice the widest obstacle, for ``qp``: 0), or smoother
+            options such as ``n_points``. Ignored without ``refine``.
         **params: extra keyword arguments for the chosen planner.
 
     Returns:
@@ -53,6 +76,7 @@ def plan(world, start, goal, algorithm: str = "astar", refine: str | None = None
     name = algorithm.lower()
     if refine not in REFINE_MODES:
         raise ParameterError(f"refine must be one of none, casadi, qp; got {refine!r}")
+    refine_options = _checked_refine_options(refine_options)
     start, goal = check_start_goal(world, start, goal, _checked_clearance(clearance))
     if name in GRID_ONLY and not hasattr(world, "occ"):
         raise ParameterError(f"{name!r} needs a grid map ({GRID_ONLY[name]}); on a circle world use "
@@ -74,7 +98,7 @@ def plan(world, start, goal, algorithm: str = "astar", refine: str | None = None
     if refine not in (None, "none"):
         from .solvers.refine import refine_result
 
-        result = refine_result(world, result, method=refine, clearance=clearance, seed=seed)
+        result = refine_result(world, result, method=refine, clearance=clearance, seed=seed, **refine_options)
     if result.seed is None and name not in GRAPH_METHODS and isinstance(seed, (int, np.integer)):
         result.seed = int(seed)
     return result

@@ -117,7 +117,7 @@ def test_refined_vs_pure_example_every_refined_path_validates(tmp_path):
     rows = [line.split(" | ") for line in (tmp_path / "refined_vs_pure.md").read_text().splitlines()
             if line.startswith("| li2023_11 |") or line.startswith("| yang2023_env1 |")]
     table = [r for r in rows if len(r) == 11]
-    assert {r[2] for r in table} == {"pure", "casadi", "qp"}
+    assert {r[2] for r in table} == {"pure", "casadi-local", "casadi", "qp"}
     for r in table:
         valid = r[9].split("/")
         assert valid[0] == valid[1], r           # every path (pure and refined) validates
