@@ -109,3 +109,37 @@ def test_ruckig_limiter_respects_acceleration_and_jerk():
     assert (np.abs(a) <= np.array([0.3, 0.8]) + 1e-9).all()
     assert (np.abs(np.diff(a, axis=0)) / DT <= np.array([1.0, 3.0]) + 1e-9).all()
     assert v[-1] == pytest.approx([0.0, -0.5], abs=1e-6)
+
+
+def test_lean_osqp_calls_match_the_public_api():
+    """The direct calls of ``LeanOSQP`` (used by qp-dwa's control step) and the public
+    ``update/warm_start/solve`` give the same solution on a sequence of updated QPs."""
+    import osqp
+    import scipy.sparse as sp
+
+    from optplan.local.qp_dwa import LeanOSQP
+
+    rng = np.random.default_rng(3)
+    n, m = 3, 5
+    P = sp.diags([2.0, 1.0, 1e3]).tocsc()
+    pattern = sp.csc_matrix(np.vstack([np.eye(n), np.ones((m, n))]))
+    solvers = []
+    for direct in (True, False):
+        qp = osqp.OSQP()
+        qp.setup(P, np.zeros(n), pattern, np.full(n + m, -np.inf), np.full(n + m, np.inf), verbose=False,
+                 polishing=False, eps_abs=1e-8, eps_rel=1e-8)
+        lean = LeanOSQP(qp)
+        if not direct:
+            lean.core = None
+        solvers.append(lean)
+    assert solvers[0].core is not None  # the installed osqp exposes its compiled solver
+    for _ in range(5):
+        rows = np.vstack([np.eye(n), np.c_[rng.normal(size=(m, n - 1)), np.ones(m)]])
+        Ax = rows.T[pattern.T.toarray().astype(bool)]  # column-major values of the fixed pattern
+        q = np.r_[rng.normal(size=n - 1), 10.0]
+        lower = np.r_[-np.ones(n - 1), 0.0, rng.normal(size=m)]
+        upper = np.r_[np.ones(n - 1), np.inf, np.full(m, np.inf)]
+        out = [s.step(q, lower.copy(), upper.copy(), Ax, np.zeros(n)) for s in solvers]
+        assert out[0][0] == out[1][0] == osqp.SolverStatus.OSQP_SOLVED
+        np.testing.assert_allclose(out[0][2], out[1][2], atol=1e-6)
+        assert np.all(rows[n:] @ out[0][2] >= lower[n:] - 1e-5)  # constraints hold
