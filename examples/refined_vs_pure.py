@@ -39,6 +39,10 @@ from optplan.world.metrics import max_curvature
 from optplan.world.papermaps import maps_of, paper_map
 
 PLANNER_OF = {"hou2024": "missa", "yang2023": "ipso", "yuan2021": "iba", "li2023": "iga", "chen2025": "msiar-gwo"}
+# each paper's own (population, iterations), as in the shipped reproduction specs
+# (optplan/data/specs/<paper>_global.yaml, yuan2021_table1.yaml, chen2025_paths.yaml)
+PAPER_BUDGET = {"hou2024": (60, 300), "yang2023": (50, 300), "yuan2021": (50, 300), "li2023": (50, 200),
+                "chen2025": (30, 500)}
 VARIANTS = ("pure", "casadi-local", "casadi", "qp")
 
 
@@ -88,20 +92,25 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--runs", type=int, default=10, help="seeded runs of each metaheuristic per map")
     ap.add_argument("--quick", action="store_true", help="one map per paper, 3 runs, 60 iterations")
-    ap.add_argument("--iters", type=int, default=None, help="planner iterations (default 200; --quick 60)")
-    ap.add_argument("--pop", type=int, default=30)
+    ap.add_argument("--iters", type=int, default=None,
+                    help="planner iterations (default: each paper's own, see PAPER_BUDGET; --quick 60)")
+    ap.add_argument("--pop", type=int, default=None, help="population (default: each paper's own)")
     ap.add_argument("--out", default="refined_vs_pure", help="folder for the figures and the markdown table")
     ap.add_argument("--maps", nargs="+", metavar="NAME", help="only these paper maps (default: all, --quick: one per paper)")
     ap.add_argument("--tube-radius", type=float, default=None, metavar="M",
                     help="tube radius of the 'casadi' variant, metres (default: twice the widest obstacle of each map)")
     args = ap.parse_args(argv)
     runs = 3 if args.quick else args.runs
-    iters = args.iters or (60 if args.quick else 200)
+
+    def budget(paper: str) -> tuple[int, int]:
+        pop, iters = PAPER_BUDGET[paper]
+        return args.pop or pop, args.iters or (60 if args.quick else iters)
     out = Path(args.out)
     header = ["map", "planner", "variant", "mean length [m]", "mean gap [%]", "mean turn [deg]",
               "mean max curvature [1/m]", "mean min clearance [m]", "mean time [s]", "valid", "refined"]
     rows, shares = [], []
     for paper, planner in PLANNER_OF.items():
+        pop, iters = budget(paper)
         names = maps_of(paper)
         if args.maps:
             names = [n for n in names if n in args.maps]
@@ -112,14 +121,14 @@ def main(argv=None) -> int:
             opt = exact_optimum(world, s, g)
             planners = [planner] + (["astar"] if hasattr(world, "occ") else [])
             # build the per-map structures (distance field, spline interpolant, solvers) before timing
-            warm_up = plan(world, s, g, algorithm=planners[-1], seed=0, pop=args.pop, iters=5)
+            warm_up = plan(world, s, g, algorithm=planners[-1], seed=0, pop=pop, iters=5)
             variants_of(world, warm_up, args.tube_radius)
-            by_planner = {p: runs_on_map(world, s, g, name, p, runs, iters, args.pop, args.tube_radius)
+            by_planner = {p: runs_on_map(world, s, g, name, p, runs, iters, pop, args.tube_radius)
                           for p in planners}
             for p, results in by_planner.items():
                 rows += [summary_row(name, p, v, results, opt) for v in VARIANTS]
             everything = [r for results in by_planner.values() for r in results]
-            shares.append((name, opt, tube_radius_for(world, "casadi", args.tube_radius),
+            shares.append((name, f"{pop} x {iters}", opt, tube_radius_for(world, "casadi", args.tube_radius),
                            share_within(everything, "casadi-local", opt),
                            {p: share_within(rs, "casadi", opt) for p, rs in by_planner.items()},
                            share_within(everything, "casadi", opt), share_within(everything, "qp", opt)))
@@ -132,14 +141,15 @@ def main(argv=None) -> int:
             plot_paths(world, paths, out / f"{name}.png", title=f"{name}: pure vs refined (optimum {opt:.2f} m)")
     table = "\n".join(["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
                       + ["| " + " | ".join(r) + " |" for r in rows])
-    lines = ["| map | optimum [m] | casadi R = 0 within 1 %, all runs | tube R [m] | casadi within 1 %, by planner | "
-             "casadi within 1 %, all runs | >= 90 % | qp within 1 %, all runs |", "|---|---|---|---|---|---|---|---|"]
-    for name, opt, radius, (lgood, ln), per, (good, n), (qgood, qn) in shares:
+    lines = ["| map | pop x iters | optimum [m] | casadi R = 0 within 1 %, all runs | tube R [m] | "
+             "casadi within 1 %, by planner | casadi within 1 %, all runs | >= 90 % | qp within 1 %, all runs |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    for name, size, opt, radius, (lgood, ln), per, (good, n), (qgood, qn) in shares:
         by = ", ".join(f"{p} {a}/{b}" for p, (a, b) in per.items())
-        lines.append(f"| {name} | {opt:.3f} | {lgood}/{ln} ({100 * lgood / ln:.0f} %) | {radius:.2f} | {by} | "
+        lines.append(f"| {name} | {size} | {opt:.3f} | {lgood}/{ln} ({100 * lgood / ln:.0f} %) | {radius:.2f} | {by} | "
                      f"{good}/{n} ({100 * good / n:.0f} %) | {'yes' if good >= 0.9 * n else 'NO'} | "
                      f"{qgood}/{qn} ({100 * qgood / qn:.0f} %) |")
-    report = (f"## Pure vs refined ({runs} runs per metaheuristic, pop {args.pop}, {iters} iterations; A* once)\n\n"
+    report = (f"## Pure vs refined ({runs} runs per metaheuristic at each paper's population and iterations; A* once)\n\n"
               "casadi-local: refine='casadi' with tube_radius=0 (purely local); casadi: with the tube (radius per map\n"
               "in the share table). Time is planner + refinement per run; the per-map distance field, spline interpolant and solver\n"
               "set-ups are built once before timing (a first call on a new map pays for them).\n\n"
