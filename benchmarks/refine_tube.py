@@ -10,7 +10,7 @@ of refinements within 1 % of the exact any-angle optimum that pass
 smoothings). The last row counts the maps that reach issue 5's figure
 (>= 90 %) at each radius.
 
-    python benchmarks/refine_tube.py [--runs 10] [--maps NAME ...] [--widths 0 1 1.5 2 3] [--iters 200]
+    python benchmarks/refine_tube.py [--runs 10] [--maps NAME ...] [--widths 0 1 1.5 2 3] [--iters N] [--pop N]
 
 Wall-clock times depend on machine load; run it on a quiet machine.
 """
@@ -22,7 +22,7 @@ import time
 
 import numpy as np
 
-from optplan.bench.global_runs import exact_optimum
+from optplan.bench.global_runs import PAPER_BUDGET, PAPER_PLANNER, exact_optimum
 from optplan.planning import plan
 from optplan.solvers.refine import refine_path
 from optplan.solvers.tube import DEFAULT_WIDTHS, obstacle_width
@@ -30,7 +30,6 @@ from optplan.world.geometry import validate_path
 from optplan.world.metrics import path_length
 from optplan.world.papermaps import maps_of, paper_map
 
-PLANNER_OF = {"hou2024": "missa", "yang2023": "ipso", "yuan2021": "iba", "li2023": "iga", "chen2025": "msiar-gwo"}
 
 
 def seeds_for(world, s, g, planner: str, runs: int, iters: int, pop: int) -> list[np.ndarray]:
@@ -63,35 +62,36 @@ def main(argv=None) -> int:
     ap.add_argument("--widths", nargs="+", type=float, default=[0, 1, 1.5, 2, 3], metavar="K",
                     help="tube radii in widths of the widest obstacle (0 = purely local; default "
                          f"0 1 1.5 2 3; the refine='casadi' default is {DEFAULT_WIDTHS:g})")
-    ap.add_argument("--iters", type=int, default=200, help="planner iterations")
-    ap.add_argument("--pop", type=int, default=30)
+    ap.add_argument("--iters", type=int, default=None, help="planner iterations (default: each paper's own)")
+    ap.add_argument("--pop", type=int, default=None, help="population (default: each paper's own)")
     args = ap.parse_args(argv)
     widths = sorted(set(args.widths))
     rows, reached = [], np.zeros(len(widths), int)
-    for paper, planner in PLANNER_OF.items():
+    for paper, planner in PAPER_PLANNER.items():
+        pop, iters = args.pop or PAPER_BUDGET[paper][0], args.iters or PAPER_BUDGET[paper][1]
         for name in maps_of(paper):
             if args.maps and name not in args.maps:
                 continue
             world, s, g = paper_map(name)
             opt = exact_optimum(world, s, g)
             unit = obstacle_width(world)
-            seeds = seeds_for(world, s, g, planner, args.runs, args.iters, args.pop)
+            seeds = seeds_for(world, s, g, planner, args.runs, iters, pop)
             stats = sweep_map(world, opt, seeds, [k * unit for k in widths])
             n = len(seeds)
             reached += np.array([good >= 0.9 * n for good, _ in stats])
-            rows.append([name, f"{unit:.2f}", str(n)]
+            rows.append([name, f"{pop} x {iters}", f"{unit:.2f}", str(n)]
                         + [f"{good}/{n} ({100 * good / n:.0f} %)" for good, _ in stats]
                         + [f"{1e3 * t:.0f}" for _, t in stats])
             print(f"  {name}: done", file=sys.stderr, flush=True)
-    header = (["map", "widest obstacle [m]", "seeds"] + [f"within 1 %, R = {k:g} w" for k in widths]
+    header = (["map", "pop x iters", "widest obstacle [m]", "seeds"] + [f"within 1 %, R = {k:g} w" for k in widths]
               + [f"median ms, R = {k:g} w" for k in widths])
     print(f"## Tube radius sweep (refine='casadi'; R in widths w of the widest obstacle; {args.runs} runs of each "
-          f"paper's planner, pop {args.pop}, {args.iters} iterations, + A* on grids)\n")
+          f"paper's planner at its paper's population and iterations, + A* on grids)\n")
     print("| " + " | ".join(header) + " |")
     print("|" + "---|" * len(header))
     for r in rows:
         print("| " + " | ".join(r) + " |")
-    print("| maps with >= 90 % | | | " + " | ".join(f"{m}/{len(rows)}" for m in reached) + " |" + " |" * len(widths))
+    print("| maps with >= 90 % | | | | " + " | ".join(f"{m}/{len(rows)}" for m in reached) + " |" + " |" * len(widths))
     return 0
 
 

@@ -31,18 +31,13 @@ from pathlib import Path
 
 import numpy as np
 
-from optplan.bench.global_runs import exact_optimum
+from optplan.bench.global_runs import PAPER_BUDGET, PAPER_PLANNER, exact_optimum
 from optplan.planning import plan
 from optplan.solvers.refine import refine_result, tube_radius_for
 from optplan.viz.plots import plot_paths
 from optplan.world.metrics import max_curvature
 from optplan.world.papermaps import maps_of, paper_map
 
-PLANNER_OF = {"hou2024": "missa", "yang2023": "ipso", "yuan2021": "iba", "li2023": "iga", "chen2025": "msiar-gwo"}
-# each paper's own (population, iterations), as in the shipped reproduction specs
-# (optplan/data/specs/<paper>_global.yaml, yuan2021_table1.yaml, chen2025_paths.yaml)
-PAPER_BUDGET = {"hou2024": (60, 300), "yang2023": (50, 300), "yuan2021": (50, 300), "li2023": (50, 200),
-                "chen2025": (30, 500)}
 VARIANTS = ("pure", "casadi-local", "casadi", "qp")
 
 
@@ -109,7 +104,7 @@ def main(argv=None) -> int:
     header = ["map", "planner", "variant", "mean length [m]", "mean gap [%]", "mean turn [deg]",
               "mean max curvature [1/m]", "mean min clearance [m]", "mean time [s]", "valid", "refined"]
     rows, shares = [], []
-    for paper, planner in PLANNER_OF.items():
+    for paper, planner in PAPER_PLANNER.items():
         pop, iters = budget(paper)
         names = maps_of(paper)
         if args.maps:

@@ -13,6 +13,13 @@ import numpy as np
 
 from ..results import PlanResult
 
+# each paper's own global planner and (population, iterations), as in the shipped
+# reproduction specs (optplan/data/specs/<paper>_global.yaml, yuan2021_table1.yaml,
+# chen2025_paths.yaml); used where every paper's planner runs on its own maps
+PAPER_PLANNER = {"hou2024": "missa", "yang2023": "ipso", "yuan2021": "iba", "li2023": "iga", "chen2025": "msiar-gwo"}
+PAPER_BUDGET = {"hou2024": (60, 300), "yang2023": (50, 300), "yuan2021": (50, 300), "li2023": (50, 200),
+                "chen2025": (30, 500)}
+
 
 @dataclass
 class RunSet:
