@@ -113,9 +113,10 @@ def default_tube_radius(world) -> float:
     (on the shipped maps: 3.7-14 cells on grids, 4.6-5.5 m on the 10-15 m
     circle worlds).
 
-    Measured with ``benchmarks/refine_tube.py`` (the papers' planners, 10 seeds
-    per map, and A*): 0, 1, 1.5, 2 and 3 widths bring 2, 3, 3, 9 and 12 of the
-    14 paper maps to 1 % of the optimum in >= 90 % of runs. 2 is the step that
+    Measured with ``benchmarks/refine_tube.py`` (the papers' planners at their
+    papers' populations and iterations, 10 seeds per map, and A*): 0, 1, 1.5, 2
+    and 3 widths bring 2, 3, 4, 10 and 12 of the 14 paper maps to 1 % of the
+    optimum in >= 90 % of runs. 2 is the step that
     adds most (both circle worlds among them); 3 widths is 9 cells on a 20-cell
     map, nearly half of it, which is a re-plan rather than a refinement. Pass a
     larger ``tube_radius`` to trade locality for more repaired seeds. Cost: the
