@@ -138,6 +138,7 @@ class SimResult(_ToDict):
         seed: the seed used.
         replans: number of global re-plans (path switch or stuck recovery).
         max_abs_jerk: largest |d^2v/dt^2| over the run, m/s^3.
+        path_switches: how many of the re-plans were yuan2021 §4.2 path switches.
     """
 
     reached: bool
@@ -159,6 +160,7 @@ class SimResult(_ToDict):
     seed: int | None = None
     replans: int = 0
     max_abs_jerk: float = 0.0
+    path_switches: int = 0
 
     JSON_KEYS = ("reached", "collisions", "time_s", "path_length", "min_clearance", "max_abs_accel",
                  "max_abs_ang_accel", "steps", "mean_step_ms", "trajectory")

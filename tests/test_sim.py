@@ -269,3 +269,13 @@ def test_stop_on_collision_and_actuator_limits():
     assert np.allclose(lim.trajectory[1:, 4], [0.1, 0.2, 0.3, 0.4, 0.5])
     assert lim.max_abs_accel == pytest.approx(sc.robot.a_max)
     assert lim.max_abs_ang_accel == pytest.approx(sc.robot.alpha_max)
+
+
+def test_path_switches_are_a_result_field():
+    """yuan2021 §4.2: the added obstacles block the global path twice; the run reports both
+    switches in ``SimResult.path_switches`` (and counts them among the re-plans)."""
+    from optplan.sim.experiments import path_switches
+
+    res = op.simulate("yuan2021_path_switch", local_planner="ba-dwa", seed=0, time_limit=160)
+    assert res.path_switches == 2 and res.replans >= res.path_switches
+    assert path_switches(res) == 2 and "2 path switch" in res.message

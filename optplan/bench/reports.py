@@ -251,7 +251,8 @@ def local_runs(res: ExperimentResults) -> list:
                     steps=int(row["steps"] or 0), mean_step_ms=_f(row["mean_step_ms"]), trajectory=np.zeros((0, 6)),
                     status=row.get("result_status") or "", message=row.get("message") or "",
                     global_planner=r.algorithm, local_planner=local or "", refine=refine, seed=r.seed,
-                    replans=int(row.get("replans") or 0), max_abs_jerk=_f(row.get("max_abs_jerk"))))
+                    replans=int(row.get("replans") or 0), max_abs_jerk=_f(row.get("max_abs_jerk")),
+                    path_switches=int(row.get("path_switches") or 0)))
             out.append(lr)
     return out
 

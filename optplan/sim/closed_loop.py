@@ -265,4 +265,4 @@ def _result(sc: Scenario, traj: np.ndarray, vys: np.ndarray, step_ms, collisions
                      status=status, message=msg, global_planner=nav.global_planner, local_planner=str(local_name),
                      refine=None if refine in (None, "none") else refine, global_path=nav.path,
                      seed=int(seed) if isinstance(seed, (int, np.integer)) else None, replans=nav.replans,
-                     max_abs_jerk=float(jerk.max()) if len(jerk) else 0.0)
+                     max_abs_jerk=float(jerk.max()) if len(jerk) else 0.0, path_switches=int(nav.switches))

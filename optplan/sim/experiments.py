@@ -120,7 +120,10 @@ def local_table(sets: list[LocalRuns], title: str = "") -> str:
 
 
 def path_switches(result: SimResult) -> int:
-    """Path switches (yuan2021 §4.2) of a run, as reported in its message."""
+    """Path switches (yuan2021 §4.2) of a run: its ``path_switches`` field, or for a result
+    rebuilt from a database written before that field existed, the count in its message."""
+    if result.path_switches:
+        return int(result.path_switches)
     import re
 
     m = re.search(r"(\d+) path switch", result.message)
