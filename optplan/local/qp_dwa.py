@@ -69,7 +69,8 @@ class LeanOSQP:
     def step(self, q: np.ndarray, lower: np.ndarray, upper: np.ndarray, Ax: np.ndarray,
              x_start: np.ndarray) -> tuple[int, str, np.ndarray | None, float]:
         """Update ``q``, bounds and the values of ``A``, warm-start at ``x_start``, solve;
-        returns ``(status_val, status, x, OSQP's solve time in s)``."""
+        returns ``(status_val, status, x, OSQP's solve time in s)``. ``lower`` and ``upper``
+        are clipped to OSQP's infinity in place (the caller builds them fresh each step)."""
         if self.core is None:
             self.qp.update(q=q, l=lower, u=upper, Ax=Ax)
             self.qp.warm_start(x=x_start)
