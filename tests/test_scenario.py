@@ -173,3 +173,17 @@ def test_mover_positions_over_time():
     assert np.allclose(stop.state(10.0, bounds), [(9.5, 6.5), (0.0, 0.0)])
     gone = DynamicObstacle(0.5, start=np.array([8.0, 5.0]), velocity=np.array([1.0, 0.0]), at_border="pass")
     assert np.allclose(gone.state(10.0, bounds)[0], (18.0, 5.0))
+
+
+def test_random_movers_cross_the_path_at_independently_drawn_places():
+    # Each mover's crossing is drawn from the whole stretch of path kept away from start
+    # and goal; a bug once drew every mover after the first from the previous one's sweep,
+    # piling all of them onto one crossing.
+    sc = load_scenario("hou2024_dynamic4")
+    spreads = []
+    for seed in range(6):
+        world = sc.realize(seed)
+        centres = np.array([d.waypoints.mean(axis=0) for d in world.dynamic])
+        spreads.append(float(np.max(np.hypot(*(centres[:, None] - centres[None]).transpose(2, 0, 1)))))
+    # six crossings drawn along a ~70 m path: the farthest two are far apart in most draws
+    assert np.median(spreads) > 10.0, spreads

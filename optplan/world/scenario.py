@@ -787,11 +787,10 @@ def _draw_random_movers(sc: Scenario, spec: dict, rng, path: np.ndarray) -> list
             continue
         # it must *cross* the path once, not run along it (say, up and down a corridor the path
         # follows), so that a robot that cannot reverse can always wait before its sweep
-        swept = _segment_points_distance(a, b, path) < near
-        idx = np.nonzero(swept)[0]
+        swept = np.nonzero(_segment_points_distance(a, b, path) < near)[0]
         crossing = 2 * near / math.sin(math.radians(60)) + 0.5
-        if not len(idx) or idx[-1] - idx[0] + 1 != len(idx) or \
-                float(np.hypot(*np.diff(path[idx], axis=0).T).sum()) > crossing:
+        if not len(swept) or swept[-1] - swept[0] + 1 != len(swept) or \
+                float(np.hypot(*np.diff(path[swept], axis=0).T).sum()) > crossing:
             continue
         speed = rng.uniform(*spec["speed"])
         ob = DynamicObstacle(radius, waypoints=np.round(np.array([a, b]), 3), speed=round(float(speed), 3), loop=True,
