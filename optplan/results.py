@@ -32,10 +32,13 @@ def jsonable(value: Any) -> Any:
 
 class _ToDict:
     JSON_KEYS: tuple[str, ...] = ()  # the command line's ``--json`` keys, where a result has them
+    # bulky in-memory fields left out of to_dict (they would swamp JSON output and result stores)
+    NOT_IN_DICT: tuple[str, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
-        """All fields as a JSON-serialisable dict."""
-        return {f.name: jsonable(getattr(self, f.name)) for f in fields(self)}  # type: ignore[arg-type]
+        """All fields (except ``NOT_IN_DICT``) as a JSON-serialisable dict."""
+        return {f.name: jsonable(getattr(self, f.name)) for f in fields(self)  # type: ignore[arg-type]
+                if f.name not in self.NOT_IN_DICT}
 
     def to_json_dict(self) -> dict[str, Any]:
         """Exactly the keys of the ``--json`` contract (``JSON_KEYS``), JSON-serialisable."""
@@ -60,6 +63,9 @@ class OptimizeResult(_ToDict):
         message: human-readable explanation of ``status``.
         algorithm: registry name of the algorithm.
         seed: the seed passed in (``None`` when a Generator was given).
+        archive: with ``optimize(..., archive_every=k)``: ``(X, f, violation)``, the
+            distinct points of the population snapshots (initial, every ``k``
+            iterations, final), best first; ``None`` otherwise. Not in ``to_dict``.
     """
 
     x: np.ndarray
@@ -73,6 +79,9 @@ class OptimizeResult(_ToDict):
     message: str
     algorithm: str
     seed: int | None = None
+    archive: tuple[np.ndarray, np.ndarray, np.ndarray] | None = field(default=None, repr=False)
+
+    NOT_IN_DICT = ("archive",)
 
 
 @dataclass
@@ -94,6 +103,11 @@ class PlanResult(_ToDict):
         seed: the seed used, if any.
         message: what happened, in words (why infeasible, why refinement fell back).
         nfev: objective evaluations spent (0 for graph search).
+        alternatives: other valid paths the planner's population held, best first by
+            the planner's own fitness, each outside a band around the best path and
+            around every earlier one (``plan_path(..., alternatives=k)``, which
+            ``op.plan`` asks for when a multi-start refinement will use them); empty
+            for graph search and by default. Not in ``to_dict`` / JSON.
     """
 
     algorithm: str
@@ -109,7 +123,9 @@ class PlanResult(_ToDict):
     seed: int | None = None
     message: str = ""
     nfev: int = 0
+    alternatives: list[np.ndarray] = field(default_factory=list, repr=False)
 
+    NOT_IN_DICT = ("alternatives",)
     JSON_KEYS = ("algorithm", "feasible", "path", "length", "turn_angle_deg", "n_turns",
                  "min_clearance", "runtime_s", "refined", "seed")
 

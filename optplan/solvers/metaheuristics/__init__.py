@@ -13,7 +13,7 @@ import numpy as np
 
 from ...errors import ParameterError, UnknownAlgorithmError
 from ...results import OptimizeResult
-from .engine import Algorithm, Problem, run
+from .engine import Algorithm, Problem, pooled_archive, run
 
 # registry: name -> class (filled from the family modules)
 ALGORITHMS: dict[str, type[Algorithm]] = {}
@@ -75,7 +75,7 @@ def _bounds(bounds, dim: int | None) -> tuple[np.ndarray, np.ndarray]:
 def optimize(f: Callable, bounds, algorithm: str = "gwo", pop: int = 30, iters: int | None = 500,
              max_evals: int | None = None, seed=0, *, dim: int | None = None, init=None, repair=None,
              callback=None, progress: bool = False, stagnation: int | None = None, target: float | None = None,
-             **params) -> OptimizeResult:
+             archive_every: int | None = None, **params) -> OptimizeResult:
     """Minimise a batched objective with a registered metaheuristic.
 
     Args:
@@ -93,6 +93,9 @@ def optimize(f: Callable, bounds, algorithm: str = "gwo", pop: int = 30, iters: 
         progress: print progress to stderr.
         stagnation: stop after this many iterations without improvement.
         target: stop once the best feasible value is ``<= target``.
+        archive_every: keep the population every that many iterations (and the initial
+            and final ones) and return their distinct points in ``result.archive``
+            (best first); ``None`` (default) keeps nothing. Costs no evaluations.
         **params: the algorithm's own parameters (see its class for defaults).
     """
     cls = get_algorithm(algorithm)
@@ -105,13 +108,16 @@ def optimize(f: Callable, bounds, algorithm: str = "gwo", pop: int = 30, iters: 
         max_evals = _positive_int("max_evals", max_evals, 1)
     if stagnation is not None:
         stagnation = _positive_int("stagnation", stagnation, 1)
+    if archive_every is not None:
+        archive_every = _positive_int("archive_every", archive_every, 1)
     lo, hi = _bounds(bounds, dim)
     algo = cls(**params)
     t0 = time.perf_counter()
     state, hist, hist_nfev, status, message, nit = run(
         algo, Problem(f, lo, hi, repair), pop=pop, iters=iters, max_evals=max_evals, seed=seed, init=init,
-        callback=callback, progress=progress, stagnation=stagnation, target=target)
+        callback=callback, progress=progress, stagnation=stagnation, target=target, archive_every=archive_every)
     return OptimizeResult(
         x=state.best_x, f=float(state.best_f), history=hist, history_nfev=hist_nfev, nfev=state.nfev, nit=nit,
         runtime_s=time.perf_counter() - t0, status=status, message=message, algorithm=cls.name,
-        seed=int(seed) if isinstance(seed, (int, np.integer)) else None)
+        seed=int(seed) if isinstance(seed, (int, np.integer)) else None,
+        archive=pooled_archive(state.snapshots) if archive_every else None)

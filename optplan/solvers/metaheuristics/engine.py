@@ -17,6 +17,13 @@ discrete encodings). Bounds are enforced by clipping.
 Budgets. ``nfev`` counts rows passed to ``f``. With ``max_evals`` the run stops
 exactly when the budget is spent: a batch larger than what is left is cut, and
 the rows that could not be evaluated are treated as infinitely bad.
+
+Archive. With ``archive_every=k`` the engine keeps a copy of the population
+(with its values) after the initial evaluation, every ``k`` iterations and at
+the end (:attr:`State.snapshots`); :func:`pooled_archive` merges them into the
+distinct points the run held, best first. Nothing extra is evaluated: a caller
+(the path planners' multi-start refinement) uses them to look beyond the single
+best point.
 """
 from __future__ import annotations
 
@@ -64,6 +71,24 @@ def rank(f: np.ndarray, v: np.ndarray) -> np.ndarray:
     return np.lexsort((f, v))
 
 
+def pooled_archive(snapshots) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The distinct rows of population snapshots ``[(X, f, v), ...]``, best first.
+
+    Returns ``(X, f, v)`` with every row of ``X`` once (its first occurrence), ordered
+    by the feasibility rule (:func:`rank`). Empty arrays when there is no snapshot.
+    """
+    snaps = [s for s in snapshots if len(s[0])]
+    if not snaps:
+        return np.empty((0, 0)), np.empty(0), np.empty(0)
+    X = np.vstack([s[0] for s in snaps])
+    f = np.concatenate([np.asarray(s[1], float) for s in snaps])
+    v = np.concatenate([np.asarray(s[2], float) for s in snaps])
+    _, first = np.unique(X, axis=0, return_index=True)
+    first = np.sort(first)
+    order = first[rank(f[first], v[first])]
+    return X[order], f[order], v[order]
+
+
 class State:
     """Everything a step may read or change. Algorithms keep their own memory
     (velocities, personal bests, loudness, ...) as attributes of their instance."""
@@ -86,6 +111,11 @@ class State:
         self.best_x = np.full(self.dim, np.nan)
         self.best_f = np.inf
         self.best_v = np.inf
+        self.snapshots: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []  # see run(archive_every=...)
+
+    def snapshot(self) -> None:
+        """Keep a copy of the current population and its values (the archive)."""
+        self.snapshots.append((self.X.copy(), self.F.copy(), self.V.copy()))
 
     # ------------------------------------------------------------ budget
     @property
@@ -216,8 +246,12 @@ class Algorithm:
 
 def run(algorithm: Algorithm, problem: Problem, *, pop: int, iters: int | None, max_evals: int | None, seed,
         init=None, callback=None, progress: bool = False, stagnation: int | None = None,
-        target: float | None = None):
-    """Run ``algorithm`` on ``problem``; returns ``(state, history, history_nfev, status, message, nit)``."""
+        target: float | None = None, archive_every: int | None = None):
+    """Run ``algorithm`` on ``problem``; returns ``(state, history, history_nfev, status, message, nit)``.
+
+    ``archive_every``: keep population snapshots in ``state.snapshots`` (initial,
+    every that many iterations, final); ``None`` keeps none.
+    """
     rng = as_generator(seed)
     state = State(problem, pop, iters, max_evals, rng)
     if init is None:
@@ -237,6 +271,8 @@ def run(algorithm: Algorithm, problem: Problem, *, pop: int, iters: int | None, 
         pass
     history.append(state.best_f)
     history_nfev.append(state.nfev)
+    if archive_every:
+        state.snapshot()
     last_improvement, last_best = 0, state.best_f
     t_report = time.perf_counter()
     while True:
@@ -252,6 +288,8 @@ def run(algorithm: Algorithm, problem: Problem, *, pop: int, iters: int | None, 
             pass
         history.append(state.best_f)
         history_nfev.append(state.nfev)
+        if archive_every and state.it % archive_every == 0:
+            state.snapshot()
         if state.best_f < last_best:
             last_best, last_improvement = state.best_f, state.it
         if progress and time.perf_counter() - t_report > 0.5:
@@ -267,6 +305,8 @@ def run(algorithm: Algorithm, problem: Problem, *, pop: int, iters: int | None, 
         if callback is not None and callback(state) is False:
             status, message = "callback", "stopped by the callback"
             break
+    if archive_every and state.it % archive_every != 0:
+        state.snapshot()  # the final population
     if state.evals_left <= 0 and status == "max_iters":
         status, message = "max_evals", f"evaluation budget of {max_evals} spent"
     if progress:
