@@ -16,7 +16,7 @@ from ..errors import ParameterError, UnknownAlgorithmError
 from ..formulations.encodings import ColumnNodes, FreeWaypoints, SplinePath
 from ..formulations.problem import PathProblem
 from ..world.postprocess import key_points, prune_direct, remove_collinear
-from .result import make_plan_result
+from .result import check_alternatives, make_plan_result
 
 # which paper's fitness and post-processing each algorithm uses by default
 PAPER_OF = {
@@ -34,6 +34,11 @@ GRAPH_PLANNERS = ("aco", "ga", "iga")  # grid-graph / cell-sequence planners of 
 # always plans a cubic spline through free points (eq 1-4, obstacles as their outer
 # circles, §2.2), also in its 25x25 fusion world (§7.3); the other papers use grid nodes
 GRID_ENCODING = {"yang2023": "spline"}
+# iterations between the population snapshots that ``alternatives`` are drawn from.
+# Measured on the paper maps (issue 5 multi-start): the final population alone has
+# lost the better corridor on li2023_90 in most runs, snapshots every 10 iterations
+# still hold it; finer snapshots add near-copies, not corridors.
+ARCHIVE_EVERY = 10
 
 
 def algorithm_names() -> list[str]:
@@ -79,10 +84,28 @@ def postprocess_path(world, path: np.ndarray, mode: str, clearance: float = 0.0)
     raise ParameterError(f"postprocess must be none, collinear, keypoints or prune; got {mode!r}")
 
 
+def archive_alternatives(world, X, violation, encoding, finish, best_x, best_path, count: int,
+                         separation: float | None, clearance: float = 0.0) -> list[np.ndarray]:
+    """Decode a population archive (rows ``X`` best first, their ``violation``) lazily
+    into up to ``count`` distinct valid paths (:func:`~optplan.solvers.result.population_alternatives`):
+    ``encoding.waypoints(row)`` then the planner's post-processing ``finish``.
+    ``separation=None`` is the default tube radius of ``refine="casadi"``."""
+    from .result import population_alternatives
+    from .tube import default_tube_radius
+
+    if count <= 0 or X is None or len(X) == 0:
+        return []
+    sep = default_tube_radius(world) if separation is None else separation
+    rows = X[np.asarray(violation) == 0]
+    return population_alternatives(world, (encoding.waypoints(x) for x in rows), best_path, count, sep, clearance,
+                                   finish=finish, best_raw=encoding.waypoints(best_x))
+
+
 def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iters: int = 500,
               clearance: float = 0.0, preset: str | None = None, encoding: str | None = None,
               constraint: str | None = "feasibility", postprocess: str | None = None, max_evals: int | None = None,
-              waypoints: int = 3, init: str | None = "auto", **params):
+              waypoints: int = 3, init: str | None = "auto", alternatives: int = 0,
+              alternative_separation: float | None = None, **params):
     """Plan with a metaheuristic (or ACO / the path GAs) and return a validated PlanResult.
 
     ``preset`` defaults to the algorithm's paper (:data:`PAPER_OF`). ``constraint``
@@ -100,11 +123,19 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
     algorithm the same start), ``"own"`` uses the algorithm's initialiser (e.g.
     MISSA's chaotic map), ``"auto"`` (default) is ``"feasible"`` for column nodes
     and ``"own"`` otherwise.
+
+    ``alternatives``: also return up to that many other valid paths of the run's
+    population (snapshots every :data:`ARCHIVE_EVERY` iterations and the final one,
+    best first by fitness) in ``result.alternatives``, each leaving the
+    ``alternative_separation``-metre band (default: the casadi refinement's tube
+    radius) around the best path and the earlier ones. No extra evaluations; the
+    best path is unchanged; the decoding time is part of ``runtime_s``. ACO returns none.
     """
     name = algorithm.lower()
+    alternatives, alternative_separation = check_alternatives(alternatives, alternative_separation)
     s = world.check_query_point(start, "start", clearance)
     g = world.check_query_point(goal, "goal", clearance)
-    if name == "aco":
+    if name == "aco":  # an ant colony keeps pheromone, not a population of paths: no alternatives
         from .gridpath.aco import plan_aco
 
         return plan_aco(world, s, g, seed=seed, pop=pop, iters=iters, clearance=clearance, **params)
@@ -112,7 +143,8 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
         from .gridpath.ga_path import plan_ga
 
         return plan_ga(world, s, g, improved=name == "iga", seed=seed, pop=pop, iters=iters, clearance=clearance,
-                       preset=preset or "li2023", postprocess=postprocess, max_evals=max_evals, **params)
+                       preset=preset or "li2023", postprocess=postprocess, max_evals=max_evals,
+                       alternatives=alternatives, alternative_separation=alternative_separation, **params)
     from . import metaheuristics
 
     if name not in _metaheuristic_names():
@@ -142,10 +174,19 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
         raise ParameterError(f"init must be 'auto', 'feasible' or 'own', got {init!r}")
     opt = metaheuristics.optimize(problem.evaluate if problem.preset.constraint == "feasibility" else problem.objective,
                                   bounds, algorithm=name, pop=pop, iters=iters, seed=seed, max_evals=max_evals,
-                                  repair=repair, init=init, **params)
+                                  repair=repair, init=init, archive_every=ARCHIVE_EVERY if alternatives else None,
+                                  **params)
     raw = problem.encoding.waypoints(opt.x)
     mode = postprocess or POSTPROCESS.get(preset if isinstance(preset, str) else "length", "collinear")
     path = postprocess_path(world, raw, mode, clearance)
-    return make_plan_result(world, path, name, time.perf_counter() - t0, clearance=clearance, history=opt.history,
-                            seed=seed if isinstance(seed, int) else None, nfev=opt.nfev,
-                            message=opt.message)
+    others = []
+    if alternatives:
+        X, _, V = opt.archive
+        others = archive_alternatives(world, X, V, problem.encoding,
+                                      lambda raw: postprocess_path(world, raw, mode, clearance), opt.x, path,
+                                      alternatives, alternative_separation, clearance)
+    result = make_plan_result(world, path, name, time.perf_counter() - t0, clearance=clearance, history=opt.history,
+                              seed=seed if isinstance(seed, int) else None, nfev=opt.nfev,
+                              message=opt.message)
+    result.alternatives = others
+    return result

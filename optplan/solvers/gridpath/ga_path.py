@@ -36,7 +36,8 @@ from ...formulations.encodings import ColumnNodes
 from ...formulations.problem import PathProblem
 from ...rng import as_generator
 from ...world.postprocess import key_points, remove_collinear
-from ..result import make_plan_result
+from ..metaheuristics.engine import pooled_archive
+from ..result import check_alternatives, make_plan_result
 
 
 @dataclass(frozen=True)
@@ -145,7 +146,7 @@ def _regenerate(X: np.ndarray, bad: np.ndarray, best: np.ndarray, sample, p: GAP
 
 
 def ga_path(problem: PathProblem, *, pop: int = 50, iters: int | None = 200, seed=0, params: GAParams = GAParams(),
-            callback=None, max_evals: int | None = None):
+            callback=None, max_evals: int | None = None, snapshots: list | None = None, archive_every: int = 10):
     """Run the path GA on a column-node problem.
 
     ``iters`` caps the generations and ``max_evals`` the path evaluations (either may
@@ -153,6 +154,10 @@ def ga_path(problem: PathProblem, *, pop: int = 50, iters: int | None = 200, see
     a run may overshoot it by less than one generation's evaluations; ``nfev`` reports
     what was spent. li2023 eq 5 grows the elite count with ``gen / T``; without an
     iteration cap ``T`` is the number of generations the budget affords.
+
+    ``snapshots``: when a list is given, ``(X, f)`` of the initial population, of every
+    ``archive_every``-th generation and of the final one are appended to it (the
+    archive ``plan_ga(..., alternatives=k)`` draws alternative paths from).
 
     Returns ``(best_x, best_f, history, nfev, generations)``.
     """
@@ -188,6 +193,8 @@ def ga_path(problem: PathProblem, *, pop: int = 50, iters: int | None = 200, see
     else:
         X = sample(pop)
     f = evaluate(X)
+    if snapshots is not None:
+        snapshots.append((X.copy(), f.copy()))
     best = int(np.argmin(f))
     best_x, best_f = X[best].copy(), float(f[best])
     history = [best_f]
@@ -232,16 +239,25 @@ def ga_path(problem: PathProblem, *, pop: int = 50, iters: int | None = 200, see
         else:
             stalled += 1
         history.append(best_f)
+        if snapshots is not None and gen % archive_every == 0:
+            snapshots.append((X.copy(), f.copy()))
         if callback is not None and callback(gen, best_f) is False:
             break
         if params.improved and stalled >= params.stall:
             break
+    if snapshots is not None and gen % archive_every != 0:
+        snapshots.append((X.copy(), f.copy()))  # the final population
     return best_x, best_f, np.asarray(history), nfev, gen
 
 
 def plan_ga(world, start, goal, *, improved: bool, seed=0, pop: int = 50, iters: int | None = 200, clearance: float = 0.0,
-            preset: str = "li2023", postprocess: str | None = None, max_evals: int | None = None, **params):
-    """``op.plan(..., algorithm="ga" | "iga")`` on a grid map (li2023 §3-4)."""
+            preset: str = "li2023", postprocess: str | None = None, max_evals: int | None = None,
+            alternatives: int = 0, alternative_separation: float | None = None, **params):
+    """``op.plan(..., algorithm="ga" | "iga")`` on a grid map (li2023 §3-4).
+
+    ``alternatives`` / ``alternative_separation``: other distinct paths of the run's
+    population, as in :func:`optplan.solvers.paths.plan_path`.
+    """
     t0 = time.perf_counter()
     s = world.check_query_point(start, "start", clearance)
     g = world.check_query_point(goal, "goal", clearance)
@@ -250,10 +266,25 @@ def plan_ga(world, start, goal, *, improved: bool, seed=0, pop: int = 50, iters:
     if problem.encoding.dim == 0:
         return make_plan_result(world, np.stack([s, g]), name, time.perf_counter() - t0, clearance=clearance)
     p = GAParams(improved=improved, **params)
-    x, fbest, history, nfev, gens = ga_path(problem, pop=pop, iters=iters, seed=seed, params=p, max_evals=max_evals)
-    raw = problem.encoding.waypoints(x)
+    from ..paths import ARCHIVE_EVERY, archive_alternatives
+
+    count, separation = check_alternatives(alternatives, alternative_separation)
+    snapshots = [] if count else None
+    x, fbest, history, nfev, gens = ga_path(problem, pop=pop, iters=iters, seed=seed, params=p, max_evals=max_evals,
+                                            snapshots=snapshots, archive_every=ARCHIVE_EVERY)
     mode = postprocess or ("keypoints" if improved else "collinear")
-    path = key_points(world, raw, clearance) if mode == "keypoints" else remove_collinear(raw) if mode == "collinear" else raw
-    return make_plan_result(world, path, name, time.perf_counter() - t0, clearance=clearance, history=history,
-                            seed=seed if isinstance(seed, int) else None, nfev=nfev,
-                            message=f"{gens} generations")
+
+    def finish(raw):
+        return key_points(world, raw, clearance) if mode == "keypoints" else remove_collinear(raw) if mode == "collinear" else raw
+
+    path = finish(problem.encoding.waypoints(x))
+    others = []
+    if count:
+        # infinite cost = a colliding chromosome (IGA); every kept path is validated anyway
+        X, _, V = pooled_archive([(X, f, np.where(np.isfinite(f), 0.0, np.inf)) for X, f in snapshots])
+        others = archive_alternatives(world, X, V, problem.encoding, finish, x, path, count, separation, clearance)
+    result = make_plan_result(world, path, name, time.perf_counter() - t0, clearance=clearance, history=history,
+                              seed=seed if isinstance(seed, int) else None, nfev=nfev,
+                              message=f"{gens} generations")
+    result.alternatives = others
+    return result
