@@ -41,6 +41,10 @@ def _cmd_plan(args) -> int:
         if refine is None:
             raise OptplanError("--tube-radius only applies to a refinement; add --refine casadi or --refine qp")
         refine_options["tube_radius"] = args.tube_radius
+    if args.refine_starts is not None:
+        if refine is None:
+            raise OptplanError("--refine-starts only applies to a refinement; add --refine casadi or --refine qp")
+        refine_options["starts"] = args.refine_starts
     res = plan(world, tuple(args.start), tuple(args.goal), algorithm=args.algo, refine=refine, seed=args.seed,
                pop=args.pop, iters=args.iters, clearance=args.clearance, refine_options=refine_options)
     if args.plot:
@@ -95,6 +99,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--tube-radius", type=float, default=None, metavar="M",
                    help="metres around the path in which refinement may pass obstacles on the other side "
                         "(0: purely local; default: casadi twice the widest obstacle, qp 0)")
+    p.add_argument("--refine-starts", type=int, default=None, metavar="K",
+                   help="refine the planner's best path and up to K-1 other distinct paths of its population, "
+                        "keep the shortest (1: best path only; default: casadi 3, qp 1)")
     p.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     p.add_argument("--pop", type=int, default=30, help="population size of metaheuristics")
     p.add_argument("--iters", type=int, default=500, help="iterations of metaheuristics")

@@ -37,10 +37,23 @@ def _checked_refine_options(options) -> dict:
     if taken:
         raise ParameterError(f"refine_options cannot set {', '.join(taken)}: use plan's own refine, clearance "
                              "and seed arguments")
-    from .solvers.refine import check_tube_radius
+    from .solvers.refine import check_starts, check_tube_radius
 
     check_tube_radius(options.get("tube_radius"))
+    check_starts(options.get("starts"))
     return dict(options)
+
+
+def _request_alternatives(world, refine: str, refine_options: dict, params: dict) -> None:
+    """A multi-start refinement needs the planner's alternatives: ask for ``starts - 1``
+    of them, distinct by the refinement's own tube radius (a caller's explicit
+    ``alternatives`` / ``alternative_separation`` win)."""
+    from .solvers.refine import starts_for, tube_radius_for
+
+    k = starts_for(refine, refine_options.get("starts"))
+    if k > 1:
+        params.setdefault("alternatives", k - 1)
+        params.setdefault("alternative_separation", tube_radius_for(world, refine, refine_options.get("tube_radius")))
 
 
 def plan(world, start, goal, algorithm: str = "astar", refine: str | None = None, seed: int | None = 0,
@@ -59,7 +72,10 @@ def plan(world, start, goal, algorithm: str = "astar", refine: str | None = None
         refine_options: keyword options of the refinement (``refine_result``), e.g.
             ``{"tube_radius": 3.0}``: metres around the seed in which the refinement may
             move the path to the other side of an obstacle (``0``: purely local; default
-            for ``casadi``: twice the widest obstacle, for ``qp``: 0), or smoother
+            for ``casadi``: twice the widest obstacle, for ``qp``: 0), ``{"starts": k}``:
+            also refine up to ``k - 1`` other distinct paths of a metaheuristic's
+            population and keep the shortest (default ``casadi`` 3, ``qp`` 1; ``1`` =
+            the best path only; see :mod:`optplan.solvers.refine`), or smoother
             options such as ``n_points``. Ignored without ``refine``.
         **params: extra keyword arguments for the chosen planner.
 
@@ -93,6 +109,8 @@ def plan(world, start, goal, algorithm: str = "astar", refine: str | None = None
         if paths is None or name not in paths.algorithm_names():
             known = ", ".join(algorithms())
             raise UnknownAlgorithmError(f"unknown path planner {algorithm!r}; known: {known}")
+        if refine not in (None, "none"):
+            _request_alternatives(world, refine, refine_options, params)
         result = paths.plan_path(world, start, goal, algorithm=name, seed=seed, pop=pop, iters=iters,
                                  clearance=clearance, **params)
     if refine not in (None, "none"):
