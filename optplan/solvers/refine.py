@@ -50,7 +50,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..results import PlanResult
-from .result import make_plan_result
+from .result import check_optional_metres, make_plan_result
 
 METHODS = ("casadi", "qp")
 # refine method -> tube radius when none is given: "default" = default_tube_radius(world)
@@ -68,16 +68,7 @@ MAX_STARTS = 50
 def check_tube_radius(tube_radius) -> float | None:
     """``tube_radius`` as a float (metres) or ``None`` (the method's default); a
     ParameterError for anything else than ``None`` or a finite number >= 0."""
-    if tube_radius is None:
-        return None
-    try:
-        r = float(tube_radius)
-    except (TypeError, ValueError):
-        r = float("nan")
-    if isinstance(tube_radius, bool) or not np.isfinite(r) or r < 0:
-        raise ParameterError(f"tube_radius must be a finite number >= 0 metres (0 = purely local refinement) "
-                             f"or None for the default, got {tube_radius!r}")
-    return r
+    return check_optional_metres(tube_radius, "tube_radius (0 = purely local refinement)", "the default")
 
 
 def check_starts(starts) -> int | None:

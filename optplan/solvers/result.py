@@ -33,22 +33,27 @@ def make_plan_result(world, path, algorithm: str, runtime_s: float, *, clearance
                       np.asarray(history if history is not None else [], float), refined, seed, msg, nfev)
 
 
+def check_optional_metres(value, name: str, meaning: str) -> float | None:
+    """``value`` as a float (metres) or ``None``; a ParameterError naming ``name`` (and
+    what ``None`` means, ``meaning``) for anything else than ``None`` or a finite number >= 0."""
+    if value is None:
+        return None
+    try:
+        r = float(value)
+    except (TypeError, ValueError):
+        r = float("nan")
+    if isinstance(value, bool) or not np.isfinite(r) or r < 0:
+        raise ParameterError(f"{name} must be a finite number >= 0 metres or None for {meaning}, got {value!r}")
+    return r
+
+
 def check_alternatives(count, separation) -> tuple[int, float | None]:
     """``(count, separation)`` of a planner's ``alternatives`` request, checked: an
     integer >= 0 and ``None`` or a finite number >= 0 metres (ParameterError otherwise)."""
     if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or count < 0:
         raise ParameterError(f"alternatives must be an integer >= 0 (how many other paths of the population "
                              f"to return), got {count!r}")
-    if separation is None:
-        return int(count), None
-    try:
-        sep = float(separation)
-    except (TypeError, ValueError):
-        sep = float("nan")
-    if isinstance(separation, bool) or not np.isfinite(sep) or sep < 0:
-        raise ParameterError(f"alternative_separation must be a finite number >= 0 metres or None for the "
-                             f"default tube radius, got {separation!r}")
-    return int(count), sep
+    return int(count), check_optional_metres(separation, "alternative_separation", "the default tube radius")
 
 
 class Band:
