@@ -300,6 +300,8 @@ class DWAPlanner:
             best, extra = self.choose(step)
             info.update(extra)
             info["n_samples"] = step.roll.n
+            if "gate_rejected" in step.aux:
+                info["gate_rejected"] = step.aux["gate_rejected"]
             if step.aux.get("vo_threat") is not None:
                 info["vo_threat"] = step.aux["vo_threat"]
             if best is None:

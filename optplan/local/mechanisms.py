@@ -6,7 +6,9 @@ Each mechanism hooks into one place of the control step:
 * ``override``: replaces the sampled choice by a fixed manoeuvre for this step
   (li2023's brake-and-wait, §5.4, and initial heading, eq 11);
 * ``filter``: removes samples and reports findings to the cost terms through
-  ``step.aux`` (yang2023's velocity-obstacle test, eq 12-14).
+  ``step.aux`` (yang2023's velocity-obstacle test, eq 12-14; this project's sweep gate
+  of ``qp-dwa``, which keeps the robot off a mover's track while the mover could turn
+  round into it).
 """
 from __future__ import annotations
 
@@ -253,5 +255,182 @@ class InitialHeading(Mechanism):
         return 0.0, w, {"mode": "align-initial-heading", "heading_error": err}
 
 
+def bounce(s0: float, heading: float, speed: float, t: np.ndarray, lo, hi) -> np.ndarray:
+    """Positions along a line of a point that starts at ``s0``, moves in direction
+    ``heading`` (+1 / -1) at ``speed`` and turns round at ``lo`` and ``hi``.
+
+    ``t`` ``(H,)`` are the times; ``lo`` and ``hi`` are scalars or arrays broadcast against
+    ``t`` (e.g. ``(m, 1)`` candidate ends give ``(m, H)``); an infinite end means no turn
+    on that side. Every end must lie on the correct side of ``s0``."""
+    t = np.asarray(t, dtype=float)
+    lo, hi = np.broadcast_arrays(np.asarray(lo, dtype=float), np.asarray(hi, dtype=float))
+    lo, hi = lo[..., None] if lo.ndim else lo, hi[..., None] if hi.ndim else hi
+    fin_lo, fin_hi = np.isfinite(lo), np.isfinite(hi)
+    L = np.where(fin_lo, lo, 0.0)
+    Hh = np.where(fin_hi, hi, 0.0)
+    run = speed * t
+    straight = s0 + heading * run
+    # both ends known: unfold the back-and-forth motion onto a circle of length 2 span
+    span = np.maximum(Hh - L, 1e-9)
+    u = np.mod(np.where(heading > 0, s0 - L, 2 * span - (s0 - L)) + run, 2 * span)
+    both = L + np.where(u <= span, u, 2 * span - u)
+    # one end known: at most one turn within reach
+    if heading > 0:
+        one = np.where(run < Hh - s0, straight, 2 * Hh - s0 - run)
+        return np.where(fin_hi, np.where(fin_lo, both, one), straight)
+    one = np.where(run < s0 - L, straight, 2 * L - s0 + run)
+    return np.where(fin_lo, np.where(fin_hi, both, one), straight)
+
+
+@dataclass
+class _Track:
+    """What the robot has learnt about one mover that drives along a straight line."""
+
+    origin: complex          # a point of the line
+    axis: complex            # unit direction of the line
+    radius: float
+    speed: float
+    s: float                 # position along the line, m
+    heading: float           # +1 / -1 along ``axis``
+    seen_lo: float           # extent along the line the mover has been seen on
+    seen_hi: float
+    t_seen: float
+    end_lo: float = -math.inf  # turn-round points once seen (infinite: not yet)
+    end_hi: float = math.inf
+
+    def along(self, p: complex) -> tuple[float, float]:
+        """``(position along the line, distance off the line)`` of ``p``."""
+        q = (p - self.origin) * np.conj(self.axis)
+        return float(q.real), abs(float(q.imag))
+
+    def predicted(self, t: float) -> float:
+        """Position along the line ``t`` s after it was last seen, turning at known ends only."""
+        return float(bounce(self.s, self.heading, self.speed, np.array([t]), self.end_lo, self.end_hi)[0])
+
+
+@dataclass
+class SweepGate(Mechanism):
+    """Keep off a mover's track unless crossing it is safe whatever the mover does next.
+
+    The shipped movers drive back and forth along straight segments across the robot's
+    path, and where they turn round is unknown until seen. A constant-velocity prediction
+    lets the robot pass close behind a mover that then turns round into it (the most
+    common failure in ``benchmarks/closed_loop_failures.py`` before this rule).
+
+    For every sensed mover the filter keeps a track: its line, the extent it has been
+    seen on and the turning points it has been seen to reach. A turn shows as a reversal
+    of the velocity along the line; at constant speed ``c``, a mover seen at ``s1`` and
+    ``dt`` later at ``s2`` on its way back turned at ``(s1 + s2 + c dt) / 2``. Over the
+    horizon the mover may then be anywhere that a turn at a still-unknown end (no nearer
+    than the farthest point it has been seen at) and bounces at the known ends can take it:
+    an interval of its line that grows with time, and a single point once both ends are
+    known. Samples whose rollout comes closer than ``margin`` to those intervals (or, when
+    the robot is already closer, closer than it is now) are rejected, so the robot waits
+    off the track and crosses once the mover is far enough away or its motion is known.
+    When no safe sample passes, those that come least close are kept.
+
+    The unknown ends are tried on a grid of ``grid`` points up to half the mover's reach
+    over the horizon (farther ends give the same motion within the horizon), and the
+    interval is widened by one grid step. This is this project's rule, not a paper's.
+    """
+
+    name: ClassVar[str] = "sweep_gate"
+    margin: float = 0.1
+    match: float = 0.3       # m: a sensed mover continues a track if it is this close to its prediction
+    memory: float = 60.0     # s: tracks of movers unseen for longer are forgotten
+    grid: int = 6
+    tracks: list = field(default_factory=list, init=False)
+    _t: float | None = field(default=None, init=False)
+    _now: list = field(default_factory=list, init=False)
+
+    def reset(self, planner, state, global_path) -> None:
+        self.tracks, self._t, self._now = [], None, []
+
+    def _match(self, p: complex, v: complex, r: float, t: float, dt: float, free: list) -> "_Track | None":
+        c = abs(v)
+        best, best_off = None, self.match
+        for k in free:
+            if abs(k.radius - r) > 1e-6 or abs((v * np.conj(k.axis)).imag) > 0.05 * c:
+                continue  # another size, or not moving along this track's line
+            s, off = k.along(p)
+            if off > best_off:
+                continue
+            if t - k.t_seen <= 1.5 * dt + 1e-9 and abs(s - k.predicted(t - k.t_seen)) > self.match:
+                continue  # seen a step ago somewhere else on the line
+            best, best_off = k, off
+        return best
+
+    def update(self, ctx: LocalContext) -> None:
+        """Match the sensed movers to tracks and learn their turning points (once per step)."""
+        t = float(ctx.t)
+        if self._t is not None and abs(t - self._t) < 1e-12:
+            return
+        self._t = t
+        self.tracks = [k for k in self.tracks if t - k.t_seen <= self.memory]
+        free, now = list(self.tracks), []
+        for x, y, vx, vy, r in np.asarray(ctx.dynamic, dtype=float).reshape(-1, 5):
+            p, v = complex(x, y), complex(vx, vy)
+            c = abs(v)
+            if c < 1e-6:
+                continue  # a standing obstacle has no track; the planner's clearance handles it
+            k = self._match(p, v, float(r), t, ctx.dt, free)
+            if k is None:
+                k = _Track(origin=p, axis=v / c, radius=float(r), speed=c, s=0.0, heading=1.0, seen_lo=0.0,
+                           seen_hi=0.0, t_seen=t)
+                self.tracks.append(k)
+            else:
+                free.remove(k)
+            s, _ = k.along(p)
+            heading = 1.0 if (v * np.conj(k.axis)).real > 0 else -1.0
+            elapsed = t - k.t_seen
+            if heading != k.heading and 0 < elapsed <= 5 * ctx.dt + 1e-9:  # it just turned round
+                if k.heading > 0:
+                    k.end_hi = max(0.5 * (k.s + s + c * elapsed), k.seen_hi)
+                else:
+                    k.end_lo = min(0.5 * (k.s + s - c * elapsed), k.seen_lo)
+            k.s, k.heading, k.speed, k.t_seen = s, heading, c, t
+            k.seen_lo, k.seen_hi = min(k.seen_lo, s), max(k.seen_hi, s)
+            now.append(k)
+        self._now = now
+
+    def swept(self, k: _Track, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``(lo, hi)`` ``(H,)``: the interval of its line the mover of ``k`` may occupy at ``t``."""
+        reach = k.speed * float(t[-1]) if len(t) else 0.0
+        steps = np.linspace(0.0, 0.5 * reach, self.grid + 1)
+        his = np.array([k.end_hi]) if math.isfinite(k.end_hi) else np.r_[max(k.seen_hi, k.s) + steps, math.inf]
+        los = np.array([k.end_lo]) if math.isfinite(k.end_lo) else np.r_[min(k.seen_lo, k.s) - steps, -math.inf]
+        pos = bounce(k.s, k.heading, k.speed, t, los[None, :], his[:, None]).reshape(-1, len(t))
+        lo, hi = pos.min(axis=0), pos.max(axis=0)
+        if math.isfinite(k.end_hi) and math.isfinite(k.end_lo):
+            return lo, hi
+        slack = 0.5 * reach / self.grid
+        return lo - slack, hi + slack
+
+    def gaps(self, planner, step: Step) -> tuple[np.ndarray, float]:
+        """Smallest edge gap ``(S,)`` of every rollout to the swept intervals, and the gap now."""
+        roll = step.roll
+        R = planner.robot.radius
+        out, now = np.full(roll.n, np.inf), math.inf
+        for k in self._now:
+            lo, hi = self.swept(k, roll.t)
+            q = (roll.z - k.origin) * np.conj(k.axis)
+            beyond = np.maximum(np.maximum(lo - q.real, q.real - hi), 0.0)
+            np.minimum(out, (np.hypot(q.imag, beyond) - k.radius - R).min(axis=1), out=out)
+            s0, off0 = k.along(roll.z0)
+            now = min(now, math.hypot(off0, s0 - k.s) - k.radius - R)
+        return out, now
+
+    def filter(self, planner, step) -> np.ndarray | None:
+        self.update(step.ctx)
+        if not self._now:
+            return None
+        gap, now = self.gaps(planner, step)
+        keep = gap >= min(self.margin, now)
+        safe = step.admissible & step.mover_free
+        if safe.any() and not (keep & safe).any():
+            keep = gap >= gap[safe].max() - 1e-9  # nothing safe keeps off: come least close
+        step.aux["gate_rejected"] = int((~keep).sum())
+        return keep
+
 MECHANISMS: dict[str, type[Mechanism]] = {m.name: m for m in (
-    AdaptiveVelocity, VelocityObstacle, BrakeAndWait, InitialHeading)}
+    AdaptiveVelocity, VelocityObstacle, BrakeAndWait, InitialHeading, SweepGate)}

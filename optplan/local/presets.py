@@ -57,13 +57,15 @@ PRESETS: dict[str, Preset] = {p.name: p for p in (
     Preset(
         name="qp-dwa",
         source="this project: sampled DWA (Fox terms + hou2024 eq 25 path deviation + hou2024 eq 28 "
-               "mover clearance) -> QP refinement with linearised clearance (OSQP) -> Ruckig "
-               "jerk-limited velocity profile",
+               "mover clearance) with the sweep gate (keep off a mover's track unless crossing is safe "
+               "whatever turn it makes next) -> QP refinement with linearised clearance (OSQP) -> "
+               "Ruckig jerk-limited velocity profile",
         # raw physical units (no normalisation): weights are per metre / per radian
         terms=(Term("path_progress", 1.0), Term("path_deviation", 0.5, {"paired": False}), Term("path_heading", 0.3),
                Term("clearance", 1.0, {"cap": 0.5})),
         options={"omni": True, "normalise": "none", "mover_growth": 1.0, "growth_cap": 1.0,
                  "lookahead": 1.0},
+        mechanisms=(("sweep_gate", {}),),
         refine="qp",
     ),
 )}

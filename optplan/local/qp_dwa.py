@@ -237,6 +237,14 @@ class QPDWAPlanner(DWAPlanner):
                     gaps.append(sg[t])
         return np.asarray(grads, dtype=float).reshape(-1, self.n_u), np.asarray(gaps, dtype=float)
 
+    def _legal_after_filters(self, check: Step) -> bool:
+        """Whether the (single) trajectory of ``check`` passes the preset's filters."""
+        for m in self.mechanisms:
+            keep = m.filter(self, check)
+            if keep is not None and not keep[0]:
+                return False
+        return True
+
     def refine(self, ctx: LocalContext, window: Window, u0: tuple[float, float, float], step: Step,
                info: dict) -> tuple[float, float, float]:
         """The QP refinement of the sampled command ``u0`` (falls back to ``u0``)."""
@@ -282,6 +290,9 @@ class QPDWAPlanner(DWAPlanner):
         worse = gap_new < min(gap_old, o["qp_margin"]) - 1e-9
         if not check.admissible[0] or check.mover_contact[0] < step.mover_contact[i] or worse:
             info["qp"] = "fallback: refined command failed the rollout check"
+            return u0
+        if info.get("mode") == "sample" and not self._legal_after_filters(check):
+            info["qp"] = "fallback: refined command failed a filter the sampled one passed"
             return u0
         info["qp"] = "solved"
         info["qp_slack"] = float(x_opt[n_u])

@@ -1,0 +1,147 @@
+"""The sweep gate of qp-dwa: learning where a mover turns round, and keeping off its track."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from optplan.local import make_local_planner
+from optplan.local.base import LocalContext
+from optplan.local.mechanisms import SweepGate, bounce
+from optplan.sim.closed_loop import simulate
+from optplan.world.robot import RobotSpec, RobotState
+from optplan.world.scenario import load_scenario
+
+T = np.arange(1, 31) * 0.1
+
+
+def stepped(s0, heading, speed, t, lo, hi, dt=1e-4):
+    """Reference: integrate the back-and-forth motion in small steps."""
+    s, h, now, out = s0, heading, 0.0, []
+    for tt in t:
+        while now < tt - 1e-12:
+            s += h * speed * dt
+            now += dt
+            if s > hi:
+                s, h = 2 * hi - s, -1.0
+            if s < lo:
+                s, h = 2 * lo - s, 1.0
+        out.append(s)
+    return np.array(out)
+
+
+@pytest.mark.parametrize("lo,hi", [(-0.4, 0.7), (-math.inf, 0.3), (-0.2, math.inf), (-math.inf, math.inf)])
+@pytest.mark.parametrize("heading", [1.0, -1.0])
+def test_bounce_matches_stepped_motion(lo, hi, heading):
+    got = bounce(0.1, heading, 0.6, T, lo, hi)
+    assert np.abs(got - stepped(0.1, heading, 0.6, T, lo, hi)).max() < 1e-3
+
+
+def test_bounce_broadcasts_candidate_ends():
+    los = np.array([-0.5, -math.inf])[None, :]
+    his = np.array([0.4, 1.0, math.inf])[:, None]
+    got = bounce(0.0, 1.0, 0.5, T, los, his)
+    assert got.shape == (3, 2, len(T))
+    for i in range(3):
+        for j in range(2):
+            assert np.allclose(got[i, j], bounce(0.0, 1.0, 0.5, T, los[0, j], his[i, 0]))
+
+
+ROBOT = RobotSpec(model="unicycle", radius=0.2, v_max=1.0, w_max=math.radians(40), a_max=0.3,
+                  alpha_max=math.radians(40))
+
+
+def mover_at(t, a=(6.0, 1.0), b=(6.0, 5.0), speed=0.5, radius=0.35):
+    """Row ``(x, y, vx, vy, r)`` of a mover driving a <-> b, at a when t = 0."""
+    a, b = np.array(a), np.array(b)
+    length = float(np.hypot(*(b - a)))
+    s = stepped(0.0, 1.0, speed, [t], 0.0, length)[0] if t > 0 else 0.0
+    u = (b - a) / length
+    # direction: going out while the unfolded distance is in the first half of the period
+    going_out = (speed * t) % (2 * length) < length
+    v = u * speed * (1 if going_out else -1)
+    p = a + u * s
+    return np.array([[p[0], p[1], v[0], v[1], radius]])
+
+
+def context(t, state=None, dynamic=None):
+    state = state or RobotState(x=3.0, y=3.0, theta=0.0)
+    return LocalContext(state=state, subgoal=np.array([11.0, 3.0]), goal=np.array([11.0, 3.0]),
+                        global_path=np.array([[0.5, 3.0], [11.0, 3.0]]),
+                        static_distance=lambda p: np.full(np.shape(p)[:-1], 10.0),
+                        dynamic=mover_at(t) if dynamic is None else dynamic, dt=0.1, t=t)
+
+
+def test_gate_learns_both_turning_points_then_predicts_the_motion():
+    gate = SweepGate()
+    gate.reset(None, RobotState(3.0, 3.0, 0.0), np.zeros((2, 2)))
+    for k in range(0, 200):  # 20 s: the mover (4 m at 0.5 m/s) turns at 8 s and 16 s
+        gate.update(context(round(k * 0.1, 10)))
+    (track,) = gate.tracks
+    ends = sorted([track.end_lo, track.end_hi])
+    span = ends[1] - ends[0]
+    assert span == pytest.approx(4.0, abs=0.01)  # the two turning points, 4 m apart
+    lo, hi = gate.swept(track, T)
+    assert np.allclose(lo, hi)  # both ends known: a single predicted position
+    # the prediction is where the mover will be
+    t_now = 19.9
+    truth = np.array([mover_at(t_now + tt)[0, 1] for tt in T])  # y coordinate along the vertical track
+    sign = 1.0 if track.axis.imag > 0 else -1.0
+    predicted_y = track.origin.imag + sign * lo
+    assert np.abs(predicted_y - truth).max() < 0.02
+
+
+def test_before_a_turn_is_seen_the_mover_may_turn_round_at_once():
+    gate = SweepGate()
+    gate.reset(None, RobotState(3.0, 3.0, 0.0), np.zeros((2, 2)))
+    for k in range(0, 31):  # 3 s heading out from a: no turn seen yet
+        gate.update(context(round(k * 0.1, 10)))
+    (track,) = gate.tracks
+    assert not math.isfinite(track.end_hi) and not math.isfinite(track.end_lo)
+    lo, hi = gate.swept(track, T)
+    # it may go on (s + c t) or turn now (s - c t): the interval covers both
+    assert np.all(lo <= track.s - 0.5 * T + 1e-9) and np.all(hi >= track.s + 0.5 * T - 1e-9)
+
+
+def test_gate_rejects_passing_close_behind_a_mover_that_may_turn():
+    planner = make_local_planner("qp-dwa", ROBOT, 0.1)
+    # the robot drives at 0.6 m/s towards x = 6; the mover has just crossed y = 3 going up
+    state = RobotState(x=4.6, y=3.0, theta=0.0, v=0.6)
+    planner.reset(state, np.array([[0.5, 3.0], [11.0, 3.0]]))
+    t = 4.5  # mover at y = 3.25, moving away from the robot's line
+    ctx = context(t, state)
+    step = planner.evaluate(ctx, planner.window(ctx))
+    (gate,) = [m for m in planner.mechanisms if isinstance(m, SweepGate)]
+    keep = gate.filter(planner, step)
+    clear_by_prediction = step.admissible & step.mover_free
+    # the constant-velocity prediction clears samples that the possible turn-round does not
+    assert (clear_by_prediction & ~keep).any()
+    # the kept ones stay off where the mover could be if it turned now
+    (track,) = gate._now
+    lo, hi = gate.swept(track, step.roll.t)
+    q = (step.roll.z[keep] - track.origin) * np.conj(track.axis)
+    beyond = np.maximum(np.maximum(lo - q.real, q.real - hi), 0.0)
+    assert (np.hypot(q.imag, beyond) - track.radius - ROBOT.radius).min() >= gate.margin - 1e-9
+
+
+def turn_round_scenario(up: float, speed: float, phase: float):
+    """A mover drives up and down x = 6 across the robot's straight path y = 4 and turns
+    round ``up`` metres above it, just after the robot would have passed behind it."""
+    return load_scenario({
+        "name": "turn_round", "map": [[0] * 12 for _ in range(8)], "start": [0.5, 4.0, 0], "goal": [11.5, 4.0],
+        "robot": {"model": "unicycle", "radius": 0.2, "v_max": 1.0, "w_max_deg": 40, "a_max": 0.3,
+                  "alpha_max_deg": 40},
+        "sensor_range": 3.0, "dt": 0.1, "time_limit": 60,
+        "dynamic_obstacles": [{"radius": 0.35, "waypoints": [[6.0, 1.0], [6.0, 4.0 + up]], "speed": speed,
+                               "phase": phase}]})
+
+
+@pytest.mark.parametrize("up,speed,phase", [(1.0, 0.5, 1.0), (1.2, 0.6, 0.5), (0.9, 0.4, 1.5)])
+def test_qp_dwa_waits_for_a_mover_that_turns_round(up, speed, phase):
+    sc = turn_round_scenario(up, speed, phase)
+    without = simulate(sc, global_planner="astar", local_planner="qp-dwa", seed=0,
+                       planner_params={"sweep_gate": False})
+    assert without.collisions > 0  # the scenario does catch a constant-velocity prediction out
+    gated = simulate(sc, global_planner="astar", local_planner="qp-dwa", seed=0)
+    assert gated.reached and gated.collisions == 0 and gated.min_clearance >= 0
