@@ -411,13 +411,18 @@ class SweepGate(Mechanism):
         roll = step.roll
         R = planner.robot.radius
         out, now = np.full(roll.n, np.inf), math.inf
+        state = step.ctx.state
+        # every rollout point at time t lies within (fastest speed) t of the start
+        reach = max(float(roll.speed.max(initial=0.0)), math.hypot(state.v, state.vy)) * roll.t
         for k in self._now:
             lo, hi = self.swept(k, roll.t)
+            s0, off0 = k.along(roll.z0)
+            now = min(now, math.hypot(off0, s0 - k.s) - k.radius - R)
+            if (np.hypot(off0, np.maximum(np.maximum(lo - s0, s0 - hi), 0.0)) - k.radius - R - reach).min() > self.margin:
+                continue  # no rollout can come near this mover's interval (exact bound)
             q = (roll.z - k.origin) * np.conj(k.axis)
             beyond = np.maximum(np.maximum(lo - q.real, q.real - hi), 0.0)
             np.minimum(out, (np.hypot(q.imag, beyond) - k.radius - R).min(axis=1), out=out)
-            s0, off0 = k.along(roll.z0)
-            now = min(now, math.hypot(off0, s0 - k.s) - k.radius - R)
         return out, now
 
     def filter(self, planner, step) -> np.ndarray | None:
