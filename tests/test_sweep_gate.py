@@ -145,3 +145,18 @@ def test_qp_dwa_waits_for_a_mover_that_turns_round(up, speed, phase):
     assert without.collisions > 0  # the scenario does catch a constant-velocity prediction out
     gated = simulate(sc, global_planner="astar", local_planner="qp-dwa", seed=0)
     assert gated.reached and gated.collisions == 0 and gated.min_clearance >= 0
+
+
+def test_strict_filter_judges_one_trajectory_without_the_fallback():
+    """qp-dwa checks its refined command with ``strict_filter``: a lone trajectory that
+    comes too close to a mover's possible interval fails it, although ``filter`` (which
+    keeps the least-close samples when none keeps off) would let it through."""
+    planner = make_local_planner("qp-dwa", ROBOT, 0.1)
+    state = RobotState(x=4.6, y=3.0, theta=0.0, v=0.6)
+    planner.reset(state, np.array([[0.5, 3.0], [11.0, 3.0]]))
+    ctx = context(4.5, state)
+    straight = planner._assess(ctx, planner.rollout_of(state, [0.6], [0.0], [0.0]))  # on into the track
+    (gate,) = [m for m in planner.mechanisms if isinstance(m, SweepGate)]
+    assert straight.admissible[0] and straight.mover_free[0]
+    assert not gate.strict_filter(planner, straight)[0]
+    assert gate.filter(planner, straight)[0]

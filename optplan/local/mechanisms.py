@@ -47,6 +47,11 @@ class Mechanism:
         """Mask of samples to keep (``None`` = all)."""
         return None
 
+    def strict_filter(self, planner: "DWAPlanner", step: Step) -> np.ndarray | None:
+        """``filter`` without any relaxation it applies when nothing passes: judges a single
+        trajectory on its own (``qp-dwa`` checks its refined command with it)."""
+        return self.filter(planner, step)
+
 
 @dataclass
 class AdaptiveVelocity(Mechanism):
@@ -425,12 +430,19 @@ class SweepGate(Mechanism):
             np.minimum(out, (np.hypot(q.imag, beyond) - k.radius - R).min(axis=1), out=out)
         return out, now
 
-    def filter(self, planner, step) -> np.ndarray | None:
+    def strict_filter(self, planner, step) -> np.ndarray | None:
         self.update(step.ctx)
         if not self._now:
             return None
         gap, now = self.gaps(planner, step)
-        keep = gap >= min(self.margin, now)
+        step.aux["gate_gap"] = gap
+        return gap >= min(self.margin, now)
+
+    def filter(self, planner, step) -> np.ndarray | None:
+        keep = self.strict_filter(planner, step)
+        if keep is None:
+            return None
+        gap = step.aux["gate_gap"]
         safe = step.admissible & step.mover_free
         if safe.any() and not (keep & safe).any():
             keep = gap >= gap[safe].max() - 1e-9  # nothing safe keeps off: come least close

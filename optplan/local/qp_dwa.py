@@ -240,7 +240,7 @@ class QPDWAPlanner(DWAPlanner):
     def _legal_after_filters(self, check: Step) -> bool:
         """Whether the (single) trajectory of ``check`` passes the preset's filters."""
         for m in self.mechanisms:
-            keep = m.filter(self, check)
+            keep = m.strict_filter(self, check)
             if keep is not None and not keep[0]:
                 return False
         return True
