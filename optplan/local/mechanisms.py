@@ -423,7 +423,8 @@ class SweepGate(Mechanism):
             lo, hi = self.swept(k, roll.t)
             s0, off0 = k.along(roll.z0)
             now = min(now, math.hypot(off0, s0 - k.s) - k.radius - R)
-            if (np.hypot(off0, np.maximum(np.maximum(lo - s0, s0 - hi), 0.0)) - k.radius - R - reach).min() > self.margin:
+            nearest = np.hypot(off0, np.maximum(np.maximum(lo - s0, s0 - hi), 0.0)) - k.radius - R
+            if (nearest - reach).min() > self.margin:
                 continue  # no rollout can come near this mover's interval (exact bound)
             q = (roll.z - k.origin) * np.conj(k.axis)
             beyond = np.maximum(np.maximum(lo - q.real, q.real - hi), 0.0)
@@ -448,6 +449,7 @@ class SweepGate(Mechanism):
             keep = gap >= gap[safe].max() - 1e-9  # nothing safe keeps off: come least close
         step.aux["gate_rejected"] = int((~keep).sum())
         return keep
+
 
 MECHANISMS: dict[str, type[Mechanism]] = {m.name: m for m in (
     AdaptiveVelocity, VelocityObstacle, BrakeAndWait, InitialHeading, SweepGate)}
