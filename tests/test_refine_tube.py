@@ -47,7 +47,9 @@ def test_radius_zero_is_the_purely_local_smoother():
     old = smooth_path(world, LONG_WAY)
     for new in (refine_path(world, LONG_WAY, "casadi", tube_radius=0.0),
                 refine_in_tube(world, LONG_WAY, smooth_path, 0.0)):
-        np.testing.assert_array_equal(new.path, old.path)
+        # same problem, same solver; IPOPT may differ in the last bits between calls in one
+        # process (about 1e-13 m, seen when other tests ran casadi before this one)
+        np.testing.assert_allclose(new.path, old.path, rtol=0, atol=1e-9)
         assert new.success == old.success and new.message == old.message
     # qp stays purely local by default; it takes the same option
     qp_default = refine_path(world, LONG_WAY, "qp")
