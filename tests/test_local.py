@@ -11,7 +11,7 @@ from optplan.local import PRESETS, algorithm_names, make_local_planner
 from optplan.local.base import LocalContext
 from optplan.local.mechanisms import VelocityObstacle
 from optplan.local.reference import reference_dwa
-from optplan.local.rollout import assess, rollout
+from optplan.local.rollout import assess, rollout, rollout_ramped
 from optplan.world.fields import grid_distance_field
 from optplan.world.robot import RobotSpec, RobotState
 
@@ -125,6 +125,34 @@ def test_same_inputs_same_commands(field, name):
         planner.reset(ctxs[0].state, ctxs[0].global_path)
         runs.append([(c.v, c.w, c.vy) for c in map(planner.command, ctxs)])
     assert runs[0] == runs[1]
+
+
+@pytest.mark.parametrize("wall_at", [0.25, 0.4, 0.5, 0.55, 0.7, 1.0])
+def test_ramped_samples_are_judged_by_the_speed_the_robot_really_has(wall_at):
+    """A robot at 0.45 m/s braking at a_max = 0.2 m/s^2 needs 0.506 m to stop, whatever
+    target speed a ramped sample aims at (hou2024 eq 22 with the ramp's own speed)."""
+    robot = RobotSpec(radius=0.2, a_max=0.2)
+    wall = wall_at + robot.radius  # contact once the robot's centre passes x = wall_at
+
+    def field(p):
+        return wall - np.asarray(p, float)[..., 0]
+
+    st = RobotState(0.0, 0.0, 0.0, 0.45, 0.0)
+    ctx = LocalContext(state=st, subgoal=np.array([5.0, 0.0]), goal=np.array([5.0, 0.0]),
+                       global_path=np.array([[0.0, 0.0], [5.0, 0.0]]), static_distance=field,
+                       dynamic=np.zeros((0, 5)), dt=DT)
+    targets = np.array([0.0, 0.25, 0.45])
+    roll = rollout_ramped(st, targets, np.zeros(3), np.array([0.0]), DT, 40, (0.2, 1.0, 0.2))
+    step = assess(ctx, robot, roll)
+    need = 0.45 ** 2 / (2 * 0.2)
+    one_step = 0.45 * DT  # the free distance is known to the rollout's resolution
+    brake, slower, keep = step.admissible
+    assert brake == (need <= wall_at + 1e-9) or abs(need - wall_at) < one_step
+    assert not slower or wall_at >= need - one_step  # slowing down does not shorten the stop
+    assert not keep or wall_at >= need - one_step
+    # no reaction time, but a command is held for one step: brake from 0.45 m/s, give or take that step
+    # (the rollout holds each step's end-of-step speed: a dt^2 / 2 = 1 mm short on a braking ramp)
+    assert np.all((step.stopping >= need - 0.2 * DT ** 2 / 2 - 1e-9) & (step.stopping <= need + one_step + 1e-9))
 
 
 def test_idwa_velocity_obstacle_rejects_a_crossing_mover(field):

@@ -157,7 +157,7 @@ def path_carrot(path: np.ndarray, z: np.ndarray, look_ahead: float, near: comple
 def _reach(step: Step) -> float:
     """How far (m) from the robot any rollout point can be, plus a metre of slack."""
     roll = step.roll
-    return float(roll.speed.max(initial=0.0) * roll.t[-1]) + 1.0
+    return roll.max_speed * float(roll.t[-1]) + 1.0
 
 
 @dataclass
@@ -346,7 +346,7 @@ class GlobalPathDistance(Critic):
 
     def score(self, step: Step) -> np.ndarray:
         roll = step.roll
-        reach = float(roll.speed.max(initial=0.0) * roll.t[-1]) + 1.0
+        reach = roll.max_speed * float(roll.t[-1]) + 1.0
         return polyline_distance(roll.position(), step.ctx.global_path, roll.z0, reach)
 
 

@@ -32,7 +32,7 @@ from .base import LocalContext
 from .critics import CRITICS, Critic
 from .mechanisms import MECHANISMS, Mechanism
 from .rollout import Rollouts, Step, assess, rollout, rollout_ramped
-from .window import Window, dynamic_window, sample_grid, stopping_distance
+from .window import Window, dynamic_window, sample_grid
 
 
 @dataclass(frozen=True)
@@ -264,7 +264,7 @@ class DWAPlanner:
             # no sample can stop before its predicted collision (a mover may be closing in):
             # take the one that misses the stopping distance by the least, rather than
             # braking in place, which leaves the robot in a crossing mover's way
-            shortfall = step.free_distance - stopping_distance(step.roll.speed, self.robot.a_max, self._reaction())
+            shortfall = step.free_distance - step.stopping
             best = int(np.argmax(shortfall))
             return best, {"mode": "least-inadmissible", "index": best,
                           "free_distance": float(step.free_distance[best])}

@@ -418,7 +418,7 @@ class SweepGate(Mechanism):
         out, now = np.full(roll.n, np.inf), math.inf
         state = step.ctx.state
         # every rollout point at time t lies within (fastest speed) t of the start
-        reach = max(float(roll.speed.max(initial=0.0)), math.hypot(state.v, state.vy)) * roll.t
+        reach = max(roll.max_speed, math.hypot(state.v, state.vy)) * roll.t
         for k in self._now:
             lo, hi = self.swept(k, roll.t)
             s0, off0 = k.along(roll.z0)

@@ -23,7 +23,7 @@ import numpy as np
 
 from ..world.robot import RobotSpec, RobotState
 from .base import LocalContext
-from .window import max_admissible_speed
+from .window import stopping_distance
 
 
 @dataclass
@@ -35,6 +35,9 @@ class Rollouts:
         z: ``(S, H)`` complex positions ``x + i y`` at times ``t`` (metres).
         t: ``(H,)`` times of the positions, ``dt, 2 dt, ..., H dt`` (s).
         z0: start position (complex), theta0: start heading (rad), dt: step (s).
+        theta: ``(S, H)`` headings after each step (ramped rollouts; ``None``: ``theta0 + w t``).
+        profile: ``(S, H)`` planar speed held during each step (ramped rollouts, whose speed
+            changes along the horizon; ``None``: the sampled speed throughout).
     """
 
     v: np.ndarray
@@ -46,6 +49,7 @@ class Rollouts:
     theta0: float
     dt: float
     theta: np.ndarray | None = None
+    profile: np.ndarray | None = None
 
     @property
     def n(self) -> int:
@@ -60,6 +64,13 @@ class Rollouts:
     def speed(self) -> np.ndarray:
         """Planar speed of each sample, m/s."""
         return np.hypot(self.v, self.vy)
+
+    @property
+    def max_speed(self) -> float:
+        """Fastest planar speed anywhere on the rollouts, m/s (a ramp may start faster than
+        its target): every rollout point at time ``t`` lies within ``max_speed t`` of ``z0``."""
+        fastest = self.speed if self.profile is None else self.profile
+        return float(fastest.max(initial=0.0))
 
     def heading(self, k: int | None = None) -> np.ndarray:
         """Heading after ``k`` steps (default: at the end of the horizon), rad."""
@@ -116,7 +127,7 @@ def rollout_ramped(state: RobotState, lin_v: np.ndarray, lin_vy: np.ndarray, w: 
     z0 = complex(state.x, state.y)
     z += z0
     return Rollouts(v=np.repeat(lin_v, n_w), vy=np.repeat(lin_vy, n_w), w=np.tile(w, n_lin), z=z, t=t1, z0=z0,
-                    theta0=float(state.theta), dt=float(dt), theta=theta)
+                    theta0=float(state.theta), dt=float(dt), theta=theta, profile=np.hypot(v, vy))
 
 
 def predict_movers(dynamic: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -143,7 +154,10 @@ class Step:
         movers, mover_vel, mover_r: predicted centres ``(K, H)``, velocities ``(K,)``, radii ``(K,)``.
         free_distance: ``(S,)`` path length before the first predicted collision with a
             static obstacle, m (``inf`` when there is none within the horizon).
-        admissible: ``(S,)`` the robot can stop before that collision (hou2024 eq 22).
+        stopping: ``(S,)`` path length the robot needs to stop when it follows the sample
+            for the reaction time and then brakes at ``a_max``, m.
+        admissible: ``(S,)`` the robot can stop before that collision (hou2024 eq 22:
+            ``stopping <= free_distance``).
         mover_contact: ``(S,)`` index of the first rollout point in predicted contact with a
             mover (``H`` = none). Braking does not help against a mover, so instead of eq 22
             such trajectories are discarded, as the papers discard colliding trajectories
@@ -161,6 +175,7 @@ class Step:
     mover_vel: np.ndarray
     mover_r: np.ndarray
     free_distance: np.ndarray
+    stopping: np.ndarray
     admissible: np.ndarray
     mover_contact: np.ndarray
     target: complex
@@ -225,7 +240,7 @@ def assess(ctx: LocalContext, robot: RobotSpec, roll: Rollouts, *, margin: float
 
     Args:
         margin: extra clearance, m, below which a point counts as a collision.
-        reaction: reaction time in the stopping distance (see ``window.max_admissible_speed``).
+        reaction: reaction time in the stopping distance (see :func:`_stopping_test`).
         mover_range: movers that provably stay more than this far (edge to edge) from every
             rollout are skipped; cost terms therefore see mover clearances up to this value.
         mover_growth, growth_cap: for the cost terms (``Step.gap``) the predicted movers' discs
@@ -235,16 +250,41 @@ def assess(ctx: LocalContext, robot: RobotSpec, roll: Rollouts, *, margin: float
     """
     static_gap = np.asarray(ctx.static_distance(roll.xy), dtype=float) - robot.radius
     movers, vel, radii = predict_movers(ctx.dynamic, roll.t)
-    speed = roll.speed
-    keep = relevant_movers(roll.z0, movers, radii, roll.t, float(speed.max(initial=0.0)), robot.radius,
+    keep = relevant_movers(roll.z0, movers, radii, roll.t, roll.max_speed, robot.radius,
                            max(mover_range, margin) + growth_cap)
     dyn_gap = dynamic_gaps(roll.z, movers[keep], radii[keep], robot.radius)
     fastest = float(np.abs(vel[keep]).max(initial=0.0))
     growth = np.minimum(mover_growth * fastest * roll.t, growth_cap) if mover_growth > 0 else 0.0
     now_static, now_moving = current_gaps(ctx, robot)
     first = first_hit(static_gap < min(margin, now_static))  # 0 = the point after one step
-    free = np.where(first < roll.z.shape[1], first * speed * roll.dt, np.inf)
-    admissible = speed <= max_admissible_speed(free, robot.a_max, reaction) + 1e-12
+    free, stopping = _stopping_test(roll, first, robot.a_max, reaction)
+    admissible = stopping <= free + 1e-12
     contact = first_hit(dyn_gap < min(margin, now_moving))
     target = complex(*np.asarray(ctx.subgoal, dtype=float)[:2])
-    return Step(ctx, robot, roll, static_gap, dyn_gap, movers, vel, radii, free, admissible, contact, target, growth)
+    return Step(ctx, robot, roll, static_gap, dyn_gap, movers, vel, radii, free, stopping, admissible, contact, target,
+                growth)
+
+
+def _stopping_test(roll: Rollouts, first: np.ndarray, decel: float, reaction: float) -> tuple[np.ndarray, np.ndarray]:
+    """``(free distance, stopping distance)`` ``(S,)`` of every sample (hou2024 eq 22).
+
+    The free distance is the path length up to the last point before the first static
+    collision (``first``, see :func:`first_hit`). At a constant sampled speed ``v`` the
+    robot needs ``v t_r + v^2 / (2 a)`` to stop. A ramped rollout changes speed on the way:
+    the robot follows the ramp for the reaction time ``t_r`` (its distance and speed are
+    read off the rollout, rounded up to whole steps and at least one) and then brakes from the speed it has
+    reached. Judging a ramp by its target speed instead would call a robot that brakes
+    from 0.45 to 0.25 m/s able to stop within the 0.2 m a 0.25 m/s robot needs, and let it
+    drive into a wall it can no longer avoid."""
+    H = roll.z.shape[1]
+    if roll.profile is None:
+        speed = roll.speed
+        free = np.where(first < H, first * speed * roll.dt, np.inf)
+        return free, stopping_distance(speed, decel, reaction)
+    travelled = np.cumsum(roll.profile, axis=1) * roll.dt  # path length after each step
+    before = np.take_along_axis(travelled, np.clip(first - 1, 0, H - 1)[:, None], axis=1)[:, 0]
+    free = np.where(first >= H, np.inf, np.where(first > 0, before, 0.0))
+    # a command is held for at least one step, so the ramp is followed for one step or more
+    k = min(H, max(1, int(np.ceil(reaction / roll.dt - 1e-9))))
+    s = roll.profile[:, k - 1]
+    return free, travelled[:, k - 1] + s * s / (2.0 * decel)
