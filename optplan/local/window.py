@@ -106,18 +106,9 @@ def dynamic_window(robot: RobotSpec, state: RobotState, dt: float, *, omni: bool
     return Window(v, w, vy)
 
 
-def max_admissible_speed(free_distance: np.ndarray, decel: float, reaction: float = 0.0) -> np.ndarray:
-    """Largest speed from which the robot stops within ``free_distance`` (hou2024 eq 22):
-    the positive root of ``v t_r + v^2 / (2 a) = dist``; ``inf`` stays ``inf``."""
-    d = np.asarray(free_distance, dtype=float)
-    at = decel * reaction
-    with np.errstate(invalid="ignore"):
-        return np.sqrt(at * at + 2.0 * decel * d) - at
-
-
 def stopping_distance(speed, decel: float, reaction: float = 0.0):
     """Distance covered by a robot at ``speed`` that reacts after ``reaction`` s and then
-    brakes at ``decel`` (the inverse of :func:`max_admissible_speed`)."""
+    brakes at ``decel``: ``v t_r + v^2 / (2 a)`` (the braking distance of hou2024 eq 22)."""
     s = np.abs(speed)
     return s * reaction + s * s / (2.0 * decel)
 
