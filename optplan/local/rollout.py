@@ -272,8 +272,8 @@ def _stopping_test(roll: Rollouts, first: np.ndarray, decel: float, reaction: fl
     collision (``first``, see :func:`first_hit`). At a constant sampled speed ``v`` the
     robot needs ``v t_r + v^2 / (2 a)`` to stop. A ramped rollout changes speed on the way:
     the robot follows the ramp for the reaction time ``t_r`` (its distance and speed are
-    read off the rollout, rounded up to whole steps and at least one) and then brakes from the speed it has
-    reached. Judging a ramp by its target speed instead would call a robot that brakes
+    read off the rollout, rounded up to whole steps and at least one) and then brakes from
+    the speed it has reached. Judging a ramp by its target speed instead would call a robot that brakes
     from 0.45 to 0.25 m/s able to stop within the 0.2 m a 0.25 m/s robot needs, and let it
     drive into a wall it can no longer avoid."""
     H = roll.z.shape[1]
@@ -287,4 +287,4 @@ def _stopping_test(roll: Rollouts, first: np.ndarray, decel: float, reaction: fl
     # a command is held for at least one step, so the ramp is followed for one step or more
     k = min(H, max(1, int(np.ceil(reaction / roll.dt - 1e-9))))
     s = roll.profile[:, k - 1]
-    return free, travelled[:, k - 1] + s * s / (2.0 * decel)
+    return free, travelled[:, k - 1] + stopping_distance(s, decel)
