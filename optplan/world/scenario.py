@@ -47,8 +47,11 @@ Optional keys added by optplan (all validated like the rest):
   segment of the given length range that crosses the reference path (at
   least ``keep_away`` m, default 3, from start and goal) at a random angle of 60-120
   degrees, with a random phase; segments are kept free of known obstacles by the
-  obstacle radius, away from start and goal, and must cross the reference path once
-  (not run along it), so a robot that cannot reverse can always wait outside the sweep.
+  obstacle radius, away from start and goal, far enough from each other that two
+  movers never touch (both radii + 0.1 m), and must cross the reference path once
+  (not run along it), so a robot that cannot reverse can always wait outside one
+  mover's sweep. Sweeps of different movers may overlap along the path; the robot
+  then has to cross them together.
 
 * ``timing_jitter``: seconds (default 0). Each moving obstacle of the file is advanced
   along its motion by a time drawn uniformly from ``[0, timing_jitter]`` with the
@@ -747,6 +750,17 @@ def _point_segment_distance(p, a, b) -> float:
     return float(np.hypot(*(p - (a + t * ab))))
 
 
+def _segments_distance(a, b, c, d) -> float:
+    """Distance between the segments ``a -> b`` and ``c -> d`` (0 when they cross)."""
+    def cross(o, p, q) -> float:
+        return float((p[0] - o[0]) * (q[1] - o[1]) - (p[1] - o[1]) * (q[0] - o[0]))
+    d1, d2, d3, d4 = cross(c, d, a), cross(c, d, b), cross(a, b, c), cross(a, b, d)
+    if d1 * d2 < 0 and d3 * d4 < 0:
+        return 0.0
+    return min(_point_segment_distance(a, c, d), _point_segment_distance(b, c, d),
+               _point_segment_distance(c, a, b), _point_segment_distance(d, a, b))
+
+
 def _draw_random_movers(sc: Scenario, spec: dict, rng, path: np.ndarray) -> list[DynamicObstacle]:
     count, radius, keep = int(spec["count"]), float(spec["radius"]), float(spec["keep_away"])
     if count == 0:
@@ -791,6 +805,12 @@ def _draw_random_movers(sc: Scenario, spec: dict, rng, path: np.ndarray) -> list
         crossing = 2 * near / math.sin(math.radians(60)) + 0.5
         if not len(swept) or swept[-1] - swept[0] + 1 != len(swept) or \
                 float(np.hypot(*np.diff(path[swept], axis=0).T).sum()) > crossing:
+            continue
+        # movers are solid: two tracks keep the movers apart whatever their timing (drawn
+        # independently, tracks used to cross or share an end, and movers drove through
+        # each other)
+        if any(_segments_distance(a, b, other.waypoints[0], other.waypoints[-1]) < radius + other.radius + 0.1
+               for other in out):
             continue
         speed = rng.uniform(*spec["speed"])
         ob = DynamicObstacle(radius, waypoints=np.round(np.array([a, b]), 3), speed=round(float(speed), 3), loop=True,
