@@ -123,6 +123,10 @@ def test_gate_rejects_passing_close_behind_a_mover_that_may_turn():
     q = (step.roll.z[keep] - track.origin) * np.conj(track.axis)
     beyond = np.maximum(np.maximum(lo - q.real, q.real - hi), 0.0)
     assert (np.hypot(q.imag, beyond) - track.radius - ROBOT.radius).min() >= gate.margin - 1e-9
+    # the command reports how many samples the gate turned away
+    cmd = make_local_planner("qp-dwa", ROBOT, 0.1)
+    cmd.reset(state, np.array([[0.5, 3.0], [11.0, 3.0]]))
+    assert cmd.command(ctx).info["gate_rejected"] == int((~keep).sum()) > 0
 
 
 def turn_round_scenario(up: float, speed: float, phase: float):

@@ -300,10 +300,8 @@ class DWAPlanner:
             best, extra = self.choose(step)
             info.update(extra)
             info["n_samples"] = step.roll.n
-            if "gate_rejected" in step.aux:
-                info["gate_rejected"] = step.aux["gate_rejected"]
-            if step.aux.get("vo_threat") is not None:
-                info["vo_threat"] = step.aux["vo_threat"]
+            for m in self.mechanisms:
+                info.update(m.report(step))
             if best is None:
                 u = win.clip(0.0, 0.0, 0.0)  # brake as hard as the window allows
             else:

@@ -8,7 +8,7 @@ Each mechanism hooks into one place of the control step:
 * ``filter``: removes samples and reports findings to the cost terms through
   ``step.aux`` (yang2023's velocity-obstacle test, eq 12-14; this project's sweep gate
   of ``qp-dwa``, which keeps the robot off a mover's track while the mover could turn
-  round into it).
+  round into it); ``report`` copies what a filter found into ``Command.info``.
 """
 from __future__ import annotations
 
@@ -51,6 +51,10 @@ class Mechanism:
         """``filter`` without any relaxation it applies when nothing passes: judges a single
         trajectory on its own (``qp-dwa`` checks its refined command with it)."""
         return self.filter(planner, step)
+
+    def report(self, step: Step) -> dict:
+        """What this step's ``filter`` found, for ``Command.info`` (empty by default)."""
+        return {}
 
 
 @dataclass
@@ -163,6 +167,10 @@ class VelocityObstacle(Mechanism):
         step.aux["vo_threat"] = threat
         step.aux["vo_rejected"] = int((~keep).sum())
         return keep
+
+    def report(self, step) -> dict:
+        threat = step.aux.get("vo_threat")
+        return {} if threat is None else {"vo_threat": threat}
 
 
 @dataclass
@@ -449,6 +457,9 @@ class SweepGate(Mechanism):
             keep = gap >= gap[safe].max() - 1e-9  # nothing safe keeps off: come least close
         step.aux["gate_rejected"] = int((~keep).sum())
         return keep
+
+    def report(self, step) -> dict:
+        return {"gate_rejected": step.aux["gate_rejected"]} if "gate_rejected" in step.aux else {}
 
 
 MECHANISMS: dict[str, type[Mechanism]] = {m.name: m for m in (
