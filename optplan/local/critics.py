@@ -346,8 +346,7 @@ class GlobalPathDistance(Critic):
 
     def score(self, step: Step) -> np.ndarray:
         roll = step.roll
-        reach = roll.max_speed * float(roll.t[-1]) + 1.0
-        return polyline_distance(roll.position(), step.ctx.global_path, roll.z0, reach)
+        return polyline_distance(roll.position(), step.ctx.global_path, roll.z0, _reach(step))
 
 
 # ---------------------------------------------------------------- li2023 eq 10 (iga-dwa)

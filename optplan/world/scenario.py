@@ -757,8 +757,9 @@ def _segments_distance(a, b, c, d) -> float:
     d1, d2, d3, d4 = cross(c, d, a), cross(c, d, b), cross(a, b, c), cross(a, b, d)
     if d1 * d2 < 0 and d3 * d4 < 0:
         return 0.0
-    return min(_point_segment_distance(a, c, d), _point_segment_distance(b, c, d),
-               _point_segment_distance(c, a, b), _point_segment_distance(d, a, b))
+    # otherwise the closest pair has an end point of one segment
+    return float(min(_segment_points_distance(c, d, np.array([a, b])).min(),
+                     _segment_points_distance(a, b, np.array([c, d])).min()))
 
 
 def _draw_random_movers(sc: Scenario, spec: dict, rng, path: np.ndarray) -> list[DynamicObstacle]:
