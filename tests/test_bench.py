@@ -309,3 +309,40 @@ def test_full_chen2025_paths_reproduction(tmp_path, capsys):
     for line in table8:
         astar, best, optimum = (float(c) for c in line.strip("|").split("|")[1:4])
         assert optimum <= best < min(1.01 * optimum, astar)
+
+
+def test_closed_loop_report_pools_scenarios_and_pairs_runs_by_seed(tmp_path):
+    """The "all scenarios" table of the closed-loop report: success pooled over scenarios with
+    its Wilson interval, and the McNemar test on runs paired by scenario and seed (rows are
+    written by hand here, so every count is known)."""
+    from optplan.bench.reports import closed_loop_overall, render_report
+    from optplan.bench.summary import ExperimentResults
+
+    spec_file = tmp_path / "pooled.yaml"
+    spec_file.write_text("kind: simulate\nscenarios: [li2023_exp2_2, yang2023_idwa_crossing]\nalgorithms: [astar]\n"
+                         "local_planners: [dwa, qp-dwa]\nruns: 4\nreport: closed-loop\n"
+                         "reference: {algorithm: astar, local_planner: qp-dwa}\n")
+    spec = load_spec(spec_file)
+    recs = spec.expand()
+    rows = {}
+    for r in recs:
+        # qp-dwa succeeds everywhere; dwa only on seed 0 of each scenario and collides on seed 1;
+        # run 3 of dwa on the second scenario was never stored
+        first = r.target == "li2023_exp2_2"
+        k = sorted({x.seed for x in recs if x.target == r.target}).index(r.seed)
+        if r.local_planner == "dwa" and not first and k == 3:
+            continue
+        good = r.local_planner == "qp-dwa" or k == 0
+        rows[r.key] = {"status": "ok", "reached": good or k == 1, "collisions": 0 if good else int(k == 1),
+                       "result_status": "reached" if good or k == 1 else "timeout"}
+    res = ExperimentResults(spec, recs, rows)
+    table = closed_loop_overall(res)
+    by_name = {row[0]: row for row in table.rows}
+    dwa, qp = by_name["astar/dwa"], by_name["astar/qp-dwa"]
+    assert dwa[1:4] == ["7/8", "2/7", "28.6"] and dwa[5:8] == ["4/7", "5/7", "3/7"]
+    assert qp[1:4] == ["8/8", "8/8", "100.0"] and qp[8] == "ref"
+    # the 7 shared pairs: qp-dwa alone succeeds in 5, dwa alone in none
+    assert dwa[8] == "5 / 0" and float(dwa[9]) == pytest.approx(2 * 0.5 ** 5)
+    lo, hi = (float(x) for x in dwa[4].split("-"))
+    assert (lo, hi) == pytest.approx((8.2, 64.1), abs=0.1)  # Wilson 95 % for 2/7
+    assert "### all scenarios" in render_report(res)

@@ -224,7 +224,61 @@ def closed_loop(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path |
                   if r.key in res.rows and res.rows[r.key]["status"] != "ok"}
         table.notes += [f"failed: {e}" for e in sorted(e for e in errors if e)][:3]
         out += [f"### {t.name}\n", table.render(fmt), ""]
+    if len(spec.targets) > 1:
+        out += ["### all scenarios\n", closed_loop_overall(res).render(fmt), ""]
     return "\n".join(out + _notes(res) + _path_overlays(res, plots_dir)).rstrip("\n") + "\n"
+
+
+def closed_loop_overall(res: ExperimentResults) -> Table:
+    """Per pipeline over every scenario of the spec: success with its Wilson 95 % interval,
+    reached, collision-free and timeouts; with a reference, the exact McNemar p-value of the
+    success difference on runs paired by scenario and seed."""
+    from .stats import mcnemar_p, wilson_interval
+
+    spec = res.spec
+    pooled: dict = {}  # group -> {(target, seed): success or None when not stored}
+    counts: dict = {}
+    for t in spec.targets:
+        for g, recs in res.groups(t.name).items():
+            pairs, c = pooled.setdefault(g, {}), counts.setdefault(g, {"runs": 0, "reached": 0, "free": 0, "timeouts": 0})
+            for r in recs:
+                row = res.rows.get(r.key)
+                ok = row is not None and row["status"] == "ok"
+                pairs[(t.name, r.seed)] = res.successful(r) if ok else None
+                if ok:
+                    c["runs"] += 1
+                    c["reached"] += bool(row.get("reached"))
+                    c["free"] += not row.get("collisions")
+                    c["timeouts"] += row.get("result_status") == "timeout"
+    head = ["pipeline", "runs", "success", "success [%]", "95 % interval [%]", "reached", "collision-free", "timeouts"]
+    with_ref = spec.reference is not None
+    if with_ref:
+        head += ["only reference / only this", "p success vs reference"]
+    table = Table(head)
+    for g, pairs in pooled.items():
+        c = counts[g]
+        k = sum(bool(v) for v in pairs.values())
+        lo, hi = wilson_interval(k, c["runs"])
+        pct = f"{100 * k / c['runs']:.1f}" if c["runs"] else "-"
+        cells = [res.group_name(*g) + (f" ({g[2]})" if len(spec.local_planners) == 1 and g[2] else ""),
+                 f"{c['runs']}/{len(pairs)}", f"{k}/{c['runs']}", pct,
+                 f"{100 * lo:.1f}-{100 * hi:.1f}" if c["runs"] else "-", f"{c['reached']}/{c['runs']}",
+                 f"{c['free']}/{c['runs']}", f"{c['timeouts']}/{c['runs']}"]
+        if with_ref:
+            ref = res.reference_group(g)
+            if ref == g:
+                cells += ["ref", "-"]
+            elif ref in pooled:
+                both = [key for key, v in pairs.items() if v is not None and pooled[ref].get(key) is not None]
+                p, only_ref, only_this = mcnemar_p([pooled[ref][key] for key in both], [pairs[key] for key in both])
+                cells += [f"{only_ref} / {only_this}", f"{p:.3g}"]
+            else:
+                cells += ["-", "-"]
+        table.rows.append(cells)
+    table.notes.append("success: goal reached with zero collisions; interval: Wilson score interval"
+                       + ("; p: exact McNemar test on the runs both pipelines share (same scenario and seed)"
+                          if with_ref else ""))
+    return table
 
 
 def local_runs(res: ExperimentResults) -> list:

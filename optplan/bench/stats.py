@@ -1,6 +1,7 @@
 """Statistics for algorithm comparisons: summary tables and Wilcoxon rank-sum tests
 (chen2025 §4.2, Table 7: ``+`` the reference is significantly better, ``-`` worse,
-``=`` no significant difference at ``alpha``)."""
+``=`` no significant difference at ``alpha``); for success rates, the Wilson score
+interval and an exact McNemar test on runs paired by scenario and seed."""
 from __future__ import annotations
 
 from typing import Mapping, Sequence
@@ -32,6 +33,35 @@ def compare(reference: Sequence[float], other: Sequence[float], alpha: float = 0
     if not np.isfinite(p) or p >= alpha:
         return p, "="
     return p, "+" if np.median(reference) < np.median(other) else "-"
+
+
+def wilson_interval(successes: int, runs: int, confidence: float = 0.95) -> tuple[float, float]:
+    """Wilson score interval of a success rate (``(nan, nan)`` without runs). Unlike the
+    normal approximation it stays inside [0, 1] and is honest at 0 or all successes."""
+    from scipy.stats import norm
+
+    if runs <= 0:
+        return float("nan"), float("nan")
+    z = float(norm.ppf(0.5 + confidence / 2))
+    p = successes / runs
+    centre = (p + z * z / (2 * runs)) / (1 + z * z / runs)
+    half = z / (1 + z * z / runs) * np.sqrt(p * (1 - p) / runs + z * z / (4 * runs * runs))
+    return float(max(0.0, centre - half)), float(min(1.0, centre + half))
+
+
+def mcnemar_p(reference: Sequence[bool], other: Sequence[bool]) -> tuple[float, int, int]:
+    """Exact two-sided McNemar test of two success records paired run by run (same scenario,
+    same seed): ``(p, reference-only successes, other-only successes)``. Only the discordant
+    pairs carry information; under the null each is equally likely to go either way."""
+    from scipy.stats import binomtest
+
+    a, b = np.asarray(reference, bool), np.asarray(other, bool)
+    if a.shape != b.shape:
+        raise ValueError(f"paired success records differ in length: {a.shape} vs {b.shape}")
+    only_ref, only_other = int((a & ~b).sum()), int((~a & b).sum())
+    if only_ref + only_other == 0:
+        return 1.0, 0, 0
+    return float(binomtest(only_ref, only_ref + only_other, 0.5).pvalue), only_ref, only_other
 
 
 def _fmt(x: float) -> str:
