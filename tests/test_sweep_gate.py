@@ -104,6 +104,25 @@ def test_before_a_turn_is_seen_the_mover_may_turn_round_at_once():
     assert np.all(lo <= track.s - 0.5 * T + 1e-9) and np.all(hi >= track.s + 0.5 * T - 1e-9)
 
 
+def test_remembered_intervals_follow_what_each_step_learns():
+    """The intervals are remembered within a step (qp-dwa asks twice) but never across steps:
+    once the turn at 8 s is seen, the next step's interval must use it."""
+    gate = SweepGate()
+    gate.reset(None, RobotState(3.0, 3.0, 0.0), np.zeros((2, 2)))
+    for k in range(0, 80):
+        gate.update(context(round(k * 0.1, 10)))
+    (track,) = gate.tracks
+    before = gate.swept(track, T)
+    assert gate.swept(track, T) is before  # same step: the remembered interval
+    for k in range(80, 83):  # the mover turns round at the far end (8 s)
+        gate.update(context(round(k * 0.1, 10)))
+    assert math.isfinite(track.end_hi) or math.isfinite(track.end_lo)
+    after = gate.swept(track, T)
+    fresh = SweepGate._swept_now(gate, track, T)
+    assert np.array_equal(after[0], fresh[0]) and np.array_equal(after[1], fresh[1])
+    assert not np.array_equal(after[1] - after[0], before[1] - before[0])
+
+
 def test_gate_rejects_passing_close_behind_a_mover_that_may_turn():
     planner = make_local_planner("qp-dwa", ROBOT, 0.1)
     # the robot drives at 0.6 m/s towards x = 6; the mover has just crossed y = 3 going up

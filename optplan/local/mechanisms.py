@@ -355,9 +355,10 @@ class SweepGate(Mechanism):
     tracks: list = field(default_factory=list, init=False)
     _t: float | None = field(default=None, init=False)
     _now: list = field(default_factory=list, init=False)
+    _swept: dict = field(default_factory=dict, init=False)  # this step's intervals (qp-dwa's check reuses them)
 
     def reset(self, planner, state, global_path) -> None:
-        self.tracks, self._t, self._now = [], None, []
+        self.tracks, self._t, self._now, self._swept = [], None, [], {}
 
     def _match(self, p: complex, v: complex, r: float, t: float, dt: float, free: list) -> "_Track | None":
         c = abs(v)
@@ -379,6 +380,7 @@ class SweepGate(Mechanism):
         if self._t is not None and abs(t - self._t) < 1e-12:
             return
         self._t = t
+        self._swept = {}
         self.tracks = [k for k in self.tracks if t - k.t_seen <= self.memory]
         free, now = list(self.tracks), []
         for x, y, vx, vy, r in np.asarray(ctx.dynamic, dtype=float).reshape(-1, 5):
@@ -407,7 +409,14 @@ class SweepGate(Mechanism):
         self._now = now
 
     def swept(self, k: _Track, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """``(lo, hi)`` ``(H,)``: the interval of its line the mover of ``k`` may occupy at ``t``."""
+        """``(lo, hi)`` ``(H,)``: the interval of its line the mover of ``k`` may occupy at ``t``
+        (remembered for the rest of the step: tracks change only in ``update``)."""
+        key = (id(k), len(t), float(t[0]) if len(t) else 0.0, float(t[-1]) if len(t) else 0.0)
+        if key not in self._swept:
+            self._swept[key] = self._swept_now(k, t)
+        return self._swept[key]
+
+    def _swept_now(self, k: _Track, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         reach = k.speed * float(t[-1]) if len(t) else 0.0
         steps = np.linspace(0.0, 0.5 * reach, self.grid + 1)
         his = np.array([k.end_hi]) if math.isfinite(k.end_hi) else np.r_[max(k.seen_hi, k.s) + steps, math.inf]
