@@ -186,6 +186,14 @@ def li2023_global(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path
     return "\n".join(out + _notes(res) + _path_overlays(res, plots_dir)).rstrip("\n") + "\n"
 
 
+def _outcomes(rows: list[dict]) -> tuple[int, int, int, int]:
+    """``(success, reached, collision-free, timeouts)`` among finished closed-loop rows
+    (success: goal reached with zero collisions)."""
+    return (sum(bool(r.get("reached")) and not r.get("collisions") for r in rows),
+            sum(bool(r.get("reached")) for r in rows), sum(not r.get("collisions") for r in rows),
+            sum(r.get("result_status") == "timeout" for r in rows))
+
+
 def closed_loop(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path | None = None) -> str:
     """Closed-loop runs (``op.simulate``): per scenario and pipeline, success (goal reached with
     zero collisions), goal reached, collision-free runs, timeouts, time, distance, clearance and
@@ -214,10 +222,7 @@ def closed_loop(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path |
                 p = "-" if not np.isfinite(pv) else f"{pv:.3g} ({sign})"
             table.rows.append([res.group_name(*g) + (f" ({g[2]})" if len(spec.local_planners) == 1 and g[2] else ""),
                                f"{stored}/{len(recs)}", str(failed),
-                               f"{sum(bool(r.get('reached')) and not r.get('collisions') for r in rows)}/{stored}",
-                               f"{sum(bool(r.get('reached')) for r in rows)}/{stored}",
-                               f"{sum(not r.get('collisions') for r in rows)}/{stored}",
-                               f"{sum(r.get('result_status') == 'timeout' for r in rows)}/{stored}", col("time_s"),
+                               *(f"{n}/{stored}" for n in _outcomes(rows)), col("time_s"),
                                col("path_length"), col("min_clearance", np.min), col("max_abs_accel", np.max),
                                col("max_abs_ang_accel", np.max), col("mean_step_ms"), p])
         errors = {res.rows[r.key]["error"] for recs in groups.values() for r in recs
@@ -237,33 +242,28 @@ def closed_loop_overall(res: ExperimentResults) -> Table:
 
     spec = res.spec
     pooled: dict = {}  # group -> {(target, seed): success or None when not stored}
-    counts: dict = {}
+    finished: dict = {}  # group -> finished rows
     for t in spec.targets:
         for g, recs in res.groups(t.name).items():
-            pairs, c = pooled.setdefault(g, {}), counts.setdefault(g, {"runs": 0, "reached": 0, "free": 0, "timeouts": 0})
+            pairs, rows = pooled.setdefault(g, {}), finished.setdefault(g, [])
             for r in recs:
                 row = res.rows.get(r.key)
                 ok = row is not None and row["status"] == "ok"
                 pairs[(t.name, r.seed)] = res.successful(r) if ok else None
                 if ok:
-                    c["runs"] += 1
-                    c["reached"] += bool(row.get("reached"))
-                    c["free"] += not row.get("collisions")
-                    c["timeouts"] += row.get("result_status") == "timeout"
+                    rows.append(row)
     head = ["pipeline", "runs", "success", "success [%]", "95 % interval [%]", "reached", "collision-free", "timeouts"]
     with_ref = spec.reference is not None
     if with_ref:
         head += ["only reference / only this", "p success vs reference"]
     table = Table(head)
     for g, pairs in pooled.items():
-        c = counts[g]
-        k = sum(bool(v) for v in pairs.values())
-        lo, hi = wilson_interval(k, c["runs"])
-        pct = f"{100 * k / c['runs']:.1f}" if c["runs"] else "-"
+        n = len(finished[g])
+        k, reached, free, timeouts = _outcomes(finished[g])
+        lo, hi = wilson_interval(k, n)
         cells = [res.group_name(*g) + (f" ({g[2]})" if len(spec.local_planners) == 1 and g[2] else ""),
-                 f"{c['runs']}/{len(pairs)}", f"{k}/{c['runs']}", pct,
-                 f"{100 * lo:.1f}-{100 * hi:.1f}" if c["runs"] else "-", f"{c['reached']}/{c['runs']}",
-                 f"{c['free']}/{c['runs']}", f"{c['timeouts']}/{c['runs']}"]
+                 f"{n}/{len(pairs)}", f"{k}/{n}", f"{100 * k / n:.1f}" if n else "-",
+                 f"{100 * lo:.1f}-{100 * hi:.1f}" if n else "-", f"{reached}/{n}", f"{free}/{n}", f"{timeouts}/{n}"]
         if with_ref:
             ref = res.reference_group(g)
             if ref == g:
