@@ -194,6 +194,12 @@ def _outcomes(rows: list[dict]) -> tuple[int, int, int, int]:
             sum(r.get("result_status") == "timeout" for r in rows))
 
 
+def _pipeline_name(res: ExperimentResults, g: tuple) -> str:
+    """A closed-loop table's row name: the group name, with the local planner in brackets when
+    the spec has only one (the group name then leaves it out)."""
+    return res.group_name(*g) + (f" ({g[2]})" if len(res.spec.local_planners) == 1 and g[2] else "")
+
+
 def closed_loop(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path | None = None) -> str:
     """Closed-loop runs (``op.simulate``): per scenario and pipeline, success (goal reached with
     zero collisions), goal reached, collision-free runs, timeouts, time, distance, clearance and
@@ -220,7 +226,7 @@ def closed_loop(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path |
             if ref is not None and ref != g and ref in groups:
                 pv, sign = compare(res.values(groups[ref], "time_s"), res.values(recs, "time_s"), spec.alpha)
                 p = "-" if not np.isfinite(pv) else f"{pv:.3g} ({sign})"
-            table.rows.append([res.group_name(*g) + (f" ({g[2]})" if len(spec.local_planners) == 1 and g[2] else ""),
+            table.rows.append([_pipeline_name(res, g),
                                f"{stored}/{len(recs)}", str(failed),
                                *(f"{n}/{stored}" for n in _outcomes(rows)), col("time_s"),
                                col("path_length"), col("min_clearance", np.min), col("max_abs_accel", np.max),
@@ -261,7 +267,7 @@ def closed_loop_overall(res: ExperimentResults) -> Table:
         n = len(finished[g])
         k, reached, free, timeouts = _outcomes(finished[g])
         lo, hi = wilson_interval(k, n)
-        cells = [res.group_name(*g) + (f" ({g[2]})" if len(spec.local_planners) == 1 and g[2] else ""),
+        cells = [_pipeline_name(res, g),
                  f"{n}/{len(pairs)}", f"{k}/{n}", f"{100 * k / n:.1f}" if n else "-",
                  f"{100 * lo:.1f}-{100 * hi:.1f}" if n else "-", f"{reached}/{n}", f"{free}/{n}", f"{timeouts}/{n}"]
         if with_ref:
