@@ -73,18 +73,23 @@ def main(argv=None) -> int:
     ap.add_argument("scenarios", nargs="*", help="scenario names or files (default: those of dynamic_qp_dwa.yaml)")
     ap.add_argument("--seeds", nargs=2, type=int, default=(0, 50), metavar=("FIRST", "STOP"))
     ap.add_argument("--margin", type=float, default=0.0, help="extra clearance demanded from every mover, m")
-    ap.add_argument("--workers", type=int, default=2)
+    ap.add_argument("--workers", type=int, default=2, help="processes (1: in this process)")
     ap.add_argument("--db", help="results database of `optplan bench` to compare against")
     args = ap.parse_args(argv)
     names = args.scenarios or yaml.safe_load(SPEC.read_text())["scenarios"]
     seeds = range(*args.seeds)
     jobs = [(n, s, args.margin) for n in names for s in seeds]
     t0 = time.perf_counter()
-    with ProcessPoolExecutor(max_workers=max(1, args.workers)) as pool:
-        found = {}
-        for i, (name, seed, ok, t) in enumerate(pool.map(one, jobs, chunksize=1), 1):
+    found = {}
+    pool = ProcessPoolExecutor(max_workers=args.workers) if args.workers > 1 else None
+    try:
+        results = pool.map(one, jobs, chunksize=1) if pool else map(one, jobs)
+        for i, (name, seed, ok, t) in enumerate(results, 1):
             found[(name, seed)] = (ok, t)
             print(f"\r  {i}/{len(jobs)} runs searched", end="", file=sys.stderr, flush=True)
+    finally:
+        if pool:
+            pool.shutdown()
     print(f"\n  {time.perf_counter() - t0:.0f} s", file=sys.stderr)
     planners = planner_rows(args.db, names, seeds) if args.db else {}
 

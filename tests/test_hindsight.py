@@ -48,3 +48,32 @@ def test_bad_paths_and_margins_are_refused():
         hindsight_profile(sc, [[0.5, 3.0]])
     with pytest.raises(ParameterError, match="margin"):
         hindsight_profile(sc, PATH, margin=-0.1)
+
+
+def test_the_benchmark_counts_a_stored_failure_in_an_avoidable_world(tmp_path, capsys):
+    """``benchmarks/closed_loop_hindsight.py --db``: a stored failed run whose world has a
+    hindsight profile is counted as an avoidable failure, a stored success is not."""
+    import importlib.util
+    from pathlib import Path
+
+    from optplan.bench.spec import load_spec
+    from optplan.bench.store import ResultStore
+
+    script = Path(__file__).parents[1] / "benchmarks" / "closed_loop_hindsight.py"
+    spec = importlib.util.spec_from_file_location("closed_loop_hindsight", script)
+    bench = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(bench)
+    recs = load_spec({"kind": "simulate", "scenarios": ["yang2023_idwa_crossing"], "algorithms": ["astar"],
+                      "local_planners": ["dwa", "qp-dwa"], "runs": 1}).expand()
+    db = tmp_path / "runs.sqlite"
+    store = ResultStore(db)
+    for r in recs:
+        won = r.local_planner == "qp-dwa"
+        store.write(r.to_dict(), {"status": "ok", "metrics": {"success": int(won), "time_s": 31.0}})
+    store.conn.close()
+    assert bench.main(["yang2023_idwa_crossing", "--seeds", "0", "1", "--workers", "1", "--db", str(db)]) == 0
+    out = capsys.readouterr().out
+    assert "| yang2023_idwa_crossing | 1 | 1 |" in out
+    row = {line.split("|")[1].strip(): line for line in out.splitlines() if line.startswith("| ")}
+    assert row["dwa"].split("|")[2:6] == [" 1 ", " 0 ", " 1 ", " 1 "]
+    assert row["qp-dwa"].split("|")[2:6] == [" 1 ", " 1 ", " 0 ", " 0 "]
