@@ -46,8 +46,11 @@ Optional keys added by optplan (all validated like the rest):
   ``count`` obstacles drawn from the seed, each driving back and forth along a straight
   segment of the given length range that crosses the reference path (at
   least ``keep_away`` m, default 3, from start and goal) at a random angle of 60-120
-  degrees, with a random phase; segments are kept free of known obstacles by the
-  obstacle radius, away from start and goal, far enough from each other that two
+  degrees, with a random phase; segments are kept free of known obstacles and the border
+  by the obstacle radius (an end that is not is pulled towards the path in steps of 20 %,
+  so tracks near walls end up shorter than the drawn length, down to the larger of 1 m
+  and half the lower length bound: on the 11x11 map of li2023 Experiment II about two
+  tracks in three are shorter than 2 m), away from start and goal, far enough from each other that two
   movers never touch (both radii + 0.1 m), and must cross the reference path once
   (not run along it), so a robot that cannot reverse can always wait outside one
   mover's sweep. Sweeps of different movers may overlap along the path; the robot
