@@ -32,6 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ParameterError
+from ..local.critics import point_at_arc
 from ..world.scenario import Scenario
 
 
@@ -50,16 +51,6 @@ class HindsightProfile:
     time_s: float | None
     path_length: float
     periods: int
-
-
-def _points_along(path: np.ndarray, s: np.ndarray) -> np.ndarray:
-    seg = np.diff(path, axis=0)
-    length = np.hypot(seg[:, 0], seg[:, 1])
-    keep = length > 0
-    seg, length, starts = seg[keep], length[keep], path[:-1][keep]
-    cum = np.r_[0.0, np.cumsum(length)]
-    i = np.clip(np.searchsorted(cum, s, side="right") - 1, 0, len(length) - 1)
-    return starts[i] + seg[i] / length[i, None] * (s - cum[i])[:, None]
 
 
 def hindsight_profile(scenario: Scenario, path, margin: float = 0.0, spacing: float = 0.01) -> HindsightProfile:
@@ -92,8 +83,7 @@ def hindsight_profile(scenario: Scenario, path, margin: float = 0.0, spacing: fl
     # the footprint test on a coarser grid of points, repeated onto the quanta it covers
     stride = max(1, int(spacing / q))
     probe_s = np.arange(0, n_pos, stride) * q
-    probes = _points_along(P, probe_s)
-    # speeds and radii of the movers, for the clearance that covers motion between samples
+    probes = point_at_arc(P, probe_s)  # complex x + i y
     reach = np.zeros((n_speed, n_pos), dtype=bool)
     reach[0, 0] = True
     limit = int(round(scenario.time_limit / dt))
@@ -105,7 +95,7 @@ def hindsight_profile(scenario: Scenario, path, margin: float = 0.0, spacing: fl
             pos, vel = ob.state(t, scenario.bounds)
             closing = (v_max + math.hypot(vel[0], vel[1])) * dt / 2
             clear = ob.radius + robot.radius + margin + closing + stride * q / 2
-            blocked |= np.hypot(probes[:, 0] - pos[0], probes[:, 1] - pos[1]) < clear
+            blocked |= np.abs(probes - complex(pos[0], pos[1])) < clear
         blocked = np.repeat(blocked, stride)[:n_pos]
         new = np.zeros_like(reach)
         for k in np.flatnonzero(reach.any(axis=1)):
