@@ -8,7 +8,7 @@ import pytest
 
 from optplan.local import make_local_planner
 from optplan.local.base import LocalContext
-from optplan.local.mechanisms import SweepGate, bounce
+from optplan.local.mechanisms import SweepGate, bounce, line_reach
 from optplan.sim.closed_loop import simulate
 from optplan.world.robot import RobotSpec, RobotState
 from optplan.world.scenario import load_scenario
@@ -93,7 +93,7 @@ def test_gate_learns_both_turning_points_then_predicts_the_motion():
 
 
 def test_before_a_turn_is_seen_the_mover_may_turn_round_at_once():
-    gate = SweepGate()
+    gate = SweepGate(learn_first=False)  # the interval rule on its own
     gate.reset(None, RobotState(3.0, 3.0, 0.0), np.zeros((2, 2)))
     for k in range(0, 31):  # 3 s heading out from a: no turn seen yet
         gate.update(context(round(k * 0.1, 10)))
@@ -107,7 +107,7 @@ def test_before_a_turn_is_seen_the_mover_may_turn_round_at_once():
 def test_remembered_intervals_follow_what_each_step_learns():
     """The intervals are remembered within a step (qp-dwa asks twice) but never across steps:
     once the turn at 8 s is seen, the next step's interval must use it."""
-    gate = SweepGate()
+    gate = SweepGate(learn_first=False)
     gate.reset(None, RobotState(3.0, 3.0, 0.0), np.zeros((2, 2)))
     for k in range(0, 80):
         gate.update(context(round(k * 0.1, 10)))
@@ -183,3 +183,88 @@ def test_strict_filter_judges_one_trajectory_without_the_fallback():
     assert straight.admissible[0] and straight.mover_free[0]
     assert not gate.strict_filter(planner, straight)[0]
     assert gate.filter(planner, straight)[0]
+
+
+def test_line_reach_stops_at_known_obstacles_and_the_border():
+    wall = lambda p: 8.0 - np.asarray(p)[..., 0]  # a wall at x = 8 (signed distance from it)
+    ctx = LocalContext(state=RobotState(1.0, 1.0, 0.0), subgoal=np.zeros(2), goal=np.zeros(2),
+                       global_path=np.zeros((2, 2)), static_distance=wall, dynamic=np.zeros((0, 5)), dt=0.1,
+                       bounds=(0.0, 0.0, 10.0, 10.0))
+    def within_one_step(got, exact):  # never past the true reach, at most one 5 cm step short
+        return abs(exact) - 0.05 - 1e-9 <= abs(got) <= abs(exact) + 1e-9 and np.sign(got) == np.sign(exact)
+
+    lo, hi = line_reach(ctx, complex(6.0, 3.0), 1.0 + 0j, 0.35)
+    assert within_one_step(hi, 8.0 - 0.35 - 6.0)  # to the wall, less the radius
+    assert within_one_step(lo, -(6.0 - 0.35))      # to the border x = 0
+    lo, hi = line_reach(ctx, complex(6.0, 3.0), 1j, 0.35)  # along the wall: the border only
+    assert within_one_step(lo, -(3.0 - 0.35)) and within_one_step(hi, 10.0 - 0.35 - 3.0)
+    free = LocalContext(state=ctx.state, subgoal=ctx.subgoal, goal=ctx.goal, global_path=ctx.global_path,
+                        static_distance=lambda p: np.full(np.shape(p)[:-1], 10.0), dynamic=ctx.dynamic, dt=0.1)
+    assert line_reach(free, complex(6.0, 3.0), 1j, 0.35) == (-math.inf, math.inf)
+
+
+def crossing_step(t, track_end, **gate):
+    """The robot drives at 0.6 m/s towards x = 6 on y = 3; a mover drives up and down x = 6
+    from y = 4.5 to ``track_end``, seen from t = 0. Returns the step at ``t``, the gate's mask
+    and the mask of samples that reach x = 6."""
+    planner = make_local_planner("qp-dwa", ROBOT, 0.1, sweep_gate=gate)
+    state = RobotState(x=4.6, y=3.0, theta=0.0, v=0.6)
+    planner.reset(state, np.array([[0.5, 3.0], [11.0, 3.0]]))
+    (g,) = [m for m in planner.mechanisms if isinstance(m, SweepGate)]
+    rows = lambda tt: mover_at(tt, a=(6.0, 4.5), b=(6.0, track_end))
+    for k in range(int(round(t / 0.1))):
+        g.update(context(round(k * 0.1, 10), state, rows(k * 0.1)))
+    ctx = context(t, state, rows(t))
+    step = planner.evaluate(ctx, planner.window(ctx))
+    return step, g.strict_filter(planner, step), step.roll.z.real.max(axis=1) > 5.9
+
+
+def test_until_both_ends_are_seen_the_whole_reachable_line_is_kept_clear():
+    # at t = 2 s the mover is at y = 5.5 going up: even turning at once it stays more than
+    # 1 m from y = 3 for the whole horizon, so the interval rule lets the robot cross ...
+    step, keep, crossing = crossing_step(2.0, 8.5, learn_first=False)
+    assert (keep & crossing & step.admissible).any()
+    # ... but its far end is unknown, and so is how far down its line goes: learning first
+    # keeps every sample off the line
+    step, keep, crossing = crossing_step(2.0, 8.5)
+    assert crossing.any() and not (keep & crossing).any()
+    # past learn_time without a turn seen (a 15.5 m track), the interval rule is back
+    step, keep, crossing = crossing_step(23.0, 20.0)
+    assert (keep & crossing & step.admissible).any()
+    step, keep, crossing = crossing_step(23.0, 20.0, learn_time=30.0)
+    assert not (keep & crossing).any()
+
+
+def test_known_ends_replace_the_constant_velocity_prediction():
+    """A mover heading for the end it will turn at (y = 5) does not run on into a robot
+    waiting just beyond it (y = 5.9), as the constant-velocity prediction says it would."""
+    state = RobotState(x=6.0, y=5.9, theta=0.0)
+    verdicts = {}
+    for exact in (True, False):
+        planner = make_local_planner("qp-dwa", ROBOT, 0.1, sweep_gate={"exact": exact})
+        planner.reset(state, np.array([[0.5, 3.0], [11.0, 3.0]]))
+        (g,) = [m for m in planner.mechanisms if isinstance(m, SweepGate)]
+        for k in range(230):  # turns seen at 8 s (y = 5) and 16 s (y = 1)
+            g.update(context(round(k * 0.1, 10), state))
+        (track,) = g.tracks
+        assert track.known
+        ctx = context(23.0, state)  # mover at y = 4.5 going up
+        assert ctx.dynamic[0, 1] == pytest.approx(4.5, abs=1e-3) and ctx.dynamic[0, 3] > 0
+        step = planner._assess(ctx, planner.rollout_of(state, [0.0], [0.0], [0.0]))  # stand still
+        verdicts[exact] = bool(step.mover_free[0])
+        if exact:
+            assert np.abs(step.movers[0].imag - 5.0).min() < 0.06 and step.movers[0].imag.max() <= 5.0 + 1e-9
+    assert verdicts == {True: True, False: False}
+
+
+@pytest.mark.parametrize("rejoin,learnt", [(10.0, True), (1.0, False)])
+def test_a_turn_made_out_of_sight_is_learnt_when_the_mover_comes_back(rejoin, learnt):
+    gate = SweepGate(rejoin=rejoin)
+    gate.reset(None, RobotState(3.0, 3.0, 0.0), np.zeros((2, 2)))
+    for k in range(0, 110):  # unseen from 7 s to 10 s, while it turns round at y = 5 (8 s)
+        t = round(k * 0.1, 10)
+        gate.update(context(t, dynamic=np.zeros((0, 5)) if 7.0 < t < 10.0 else None))
+    (track,) = gate.tracks
+    assert math.isfinite(track.end_hi) == learnt
+    if learnt:
+        assert track.end_hi == pytest.approx(4.0, abs=0.01)

@@ -228,8 +228,14 @@ class DWAPlanner:
 
     def _assess(self, ctx: LocalContext, roll) -> Step:
         o = self.options
+
+        def predict(centres: np.ndarray, t: np.ndarray) -> np.ndarray:
+            for m in self.mechanisms:
+                centres = m.predict(self, ctx, centres, t)
+            return centres
+
         return assess(ctx, self.robot, roll, margin=o["margin"], reaction=self._reaction(), mover_range=o["mover_range"],
-                      mover_growth=o["mover_growth"], growth_cap=o["growth_cap"])
+                      mover_growth=o["mover_growth"], growth_cap=o["growth_cap"], predict=predict)
 
     def _reaction(self) -> float:
         return self.options["reaction"]

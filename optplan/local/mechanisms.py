@@ -5,6 +5,8 @@ Each mechanism hooks into one place of the control step:
 * ``adjust_window``: narrows the dynamic window (hou2024's adaptive velocity, eq 23-24);
 * ``override``: replaces the sampled choice by a fixed manoeuvre for this step
   (li2023's brake-and-wait, §5.4, and initial heading, eq 11);
+* ``predict``: replaces the constant-velocity prediction of movers whose motion it knows
+  better (the sweep gate, once it has seen where a mover turns round);
 * ``filter``: removes samples and reports findings to the cost terms through
   ``step.aux`` (yang2023's velocity-obstacle test, eq 12-14; this project's sweep gate
   of ``qp-dwa``, which keeps the robot off a mover's track while the mover could turn
@@ -42,6 +44,11 @@ class Mechanism:
     def override(self, planner: "DWAPlanner", ctx: LocalContext, window: Window) -> tuple[float, float, dict] | None:
         """``(v_desired, w_desired, info)`` to clip into the window instead of sampling, or ``None``."""
         return None
+
+    def predict(self, planner: "DWAPlanner", ctx: LocalContext, centres: np.ndarray, t: np.ndarray) -> np.ndarray:
+        """Predicted mover centres ``(K, H)`` complex at the rollout times ``t`` (one row per
+        row of ``ctx.dynamic``); ``centres`` is the prediction so far, which may be updated in place."""
+        return centres
 
     def filter(self, planner: "DWAPlanner", step: Step) -> np.ndarray | None:
         """Mask of samples to keep (``None`` = all)."""
@@ -310,6 +317,14 @@ class _Track:
     t_seen: float
     end_lo: float = -math.inf  # turn-round points once seen (infinite: not yet)
     end_hi: float = math.inf
+    reach_lo: float = -math.inf  # farthest the mover can go before it touches a known obstacle
+    reach_hi: float = math.inf
+    first_seen: float = 0.0
+
+    @property
+    def known(self) -> bool:
+        """Both turning points have been seen: the motion is known exactly."""
+        return math.isfinite(self.end_lo) and math.isfinite(self.end_hi)
 
     def along(self, p: complex) -> tuple[float, float]:
         """``(position along the line, distance off the line)`` of ``p``."""
@@ -319,6 +334,27 @@ class _Track:
     def predicted(self, t: float) -> float:
         """Position along the line ``t`` s after it was last seen, turning at known ends only."""
         return float(bounce(self.s, self.heading, self.speed, np.array([t]), self.end_lo, self.end_hi)[0])
+
+
+def line_reach(ctx: LocalContext, p: complex, axis: complex, radius: float, step: float = 0.05,
+               longest: float = 20.0) -> tuple[float, float]:
+    """``(lo, hi)``: how far along ``axis`` (negative, positive) a disc of ``radius`` at
+    ``p`` can slide before it touches a static obstacle the robot knows or the border,
+    to ``step`` metres (infinite if it can go ``longest`` metres)."""
+    d = np.arange(1, int(longest / step) + 1) * step
+    out = []
+    for sign in (-1.0, 1.0):
+        z = p + sign * d * axis
+        blocked = np.asarray(ctx.static_distance(np.stack([z.real, z.imag], axis=1))) < radius
+        if ctx.bounds is not None:
+            x0, y0, x1, y1 = ctx.bounds
+            blocked |= (z.real < x0 + radius) | (z.real > x1 - radius) | (z.imag < y0 + radius) | (z.imag > y1 - radius)
+        if not blocked.any():
+            out.append(sign * math.inf)
+            continue
+        i = int(np.argmax(blocked))
+        out.append(sign * (d[i - 1] if i > 0 else 0.0))
+    return out[0], out[1]
 
 
 @dataclass
@@ -345,6 +381,20 @@ class SweepGate(Mechanism):
     The unknown ends are tried on a grid of ``grid`` points up to half the mover's reach
     over the horizon (farther ends give the same motion within the horizon), and the
     interval is widened by one grid step. This is this project's rule, not a paper's.
+
+    Learning first (``learn_first``): a robot that slips through within the horizon may
+    still have to stop later inside a sweep it has not seen the end of, and be run into
+    there (the commonest failure left with the interval rule alone). So until both turning
+    points of a mover are known, and for at most ``learn_time`` seconds after it was first
+    seen, the gate keeps the robot off the whole stretch of the mover's line it can reach
+    without touching a known obstacle or the border (found on the known map when the track
+    starts). A robot waiting there sees the mover turn at both ends within one period.
+
+    Once both ends are known (``exact``), the contact test and the QP's clearance rows
+    use the mover's back-and-forth motion instead of the constant-velocity prediction,
+    which runs a mover on past the end where it will turn. A turn seen across a gap in
+    sensing (the mover left the sensor range and came back heading the other way, within
+    ``rejoin`` seconds) is learnt with the same formula.
     """
 
     name: ClassVar[str] = "sweep_gate"
@@ -352,13 +402,18 @@ class SweepGate(Mechanism):
     match: float = 0.3       # m: a sensed mover continues a track if it is this close to its prediction
     memory: float = 60.0     # s: tracks of movers unseen for longer are forgotten
     grid: int = 6
+    learn_first: bool = True
+    learn_time: float = 20.0  # s: longest a track's whole reachable line is kept clear
+    exact: bool = True
+    rejoin: float = 10.0      # s: a reversal seen across a sensing gap this long still gives the end
     tracks: list = field(default_factory=list, init=False)
     _t: float | None = field(default=None, init=False)
     _now: list = field(default_factory=list, init=False)
     _swept: dict = field(default_factory=dict, init=False)  # this step's intervals (qp-dwa's check reuses them)
+    _rows: dict = field(default_factory=dict, init=False)    # row of ctx.dynamic -> its track, this step
 
     def reset(self, planner, state, global_path) -> None:
-        self.tracks, self._t, self._now, self._swept = [], None, [], {}
+        self.tracks, self._t, self._now, self._swept, self._rows = [], None, [], {}, {}
 
     def _match(self, p: complex, v: complex, r: float, t: float, dt: float, free: list) -> "_Track | None":
         c = abs(v)
@@ -383,7 +438,8 @@ class SweepGate(Mechanism):
         self._swept = {}
         self.tracks = [k for k in self.tracks if t - k.t_seen <= self.memory]
         free, now = list(self.tracks), []
-        for x, y, vx, vy, r in np.asarray(ctx.dynamic, dtype=float).reshape(-1, 5):
+        self._rows = {}
+        for row, (x, y, vx, vy, r) in enumerate(np.asarray(ctx.dynamic, dtype=float).reshape(-1, 5)):
             p, v = complex(x, y), complex(vx, vy)
             c = abs(v)
             if c < 1e-6:
@@ -391,14 +447,15 @@ class SweepGate(Mechanism):
             k = self._match(p, v, float(r), t, ctx.dt, free)
             if k is None:
                 k = _Track(origin=p, axis=v / c, radius=float(r), speed=c, s=0.0, heading=1.0, seen_lo=0.0,
-                           seen_hi=0.0, t_seen=t)
+                           seen_hi=0.0, t_seen=t, first_seen=t)
+                k.reach_lo, k.reach_hi = line_reach(ctx, p, v / c, float(r))
                 self.tracks.append(k)
             else:
                 free.remove(k)
             s, _ = k.along(p)
             heading = 1.0 if (v * np.conj(k.axis)).real > 0 else -1.0
             elapsed = t - k.t_seen
-            if heading != k.heading and 0 < elapsed <= 5 * ctx.dt + 1e-9:  # it just turned round
+            if heading != k.heading and 0 < elapsed <= self.rejoin + 1e-9:  # it turned round since last seen
                 if k.heading > 0:
                     k.end_hi = max(0.5 * (k.s + s + c * elapsed), k.seen_hi)
                 else:
@@ -406,7 +463,16 @@ class SweepGate(Mechanism):
             k.s, k.heading, k.speed, k.t_seen = s, heading, c, t
             k.seen_lo, k.seen_hi = min(k.seen_lo, s), max(k.seen_hi, s)
             now.append(k)
+            self._rows[row] = k
         self._now = now
+
+    def predict(self, planner, ctx, centres, t):
+        if self.exact:
+            self.update(ctx)
+            for row, k in self._rows.items():
+                if k.known:
+                    centres[row] = k.origin + k.axis * bounce(k.s, k.heading, k.speed, t, k.end_lo, k.end_hi)
+        return centres
 
     def swept(self, k: _Track, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``(lo, hi)`` ``(H,)``: the interval of its line the mover of ``k`` may occupy at ``t``
@@ -417,6 +483,10 @@ class SweepGate(Mechanism):
         return self._swept[key]
 
     def _swept_now(self, k: _Track, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        if self.learn_first and not k.known and self._t - k.first_seen <= self.learn_time:
+            lo = k.end_lo if math.isfinite(k.end_lo) else min(k.reach_lo, k.seen_lo, k.s)
+            hi = k.end_hi if math.isfinite(k.end_hi) else max(k.reach_hi, k.seen_hi, k.s)
+            return np.full(len(t), lo), np.full(len(t), hi)
         reach = k.speed * float(t[-1]) if len(t) else 0.0
         steps = np.linspace(0.0, 0.5 * reach, self.grid + 1)
         his = np.array([k.end_hi]) if math.isfinite(k.end_hi) else np.r_[max(k.seen_hi, k.s) + steps, math.inf]

@@ -18,6 +18,7 @@ broadcast ``(samples, horizon, obstacles)`` array (measured in ``benchmarks/dwa_
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Callable
 
 import numpy as np
 
@@ -231,7 +232,8 @@ def first_hit(hit: np.ndarray) -> np.ndarray:
 
 
 def assess(ctx: LocalContext, robot: RobotSpec, roll: Rollouts, *, margin: float = 0.0, reaction: float = 0.0,
-           mover_range: float = 3.0, mover_growth: float = 0.0, growth_cap: float = 0.0) -> Step:
+           mover_range: float = 3.0, mover_growth: float = 0.0, growth_cap: float = 0.0,
+           predict: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None) -> Step:
     """Clearance of every rollout point, the free distance and the admissibility of every sample.
 
     A rollout point collides when its clearance is below ``margin``; when the robot already
@@ -247,9 +249,13 @@ def assess(ctx: LocalContext, robot: RobotSpec, roll: Rollouts, *, margin: float
             grow by ``mover_growth * (fastest mover's speed) * t`` up to ``growth_cap`` metres:
             a mover may turn or reverse (waypoint movers do), which the constant-velocity
             prediction does not see. The contact test uses the plain prediction.
+        predict: ``(centres (K, H), t) -> centres``: replaces the constant-velocity
+            prediction of movers whose motion is known better (a planner's mechanisms).
     """
     static_gap = np.asarray(ctx.static_distance(roll.xy), dtype=float) - robot.radius
     movers, vel, radii = predict_movers(ctx.dynamic, roll.t)
+    if predict is not None:
+        movers = predict(movers, roll.t)
     keep = relevant_movers(roll.z0, movers, radii, roll.t, roll.max_speed, robot.radius,
                            max(mover_range, margin) + growth_cap)
     dyn_gap = dynamic_gaps(roll.z, movers[keep], radii[keep], robot.radius)
