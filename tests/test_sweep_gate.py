@@ -268,3 +268,17 @@ def test_a_turn_made_out_of_sight_is_learnt_when_the_mover_comes_back(rejoin, le
     assert math.isfinite(track.end_hi) == learnt
     if learnt:
         assert track.end_hi == pytest.approx(4.0, abs=0.01)
+
+
+def test_no_end_is_guessed_when_the_mover_may_have_turned_three_times_out_of_sight():
+    """A 1 m track at 0.5 m/s, seen for 1.5 s, then unseen for 5.8 s (turns at 2, 4 and 6 s):
+    the one-turn formula would put the far end at 2 m; the gate learns nothing instead."""
+    rows = lambda t: mover_at(t, a=(6.0, 1.0), b=(6.0, 2.0))
+    gate = SweepGate()
+    gate.reset(None, RobotState(3.0, 3.0, 0.0), np.zeros((2, 2)))
+    for k in range(0, 74):
+        t = round(k * 0.1, 10)
+        gate.update(context(t, dynamic=np.zeros((0, 5)) if 1.5 < t < 7.3 else rows(t)))
+    (track,) = gate.tracks
+    assert track.heading < 0  # it came back heading the other way
+    assert not math.isfinite(track.end_hi) and not math.isfinite(track.end_lo)

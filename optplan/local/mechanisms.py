@@ -335,6 +335,10 @@ class _Track:
         """Position along the line ``t`` s after it was last seen, turning at known ends only."""
         return float(bounce(self.s, self.heading, self.speed, np.array([t]), self.end_lo, self.end_hi)[0])
 
+    def centres(self, t: np.ndarray) -> np.ndarray:
+        """Complex centres ``t`` s after it was last seen, turning at known ends only."""
+        return self.origin + self.axis * bounce(self.s, self.heading, self.speed, t, self.end_lo, self.end_hi)
+
 
 def line_reach(ctx: LocalContext, p: complex, axis: complex, radius: float, step: float = 0.05,
                longest: float = 20.0) -> tuple[float, float]:
@@ -455,7 +459,10 @@ class SweepGate(Mechanism):
             s, _ = k.along(p)
             heading = 1.0 if (v * np.conj(k.axis)).real > 0 else -1.0
             elapsed = t - k.t_seen
-            if heading != k.heading and 0 < elapsed <= self.rejoin + 1e-9:  # it turned round since last seen
+            # a reversal since it was last seen means one turn, unless (after a gap in sensing) it
+            # had time to cover what it was seen on twice and turn three times
+            one_turn = elapsed <= 5 * ctx.dt + 1e-9 or (elapsed <= self.rejoin and c * elapsed < 2 * (k.seen_hi - k.seen_lo))
+            if heading != k.heading and 0 < elapsed and one_turn:
                 if k.heading > 0:
                     k.end_hi = max(0.5 * (k.s + s + c * elapsed), k.seen_hi)
                 else:
@@ -471,7 +478,7 @@ class SweepGate(Mechanism):
             self.update(ctx)
             for row, k in self._rows.items():
                 if k.known:
-                    centres[row] = k.origin + k.axis * bounce(k.s, k.heading, k.speed, t, k.end_lo, k.end_hi)
+                    centres[row] = k.centres(t)
         return centres
 
     def swept(self, k: _Track, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
