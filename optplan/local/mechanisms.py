@@ -500,7 +500,7 @@ class SweepGate(Mechanism):
         los = np.array([k.end_lo]) if math.isfinite(k.end_lo) else np.r_[min(k.seen_lo, k.s) - steps, -math.inf]
         pos = bounce(k.s, k.heading, k.speed, t, los[None, :], his[:, None]).reshape(-1, len(t))
         lo, hi = pos.min(axis=0), pos.max(axis=0)
-        if math.isfinite(k.end_hi) and math.isfinite(k.end_lo):
+        if k.known:
             return lo, hi
         slack = 0.5 * reach / self.grid
         return lo - slack, hi + slack

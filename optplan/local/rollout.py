@@ -10,7 +10,8 @@ so ``z_k = z_0 + dt (v + i vy) C_k(w)`` with ``C_k(w) = sum_{j<k} exp(i theta_j)
 computed once per sampled yaw rate and scaled by every linear velocity: the whole
 samples x horizon rollout is one complex multiplication.
 
-Moving obstacles are predicted at constant velocity along the horizon. Their clearance is
+Moving obstacles are predicted at constant velocity along the horizon (``assess`` lets a
+planner's mechanisms replace that for movers they know better). Their clearance is
 accumulated one obstacle at a time over the full samples x horizon array: with ~10
 obstacles this keeps the working set in cache and is several times faster than one
 broadcast ``(samples, horizon, obstacles)`` array (measured in ``benchmarks/dwa_step.py``).
@@ -248,7 +249,7 @@ def assess(ctx: LocalContext, robot: RobotSpec, roll: Rollouts, *, margin: float
         mover_growth, growth_cap: for the cost terms (``Step.gap``) the predicted movers' discs
             grow by ``mover_growth * (fastest mover's speed) * t`` up to ``growth_cap`` metres:
             a mover may turn or reverse (waypoint movers do), which the constant-velocity
-            prediction does not see. The contact test uses the plain prediction.
+            prediction does not see. The contact test uses the prediction without growth.
         predict: ``(centres (K, H), t) -> centres``: replaces the constant-velocity
             prediction of movers whose motion is known better (a planner's mechanisms).
     """
