@@ -81,7 +81,8 @@ def test_visibility_centre_mode_never_longer_than_octile(shared_data, name):
 
 
 def test_corner_cutting_matches_the_reference_table(shared_data):
-    table = list(csv.DictReader(open(shared_data / "papermaps/reference_lengths_computed_here.csv")))
+    with open(shared_data / "papermaps/reference_lengths_computed_here.csv", newline="") as f:
+        table = list(csv.DictReader(f))
     assert len(table) >= 14
     for row in table:
         grid = op.load_map(shared_data / "papermaps" / f"{row['map']}.txt")
