@@ -171,14 +171,7 @@ class SimEnvironment:
             if len(cells):
                 occ[cells[:, 1], cells[:, 0]] = True
             if len(circles):
-                iy, ix = np.mgrid[0:occ.shape[0], 0:occ.shape[1]]
-                lo = sc.world.to_world(np.stack([ix, iy], -1).reshape(-1, 2).astype(float))
-                # a cell is blocked when the disc reaches into it (square-to-disc distance < 0)
-                gap = np.stack([np.maximum(np.maximum(lo[:, None, k] - circles[None, :, k],
-                                                      circles[None, :, k] - lo[:, None, k] - self.res), 0.0)
-                                for k in (0, 1)], -1)
-                near = np.any(np.hypot(gap[..., 0], gap[..., 1]) < circles[None, :, 2], axis=1)
-                occ |= near.reshape(occ.shape)
+                occ |= sc.world.cells_touched_by_discs(circles[:, :3])
             return GridMap(occ, sc.world.resolution, sc.world.origin, f"{sc.world.name}+sensed")
         circles = self.sensed_circle_rows
         if not len(circles):

@@ -151,6 +151,20 @@ class GridMap:
 
         return segments_free(self, a, b, clearance)
 
+    def cells_touched_by_discs(self, discs) -> np.ndarray:
+        """``(height, width)`` mask of the cells that any disc ``(x, y, r)`` (rows, metres)
+        reaches into (square-to-disc distance below ``r``)."""
+        d = np.asarray(discs, dtype=float).reshape(-1, 3)
+        touched = np.zeros(self.occ.shape, dtype=bool)
+        if not len(d):
+            return touched
+        iy, ix = np.mgrid[0:self.height, 0:self.width]
+        lo = self.to_world(np.stack([ix, iy], -1).reshape(-1, 2).astype(float))
+        res = self.resolution
+        gap = np.stack([np.maximum(np.maximum(lo[:, None, k] - d[None, :, k], d[None, :, k] - lo[:, None, k] - res), 0.0)
+                        for k in (0, 1)], -1)
+        return np.any(np.hypot(gap[..., 0], gap[..., 1]) < d[None, :, 2], axis=1).reshape(self.occ.shape)
+
     def inflate(self, margin: float) -> "GridMap":
         """A new map whose blocked cells also include every cell closer than ``margin``
         metres (square-to-square distance) to a blocked cell or the map border.
