@@ -119,6 +119,50 @@ def test_navigator_switches_when_a_sensed_obstacle_blocks_the_path():
     assert bool(op.validate_path(believed, nav2.path, 0.2))
 
 
+def test_a_blocked_path_is_replanned_after_the_stuck_budget_is_spent():
+    # a robot that waited out its stuck re-plans (movers crossing) must still go round an
+    # obstacle it senses later (hou2024_dynamic4 runs ended 'stuck' against such a cell)
+    grid = two_corridor_map()
+    nav = Navigator(grid, RobotSpec(radius=0.2), (1.5, 7.5), (13.5, 7.5), on_blocked="replan", max_replans=1)
+    nav.plan_initial()
+    here = np.array([3.5, 7.5])
+    assert nav.recover_stuck(grid, here, 10.0) and not nav.recover_stuck(grid, here, 20.0)
+    assert nav.gave_up and nav.stuck_replans == 1
+    believed = blocked_upper_corridor(grid, nav.path)
+    assert nav.path_blocked(believed, here)
+    assert nav.on_new_obstacles(believed, here, 25.0)
+    assert bool(op.validate_path(believed, nav.path, 0.2)) and not nav.path_blocked(believed, here)
+    assert nav.replans == 2 and nav.stuck_replans == 1
+
+def distance_to_segment(points: np.ndarray, a, b) -> np.ndarray:
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    t = np.clip((points - a) @ (b - a) / float((b - a) @ (b - a)), 0.0, 1.0)
+    return np.hypot(*(points - (a + t[:, None] * (b - a))).T)
+
+
+def test_stuck_recovery_plans_round_the_mover_sweeps_it_is_given():
+    grid = two_corridor_map()
+    start, goal = (3.5, 7.5), (13.5, 7.5)
+    nav = Navigator(grid, RobotSpec(radius=0.2), start, goal, max_replans=3)
+    nav.plan_initial()
+    assert nav.path[:, 1].min() > 6.5  # the short way: the upper door (7, 7)
+    # a 0.35 m mover sweeping x = 8.5 from y = 6 to the top wall, just behind the upper door
+    sweep = np.array([[8.5, 6.0, 8.5, 9.0, 0.35]])
+    here = np.array(start)
+    assert nav.recover_stuck(grid, here, 10.0)  # without the sweep: the same way again
+    assert nav.path[:, 1].min() > 6.5
+    assert nav.recover_stuck(grid, here, 20.0, avoid=sweep)
+    assert nav.path[:, 1].min() < 2.5  # round by the lower door
+    assert bool(op.validate_path(grid, nav.path, 0.2))
+    dense = np.vstack([np.linspace(p, q, 50) for p, q in zip(nav.path[:-1], nav.path[1:])])
+    assert distance_to_segment(dense, sweep[0, :2], sweep[0, 2:4]).min() > 0.35
+    assert "round 1 mover sweep" in nav.messages[-1]
+    assert nav.stuck_replans == 2 and nav.replans == 2
+    # a sweep with no way round (it closes both doors): the plain re-plan is the fallback
+    both = np.vstack([sweep, [[8.5, 0.0, 8.5, 3.0, 0.35]]])
+    assert nav.recover_stuck(grid, here, 30.0, avoid=both)
+    assert nav.path[:, 1].min() > 6.5 and "round" not in nav.messages[-1]
+
 def test_global_plan_keeps_the_robot_radius_and_extends_to_exact_ends():
     grid = two_corridor_map()
     nav = Navigator(grid, RobotSpec(radius=0.3), (1.2, 7.3), (13.5, 7.5))

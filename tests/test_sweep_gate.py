@@ -90,6 +90,19 @@ def test_gate_learns_both_turning_points_then_predicts_the_motion():
     sign = 1.0 if track.axis.imag > 0 else -1.0
     predicted_y = track.origin.imag + sign * lo
     assert np.abs(predicted_y - truth).max() < 0.02
+    # the learnt sweep, for the navigation layer's stuck recovery: a 0.35 m disc from a to b
+    (row,) = gate.sweeps()
+    ends = sorted([tuple(row[:2]), tuple(row[2:4])], key=lambda p: p[1])
+    assert np.allclose(ends, [(6.0, 1.0), (6.0, 5.0)], atol=0.02) and row[4] == pytest.approx(0.35)
+
+
+def test_a_track_with_an_unseen_end_is_not_reported_as_a_sweep():
+    gate = SweepGate()
+    gate.reset(None, RobotState(3.0, 3.0, 0.0), np.zeros((2, 2)))
+    for k in range(0, 120):  # 12 s: one turn (at b, 8 s) seen, the other not yet
+        gate.update(context(round(k * 0.1, 10)))
+    assert len(gate.tracks) == 1 and not gate.tracks[0].known
+    assert gate.sweeps().shape == (0, 5)
 
 
 def test_before_a_turn_is_seen_the_mover_may_turn_round_at_once():
@@ -282,3 +295,13 @@ def test_no_end_is_guessed_when_the_mover_may_have_turned_three_times_out_of_sig
     (track,) = gate.tracks
     assert track.heading < 0  # it came back heading the other way
     assert not math.isfinite(track.end_hi) and not math.isfinite(track.end_lo)
+
+
+def test_a_robot_held_beside_a_busy_sweep_goes_round_it():
+    """li2023_exp2_4, seed 14: next to the start a mover sweeps 1.1 m back and forth
+    across the path every 4.9 s. This robot (0.2 m/s^2) needs about 3.7 s from rest to
+    cross the band, and the gap between two passes lasts about 1.5 s, so it used to wait
+    there until its stuck re-plans ran out (status "stuck"). The stuck re-plan now treats
+    the learnt sweep as an obstacle and finds the way north round the block."""
+    res = simulate("li2023_exp2_4", global_planner="astar", local_planner="qp-dwa", seed=14)
+    assert res.reached and res.collisions == 0 and res.replans >= 1

@@ -318,6 +318,11 @@ class DWAPlanner:
         self.last = cmd
         return cmd
 
+    def mover_sweeps(self) -> np.ndarray:
+        """``(n, 5)`` rows ``(x0, y0, x1, y1, r)``: stretches the mechanisms know movers sweep
+        back and forth (the navigation layer's stuck recovery plans round them)."""
+        return np.vstack([np.zeros((0, 5))] + [m.sweeps() for m in self.mechanisms])
+
     def finish(self, ctx: LocalContext, window: Window, u: tuple[float, float, float], step: Step | None,
                info: dict) -> tuple[float, float, float]:
         """Last stage of a step (``qp-dwa`` refines and limits the command here)."""

@@ -63,6 +63,11 @@ class Mechanism:
         """What this step's ``filter`` found, for ``Command.info`` (empty by default)."""
         return {}
 
+    def sweeps(self) -> np.ndarray:
+        """``(n, 5)`` rows ``(x0, y0, x1, y1, r)``: stretches movers are known to sweep back
+        and forth (a disc of radius ``r`` between the two ends); none by default."""
+        return np.zeros((0, 5))
+
 
 @dataclass
 class AdaptiveVelocity(Mechanism):
@@ -546,6 +551,15 @@ class SweepGate(Mechanism):
 
     def report(self, step) -> dict:
         return {"gate_rejected": step.aux["gate_rejected"]} if "gate_rejected" in step.aux else {}
+
+    def sweeps(self) -> np.ndarray:
+        """The remembered tracks whose two turning points are known (see :meth:`Mechanism.sweeps`)."""
+        rows = []
+        for k in self.tracks:
+            if k.known:
+                a, b = k.origin + k.axis * k.end_lo, k.origin + k.axis * k.end_hi
+                rows.append((a.real, a.imag, b.real, b.imag, k.radius))
+        return np.array(rows, dtype=float).reshape(-1, 5)
 
 
 MECHANISMS: dict[str, type[Mechanism]] = {m.name: m for m in (

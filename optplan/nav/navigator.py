@@ -16,7 +16,10 @@ planner during one closed-loop run:
   and li2023 do this);
 * stuck recovery: when the robot has moved less than ``stuck_distance`` in the last
   ``stuck_time`` seconds, the path is re-planned from where it is (at most
-  ``max_replans`` times in a run).
+  ``max_replans`` times in a run). Re-plans for a blocked path do not count against that
+  budget: they follow newly sensed obstacles, so there is at most one per sensing event,
+  and a robot that has spent its stuck re-plans waiting for movers to pass must still
+  be able to go round an obstacle it sees later.
 
 Re-plans use fast exact graph search (``astar`` on grids, ``visibility`` on circle
 worlds) on the believed world, not the global metaheuristic: a re-plan must be
@@ -63,7 +66,8 @@ class Navigator:
         subgoals: strategy name or a :class:`SubgoalStrategy`.
         on_blocked: ``"switch"``, ``"replan"`` or ``"ignore"``.
         stuck_time, stuck_distance: seconds and metres of the stuck test.
-        max_replans: re-plans allowed in a run (blocked path or stuck).
+        max_replans: stuck re-plans allowed in a run (re-plans for a blocked path are not
+            limited: each follows newly sensed obstacles).
         global_options: extra keyword arguments for ``op.plan`` (``pop``, ``iters``, ...).
         subgoal_options: keyword arguments of the strategy (``switch_radius``, ...).
     """
@@ -92,6 +96,7 @@ class Navigator:
         self.strategy = subgoals if isinstance(subgoals, SubgoalStrategy) else \
             make_strategy(subgoals, robot.radius, **(subgoal_options or {}))
         self.replans = 0
+        self.stuck_replans = 0
         self.switches = 0
         self.messages: list[str] = []
         self.plan_result: PlanResult | None = None
@@ -173,7 +178,7 @@ class Navigator:
 
     def on_new_obstacles(self, believed_world, position, t: float) -> bool:
         """React to newly sensed static obstacles; True when the global path changed."""
-        if self.on_blocked == "ignore" or self.replans >= self.max_replans:
+        if self.on_blocked == "ignore":
             return False
         if not self.path_blocked(believed_world, position):
             return False
@@ -197,25 +202,83 @@ class Navigator:
         self._adopt(route, believed_world)
         return True
 
+    def recover_stuck(self, believed_world, position, t: float, avoid=None) -> bool:
+        """Stuck recovery: re-plan from ``position`` while the ``max_replans`` budget lasts;
+        False when it is spent or the re-plan failed (the attempt counts).
+
+        ``avoid``: ``(n, 5)`` rows ``(x0, y0, x1, y1, r)`` of stretches the movers sweep
+        back and forth (a disc of radius ``r`` sliding from one end to the other), as the
+        local planner has learnt them. A robot held up that long is usually waiting at a
+        sweep it cannot cross between two passes (a sluggish robot next to a short, busy
+        track), and the plain re-plan gives the same path back; so the re-plan first
+        treats those sweeps as obstacles and takes a route round them if there is one."""
+        if self.stuck_replans >= self.max_replans:
+            return False
+        self.stuck_replans += 1
+        avoid = np.asarray(avoid if avoid is not None else np.zeros((0, 5)), float).reshape(-1, 5)
+        if len(avoid):
+            around = self._without_sweeps(believed_world, avoid, np.asarray(position, float))
+            res = None if around is None else self._plan_from(around, position, (self.robot.radius, 0.0))
+            if res is not None:
+                self.replans += 1
+                self.messages.append(f"t={t:.1f}s: re-planned round {len(avoid)} mover sweep(s) (stuck)")
+                self._adopt(self._with_ends(res.path, np.asarray(position, float)), around)
+                return True
+        return self.replan(believed_world, position, t, why="stuck")
+
+    @staticmethod
+    def _without_sweeps(world, sweeps: np.ndarray, position: np.ndarray):
+        """``world`` with the mover sweeps (capsules) blocked, or ``None`` where that is not
+        representable. On a grid the cells a capsule reaches into are blocked, except the
+        robot's own cell (the robot waits beside the sweep, often in a cell it touches)."""
+        discs = []
+        for x0, y0, x1, y1, r in sweeps:  # a capsule as discs r/2 apart (scallops < 0.04 r deep)
+            n = max(1, int(np.ceil(np.hypot(x1 - x0, y1 - y0) / (0.5 * r))))
+            f = np.linspace(0.0, 1.0, n + 1)
+            discs.append(np.stack([x0 + f * (x1 - x0), y0 + f * (y1 - y0), np.full(n + 1, r)], axis=1))
+        discs = np.vstack(discs)
+        if hasattr(world, "occ"):
+            from ..world.grid import GridMap
+
+            occ = world.occ | world.cells_touched_by_discs(discs)
+            ix, iy = world.cell_of(position)
+            if world.in_map(np.array([ix, iy])):
+                occ[iy, ix] = world.occ[iy, ix]
+            return GridMap(occ, world.resolution, world.origin, f"{world.name}+sweeps")
+        if hasattr(world, "circles"):
+            from ..world.circles import CircleWorld
+
+            return CircleWorld(world.bounds, np.vstack([world.circles, discs]), world.safety, f"{world.name}+sweeps")
+        return None
+
+    @property
+    def gave_up(self) -> bool:
+        """Every stuck re-plan has been used."""
+        return self.stuck_replans >= self.max_replans
+
     def replan(self, believed_world, position, t: float, why: str) -> bool:
         """Plan again from ``position`` on ``believed_world`` with exact graph search."""
-        if self.replans >= self.max_replans:
+        res = self._plan_from(believed_world, position, (self.robot.radius, 0.0))
+        self.replans += 1  # a failed attempt counts too, so a hopeless situation ends
+        if res is None:
+            self.messages.append(f"t={t:.1f}s: re-planning failed ({why})")
             return False
+        self.messages.append(f"t={t:.1f}s: re-planned ({why})")
+        self._adopt(self._with_ends(res.path, np.asarray(position, float)), believed_world)
+        return True
+
+    def _plan_from(self, world, position, clearances) -> PlanResult | None:
+        """The first valid path from ``position`` to the goal on ``world`` with one of
+        ``clearances`` (exact graph search), or ``None``."""
         method = "astar" if self.is_grid else "visibility"
-        position = np.asarray(position, float)
-        for clearance in (self.robot.radius, 0.0):
+        for clearance in clearances:
             try:
-                res = plan(believed_world, position, self.goal, algorithm=method, clearance=clearance)
+                res = plan(world, np.asarray(position, float), self.goal, algorithm=method, clearance=clearance)
             except OptplanError:
                 continue
             if res.feasible:
-                self.replans += 1
-                self.messages.append(f"t={t:.1f}s: re-planned ({why})")
-                self._adopt(self._with_ends(res.path, position), believed_world)
-                return True
-        self.replans += 1  # count the attempt so a hopeless situation ends
-        self.messages.append(f"t={t:.1f}s: re-planning failed ({why})")
-        return False
+                return res
+        return None
 
     def check_stuck(self, position, t: float, dt: float) -> bool:
         """Record the position; True when the robot stayed within ``stuck_distance`` of

@@ -97,7 +97,8 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
             subgoals: strategy name (``goal``, ``key_points``, ``turning_points``,
                 ``navigation_points``); default: the local preset's paper default.
             on_blocked: ``switch`` / ``replan`` / ``ignore``; default per preset.
-            stuck_time (10 s), stuck_distance (0.3 m), max_replans (5): stuck recovery.
+            stuck_time (10 s), stuck_distance (0.3 m), max_replans (5): stuck recovery (re-plans
+                for a blocked path are not limited).
             stop_on_collision (False): end the run at the first collision.
             actuator_limits (False): clip commands to the speed/acceleration limits.
             planner_params: keyword arguments for ``make_local_planner``.
@@ -160,8 +161,9 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
             status = "reached"
             break
         if nav.check_stuck(pos, t, dt):
-            if not nav.replan(env.believed_world(), pos, t, why="stuck"):
-                if nav.replans >= nav.max_replans:
+            sweeps = planner.mover_sweeps() if hasattr(planner, "mover_sweeps") else None
+            if not nav.recover_stuck(env.believed_world(), pos, t, avoid=sweeps):
+                if nav.gave_up:
                     status = "stuck"
                     break
         c, s_ = np.cos(state.theta), np.sin(state.theta)
