@@ -5,7 +5,9 @@ import numpy as np
 import pytest
 
 import optplan as op
+from optplan.errors import ParameterError
 from optplan.nav import Navigator, VirtualPointGraph, make_strategy, velocity_obstacle_hits
+from optplan.nav.navigator import segment_distance
 from optplan.world.robot import RobotSpec
 
 
@@ -134,12 +136,6 @@ def test_a_blocked_path_is_replanned_after_the_stuck_budget_is_spent():
     assert bool(op.validate_path(believed, nav.path, 0.2)) and not nav.path_blocked(believed, here)
     assert nav.replans == 2 and nav.stuck_replans == 1
 
-def distance_to_segment(points: np.ndarray, a, b) -> np.ndarray:
-    a, b = np.asarray(a, float), np.asarray(b, float)
-    t = np.clip((points - a) @ (b - a) / float((b - a) @ (b - a)), 0.0, 1.0)
-    return np.hypot(*(points - (a + t[:, None] * (b - a))).T)
-
-
 def test_stuck_recovery_plans_round_the_mover_sweeps_it_is_given():
     grid = two_corridor_map()
     start, goal = (3.5, 7.5), (13.5, 7.5)
@@ -155,13 +151,40 @@ def test_stuck_recovery_plans_round_the_mover_sweeps_it_is_given():
     assert nav.path[:, 1].min() < 2.5  # round by the lower door
     assert bool(op.validate_path(grid, nav.path, 0.2))
     dense = np.vstack([np.linspace(p, q, 50) for p, q in zip(nav.path[:-1], nav.path[1:])])
-    assert distance_to_segment(dense, sweep[0, :2], sweep[0, 2:4]).min() > 0.35
+    assert segment_distance(dense, sweep[0, :2], sweep[0, 2:4]).min() > 0.35
     assert "round 1 mover sweep" in nav.messages[-1]
     assert nav.stuck_replans == 2 and nav.replans == 2
     # a sweep with no way round (it closes both doors): the plain re-plan is the fallback
     both = np.vstack([sweep, [[8.5, 0.0, 8.5, 3.0, 0.35]]])
     assert nav.recover_stuck(grid, here, 30.0, avoid=both)
     assert nav.path[:, 1].min() > 6.5 and "round" not in nav.messages[-1]
+
+
+def test_a_learnt_sweep_across_the_path_is_avoided_when_the_way_round_is_short_enough():
+    grid = two_corridor_map()
+    start, goal = (3.5, 7.5), (13.5, 7.5)
+    sweep = np.array([[8.5, 6.0, 8.5, 9.0, 0.35]])  # behind the upper door, as above
+    here = np.array(start)
+    # the way by the lower door is about 1.4 times as long from here
+    refused = Navigator(grid, RobotSpec(radius=0.2), start, goal, sweep_detour=1.2)
+    refused.plan_initial()
+    assert not refused.on_sweeps(grid, here, 5.0, sweep) and refused.path[:, 1].min() > 6.5
+    off = Navigator(grid, RobotSpec(radius=0.2), start, goal, sweep_detour=None)
+    off.plan_initial()
+    assert not off.on_sweeps(grid, here, 5.0, sweep)
+    nav = Navigator(grid, RobotSpec(radius=0.2), start, goal, sweep_detour=2.0)
+    nav.plan_initial()
+    assert not nav.on_sweeps(grid, here, 5.0, np.zeros((0, 5)))
+    assert nav.on_sweeps(grid, here, 5.0, sweep)
+    assert nav.path[:, 1].min() < 2.5 and bool(op.validate_path(grid, nav.path, 0.2))
+    assert "the path crossed one" in nav.messages[-1] and nav.replans == 1
+    assert not nav.on_sweeps(grid, here, 6.0, sweep)  # nothing new learnt: no re-plan
+    # a sweep nowhere near the path changes nothing
+    far = Navigator(grid, RobotSpec(radius=0.2), start, goal, sweep_detour=2.0)
+    far.plan_initial()
+    assert not far.on_sweeps(grid, here, 5.0, np.array([[11.0, 1.0, 12.0, 1.0, 0.35]]))
+    with pytest.raises(ParameterError):
+        Navigator(grid, RobotSpec(radius=0.2), start, goal, sweep_detour=0.5)
 
 def test_global_plan_keeps_the_robot_radius_and_extends_to_exact_ends():
     grid = two_corridor_map()

@@ -19,7 +19,11 @@ planner during one closed-loop run:
   ``max_replans`` times in a run). Re-plans for a blocked path do not count against that
   budget: they follow newly sensed obstacles, so there is at most one per sensing event,
   and a robot that has spent its stuck re-plans waiting for movers to pass must still
-  be able to go round an obstacle it sees later.
+  be able to go round an obstacle it sees later;
+* mover sweeps: a local planner that learns where movers drive back and forth
+  (``qp-dwa``'s sweep gate, ``mover_sweeps()``) hands the sweeps over; when the path
+  crosses one, the route round them is taken if it is at most ``sweep_detour`` times as
+  long, and a stuck re-plan tries the way round them first.
 
 Re-plans use fast exact graph search (``astar`` on grids, ``visibility`` on circle
 worlds) on the believed world, not the global metaheuristic: a re-plan must be
@@ -48,6 +52,14 @@ PRESET_DEFAULTS = {
 ON_BLOCKED = ("switch", "replan", "ignore")
 
 
+def segment_distance(points: np.ndarray, a, b) -> np.ndarray:
+    """Distance (m) from each point ``(n, 2)`` to the segment ``a``-``b``."""
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    ab = b - a
+    t = np.clip((points - a) @ ab / max(float(ab @ ab), 1e-12), 0.0, 1.0)
+    return np.hypot(*(points - (a + t[:, None] * ab)).T)
+
+
 def preset_defaults(local_name: str) -> tuple[str, str]:
     """``(subgoal strategy, on_blocked)`` used for a local planner name."""
     return PRESET_DEFAULTS.get(local_name, ("key_points", "replan"))
@@ -70,12 +82,15 @@ class Navigator:
             limited: each follows newly sensed obstacles).
         global_options: extra keyword arguments for ``op.plan`` (``pop``, ``iters``, ...).
         subgoal_options: keyword arguments of the strategy (``switch_radius``, ...).
+        sweep_detour: longest route round learnt mover sweeps, as a multiple of the rest of
+            the path (:meth:`on_sweeps`); ``None`` keeps crossing them.
     """
 
     def __init__(self, world, robot, start, goal, global_planner: str = "astar", refine: str | None = None,
                  seed=0, subgoals: str | SubgoalStrategy = "key_points", on_blocked: str = "replan",
                  stuck_time: float = 10.0, stuck_distance: float = 0.3, max_replans: int = 5,
-                 global_options: dict | None = None, subgoal_options: dict | None = None):
+                 global_options: dict | None = None, subgoal_options: dict | None = None,
+                 sweep_detour: float | None = 1.5):
         if on_blocked not in ON_BLOCKED:
             raise ParameterError(f"on_blocked must be one of {', '.join(ON_BLOCKED)}, got {on_blocked!r}")
         self.world = world
@@ -92,11 +107,19 @@ class Navigator:
         self.stuck_time = float(stuck_time)
         self.stuck_distance = float(stuck_distance)
         self.max_replans = int(max_replans)
+        if sweep_detour in (None, False, 0):
+            sweep_detour = None
+        elif isinstance(sweep_detour, bool) or not isinstance(sweep_detour, (int, float)) or not sweep_detour >= 1:
+            raise ParameterError(f"sweep_detour must be a number >= 1 (longest detour, as a multiple of the rest of "
+                                 f"the path) or None to keep crossing sweeps, got {sweep_detour!r}")
+        self.sweep_detour = None if sweep_detour is None else float(sweep_detour)
         self.global_options = dict(global_options or {})
         self.strategy = subgoals if isinstance(subgoals, SubgoalStrategy) else \
             make_strategy(subgoals, robot.radius, **(subgoal_options or {}))
         self.replans = 0
         self.stuck_replans = 0
+        self._n_sweeps = 0
+        self._went_round = False
         self.switches = 0
         self.messages: list[str] = []
         self.plan_result: PlanResult | None = None
@@ -216,15 +239,58 @@ class Navigator:
             return False
         self.stuck_replans += 1
         avoid = np.asarray(avoid if avoid is not None else np.zeros((0, 5)), float).reshape(-1, 5)
+        if self._went_round:  # stuck on the way round: try the plain way again
+            avoid = avoid[:0]
+        self._went_round = False
         if len(avoid):
             around = self._without_sweeps(believed_world, avoid, np.asarray(position, float))
             res = None if around is None else self._plan_from(around, position, (self.robot.radius, 0.0))
             if res is not None:
                 self.replans += 1
                 self.messages.append(f"t={t:.1f}s: re-planned round {len(avoid)} mover sweep(s) (stuck)")
+                self._went_round = True
                 self._adopt(self._with_ends(res.path, np.asarray(position, float)), around)
                 return True
         return self.replan(believed_world, position, t, why="stuck")
+
+    def on_sweeps(self, believed_world, position, t: float, sweeps) -> bool:
+        """React to the mover sweeps the local planner has learnt (rows as in
+        :meth:`recover_stuck`); True when the global path changed.
+
+        Each time the set grows and the rest of the path passes within the robot radius plus
+        0.1 m of a sweep, the path is re-planned with every learnt sweep blocked; the route
+        round is taken when it is at most ``sweep_detour`` times as long as the rest of the
+        current path. Crossing a mover's sweep means timing a gap between two passes; where
+        a short detour avoids that, the sluggish robots of li2023 Experiment II stop being
+        run into (``benchmarks/dynamic_qp_dwa.yaml``: li2023_exp2_3-5 134 -> 140 of 150),
+        at the price of a few runs on the open 50x50 maps of hou2024 (see the issue note)."""
+        sweeps = np.asarray(sweeps, float).reshape(-1, 5)
+        grew = len(sweeps) > self._n_sweeps
+        self._n_sweeps = len(sweeps)
+        if not grew or not self.sweep_detour:
+            return False
+        position = np.asarray(position, float)
+        rest = self._rest_of_path(position)
+        dense = np.vstack([np.linspace(a, b, max(2, int(np.hypot(*(b - a)) / 0.05) + 1))
+                           for a, b in zip(rest[:-1], rest[1:])])
+        near = [segment_distance(dense, row[:2], row[2:4]).min() < row[4] + self.robot.radius + 0.1 for row in sweeps]
+        if not any(near):
+            return False
+        around = self._without_sweeps(believed_world, sweeps, position)
+        res = None if around is None else self._plan_from(around, position, (self.robot.radius, 0.0))
+        if res is None or res.length > self.sweep_detour * float(np.hypot(*np.diff(rest, axis=0).T).sum()):
+            return False
+        self.replans += 1
+        self.messages.append(f"t={t:.1f}s: re-planned round {len(sweeps)} mover sweep(s) (the path crossed one)")
+        self._adopt(self._with_ends(res.path, position), around)
+        self._went_round = True
+        return True
+
+    def _rest_of_path(self, position: np.ndarray) -> np.ndarray:
+        """The robot's position, then the path from the node after the nearest one on."""
+        P = self.path
+        i = int(np.argmin(np.hypot(*(P - position).T)))
+        return np.vstack([position, P[i + 1:] if i + 1 < len(P) else P[-1:]])
 
     @staticmethod
     def _without_sweeps(world, sweeps: np.ndarray, position: np.ndarray):

@@ -6,6 +6,8 @@ Each period ``dt`` (the scenario's):
    moving obstacles in range are reported with their velocities);
 2. if something new blocks the rest of the global path, the navigator switches or
    re-plans (see ``optplan.nav.navigator``); if the robot has been stuck, it re-plans;
+   if the path crosses a mover sweep the local planner has just learnt, it may re-plan
+   round it (``sweep_detour``);
 3. the navigator picks the subgoal, the local planner returns a command
    (timed: ``mean_step_ms``);
 4. the command becomes the robot's velocity for the period (no hidden clipping unless
@@ -36,7 +38,7 @@ from ..world.scenario import Scenario, load_scenario
 from .environment import SimEnvironment
 from .kinematics import step_pose
 
-OPTIONS = ("subgoals", "on_blocked", "stuck_time", "stuck_distance", "max_replans", "stop_on_collision",
+OPTIONS = ("subgoals", "on_blocked", "stuck_time", "stuck_distance", "max_replans", "sweep_detour", "stop_on_collision",
            "actuator_limits", "planner_params", "global_options", "subgoal_options", "progress", "time_limit", "global_plan")
 
 
@@ -99,6 +101,9 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
             on_blocked: ``switch`` / ``replan`` / ``ignore``; default per preset.
             stuck_time (10 s), stuck_distance (0.3 m), max_replans (5): stuck recovery (re-plans
                 for a blocked path are not limited).
+            sweep_detour (1.5): re-plan round the mover sweeps the local planner has learnt
+                (``qp-dwa``'s sweep gate) when the path crosses one and the way round is at most
+                this many times as long; ``None`` keeps crossing them.
             stop_on_collision (False): end the run at the first collision.
             actuator_limits (False): clip commands to the speed/acceleration limits.
             planner_params: keyword arguments for ``make_local_planner``.
@@ -128,7 +133,7 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
                     on_blocked=options.get("on_blocked", default_blocked),
                     stuck_time=options.get("stuck_time", 10.0), stuck_distance=options.get("stuck_distance", 0.3),
                     max_replans=options.get("max_replans", 5), global_options=options.get("global_options"),
-                    subgoal_options=options.get("subgoal_options"))
+                    subgoal_options=options.get("subgoal_options"), sweep_detour=options.get("sweep_detour", 1.5))
     planner = make_planner(local_planner, robot, dt, dict(options.get("planner_params") or {}))
     # the global plan comes first: random obstacles are placed on the path the robot is given
     nav.plan_initial(options.get("global_plan"))
@@ -207,6 +212,8 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
             break
         if env.sense(pos):
             nav.on_new_obstacles(env.believed_world(), pos, t)
+        if hasattr(planner, "mover_sweeps"):
+            nav.on_sweeps(env.believed_world(), pos, t, planner.mover_sweeps())
         if progress:
             progress(t, state, {"to_goal": float(np.hypot(*(pos - sc.goal))), "collisions": collisions,
                                 "subgoal": subgoal, "command": cmd})
