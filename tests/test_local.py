@@ -92,7 +92,7 @@ def test_window_and_admissibility_hold(field, name):
         assert abs(cmd.v - st.v) <= robot.a_max * DT + tol
         assert abs(cmd.w - st.w) <= robot.alpha_max * DT + tol
         assert robot.v_min - tol <= cmd.v <= robot.v_max + tol and abs(cmd.w) <= robot.w_max + tol
-        if cmd.info["mode"] in ("sample", "sample-relaxed", "evade"):
+        if cmd.info["mode"] in ("sample", "sample-relaxed", "evade", "escape-turn"):
             target = cmd.info.get("target", [cmd.v, cmd.w, cmd.vy])
             check = planner._assess(ctx, planner.rollout_of(st, [target[0]], [target[2]], [target[1]]))
             assert check.admissible[0], cmd.info  # hou2024 eq 22 with the real deceleration
@@ -153,6 +153,43 @@ def test_ramped_samples_are_judged_by_the_speed_the_robot_really_has(wall_at):
     # no reaction time, but a command is held for one step: brake from 0.45 m/s, give or take that step
     # (the rollout holds each step's end-of-step speed: a dt^2 / 2 = 1 mm short on a braking ramp)
     assert np.all((step.stopping >= need - 0.2 * DT ** 2 / 2 - 1e-9) & (step.stopping <= need + one_step + 1e-9))
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_a_robot_pinned_beside_a_corner_turns_away_and_leaves(name):
+    """Stopped 15 mm (inside the margin) below the corner of a box, facing past it towards
+    a goal beyond the box: every forward sample grazes closer, so only turns in place are
+    admissible. The planner must turn away from the box and then drive on (hou2024_dynamic1
+    seed 21 and hou2024_dynamic3 seed 42 stood there until the run gave up), never closer
+    to the box than where it started."""
+    def box_distance(p):  # exact signed distance to the box [2, 4] x [2, 3]
+        p = np.asarray(p, float)
+        dx = np.maximum(np.maximum(2 - p[..., 0], p[..., 0] - 4), 0)
+        dy = np.maximum(np.maximum(2 - p[..., 1], p[..., 1] - 3), 0)
+        depth = np.minimum.reduce([p[..., 0] - 2, 4 - p[..., 0], p[..., 1] - 2, 3 - p[..., 1]])
+        return np.where((dx == 0) & (dy == 0), -depth, np.hypot(dx, dy))
+
+    from optplan.sim.kinematics import step_pose
+    robot = RobotSpec(radius=0.2, v_max=1.0, w_max=math.radians(30), a_max=0.3, alpha_max=math.radians(50))
+    st = RobotState(1.81, 1.9, math.radians(-40), 0.0, 0.0)
+    start_gap = float(box_distance([st.x, st.y])) - robot.radius
+    goal = np.array([6.0, 1.5])
+    path = np.array([[st.x, st.y], [1.5, 1.5], goal])
+    planner = make_local_planner(name, robot, DT)
+    planner.reset(st, path)
+    modes, gaps = [], []
+    for k in range(100):
+        ctx = LocalContext(state=st, subgoal=goal, goal=goal, global_path=path, static_distance=box_distance,
+                           dynamic=np.zeros((0, 5)), dt=DT, t=k * DT)
+        c = planner.command(ctx)
+        modes.append(c.info.get("mode"))
+        x, y, th = step_pose("unicycle", st.x, st.y, st.theta, c.v, c.w, DT)
+        st = RobotState(float(x), float(y), float(th), c.v, c.w)
+        gaps.append(float(box_distance([st.x, st.y])) - robot.radius)
+    # iga-dwa first turns in place towards its first subgoal (li2023 eq 11), which frees it anyway
+    assert "escape-turn" in modes or name == "iga-dwa"
+    assert math.hypot(st.x - 1.81, st.y - 1.9) > 1.0
+    assert min(gaps) >= start_gap - 1e-9
 
 
 def test_idwa_velocity_obstacle_rejects_a_crossing_mover(field):

@@ -15,8 +15,9 @@ One control step (Fox et al. 1997; the papers' §3 / §5 descriptions):
 When critics or filters leave no candidate, their vetoes are relaxed (admissibility is
 kept); when every trajectory meets a predicted mover, the admissible one whose contact
 comes latest and that stays farthest from the movers is taken ("evade"); when nothing is
-admissible the sample that misses its stopping distance by the least is taken. The case
-is reported in ``Command.info["mode"]``.
+admissible the sample that misses its stopping distance by the least is taken. A robot
+that static obstacles leave with only turns in place admissible turns to face away from the obstacle ("escape-turn") instead of towards the
+goal, which would keep it pinned. The case is reported in ``Command.info["mode"]``.
 """
 from __future__ import annotations
 
@@ -274,6 +275,10 @@ class DWAPlanner:
             best = int(np.argmax(shortfall))
             return best, {"mode": "least-inadmissible", "index": best,
                           "free_distance": float(step.free_distance[best])}
+        turn = self._escape_turn(step, cand)
+        if turn is not None:
+            return turn, {"mode": "escape-turn", "index": turn, "n_candidates": int(cand.sum()),
+                          "free_distance": float(step.free_distance[turn])}
         total = np.zeros(step.roll.n)
         how = self.options["normalise"]
         for critic, weight in self.terms:
@@ -285,6 +290,29 @@ class DWAPlanner:
         best = int(np.argmax(total))
         return best, {"mode": mode, "index": best, "score": float(total[best]), "n_candidates": int(cand.sum()),
                       "free_distance": float(step.free_distance[best])}
+
+    def _escape_turn(self, step: Step, cand: np.ndarray) -> int | None:
+        """The turn in place towards open space when static obstacles leave the robot no
+        admissible way forward (``None`` otherwise).
+
+        Stopped beside a corner, at or inside the ``margin``, every forward trajectory
+        that heads for the goal may graze a millimetre closer than the margin (or than
+        where the robot stands, see :func:`assess`), so only turns in place stay
+        admissible; the cost terms then pick the turn towards the goal, which leaves the
+        robot where it is. Turning up the clearance gradient instead makes the way out
+        admissible on a later step."""
+        roll, ctx = step.roll, step.ctx
+        moving = roll.speed > 0
+        if not cand.any() or (step.admissible & moving).any():
+            return None  # a way forward exists, or something other than static obstacles holds the robot
+        h = 0.05  # finite-difference step, m: well below a grid cell
+        probe = np.array([[h, 0.0], [-h, 0.0], [0.0, h], [0.0, -h]]) + [ctx.state.x, ctx.state.y]
+        d = np.asarray(ctx.static_distance(probe[None]), dtype=float).ravel()
+        away = math.atan2(d[2] - d[3], d[0] - d[1])
+        need = math.remainder(away - ctx.state.theta, 2 * math.pi)
+        miss = np.abs(need - roll.w * ctx.dt)
+        miss[~cand] = np.inf
+        return int(np.argmin(miss))
 
     def command(self, ctx: LocalContext) -> Command:
         """The velocity command for the next control period."""
