@@ -36,6 +36,9 @@ from .rollout import Rollouts, Step, assess, rollout, rollout_ramped
 from .window import Window, dynamic_window, sample_grid
 
 
+_PINNED = 0.05  # m: a robot whose admissible forward samples all stop within this is pinned
+
+
 @dataclass(frozen=True)
 class Term:
     """One weighted cost term of a preset: a critic name from ``critics.CRITICS``."""
@@ -258,6 +261,11 @@ class DWAPlanner:
         if not cand.any():
             cand = safe
             mode = "sample-relaxed"  # the critics' vetoes left nothing: keep the safety rules only
+        pool = cand if cand.any() else step.admissible
+        turn = self._escape_turn(step, pool)
+        if turn is not None:
+            return turn, {"mode": "escape-turn", "index": turn, "n_candidates": int(pool.sum()),
+                          "free_distance": float(step.free_distance[turn])}
         if not cand.any() and step.admissible.any():
             # every trajectory meets a predicted mover: among those that can stop before static
             # obstacles and whose contact comes latest, flee - take the one that stays farthest
@@ -275,10 +283,6 @@ class DWAPlanner:
             best = int(np.argmax(shortfall))
             return best, {"mode": "least-inadmissible", "index": best,
                           "free_distance": float(step.free_distance[best])}
-        turn = self._escape_turn(step, cand)
-        if turn is not None:
-            return turn, {"mode": "escape-turn", "index": turn, "n_candidates": int(cand.sum()),
-                          "free_distance": float(step.free_distance[turn])}
         total = np.zeros(step.roll.n)
         how = self.options["normalise"]
         for critic, weight in self.terms:
@@ -291,27 +295,28 @@ class DWAPlanner:
         return best, {"mode": mode, "index": best, "score": float(total[best]), "n_candidates": int(cand.sum()),
                       "free_distance": float(step.free_distance[best])}
 
-    def _escape_turn(self, step: Step, cand: np.ndarray) -> int | None:
-        """The turn in place towards open space when static obstacles leave the robot no
-        admissible way forward (``None`` otherwise).
+    def _escape_turn(self, step: Step, pool: np.ndarray) -> int | None:
+        """The turn in place (among ``pool``) towards open space when static obstacles
+        leave the robot no admissible way forward (``None`` otherwise).
 
-        Stopped beside a corner, at or inside the ``margin``, every forward trajectory
-        that heads for the goal may graze a millimetre closer than the margin (or than
-        where the robot stands, see :func:`assess`), so only turns in place stay
-        admissible; the cost terms then pick the turn towards the goal, which leaves the
-        robot where it is. Turning up the clearance gradient instead makes the way out
-        admissible on a later step."""
+        Stopped against a wall or beside a corner, at or inside the ``margin``, every
+        forward trajectory that heads for the goal may graze a millimetre closer than the
+        margin (or than where the robot stands, see :func:`assess`), so only turns in place
+        and creeping a few millimetres stay admissible. The cost terms then pick the turn
+        towards the goal, and the evasion rule (all samples meeting a mover) picks among
+        turns that all leave the robot in the same place: either way the robot stays.
+        Turning up the clearance gradient makes the way out admissible on a later step."""
         roll, ctx = step.roll, step.ctx
-        moving = roll.speed > 0
-        if not cand.any() or (step.admissible & moving).any():
-            return None  # a way forward exists, or something other than static obstacles holds the robot
+        forward = step.admissible & (roll.speed > 0)
+        if not pool.any() or (step.free_distance[forward] >= _PINNED).any():
+            return None  # a way forward exists
         h = 0.05  # finite-difference step, m: well below a grid cell
         probe = np.array([[h, 0.0], [-h, 0.0], [0.0, h], [0.0, -h]]) + [ctx.state.x, ctx.state.y]
         d = np.asarray(ctx.static_distance(probe[None]), dtype=float).ravel()
         away = math.atan2(d[2] - d[3], d[0] - d[1])
         need = math.remainder(away - ctx.state.theta, 2 * math.pi)
         miss = np.abs(need - roll.w * ctx.dt)
-        miss[~cand] = np.inf
+        miss[~pool] = np.inf
         return int(np.argmin(miss))
 
     def command(self, ctx: LocalContext) -> Command:
