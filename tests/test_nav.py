@@ -51,6 +51,23 @@ def test_an_obstructed_stage_target_is_skipped():
     assert np.allclose(s.select(np.zeros(2), np.zeros(2), np.zeros((0, 5)), blocked_at_2_0), (2, 2))
 
 
+def test_a_stage_target_the_robot_went_past_is_not_chased_back():
+    """hou2024_dynamic2 seed 9: qp-dwa swerved round a mover 1.5 m from a key point and the
+    subgoal stayed on that key point for the remaining 60 s of the run."""
+    none = np.zeros((0, 5))
+
+    def fresh():
+        s = make_strategy("turning_points", 0.2)
+        s.reset(np.array([[0, 0], [2, 0], [2, 2], [4, 2]], float), None, np.array([4.0, 2.0]))
+        return s
+
+    # on the next leg, 1.3 m from the corner it cut: the next target
+    assert np.allclose(fresh().select(np.array([3.0, 0.8]), np.zeros(2), none), (2, 2))
+    # short of the corner, or overshot beyond it but no further along the next leg: still the corner
+    assert np.allclose(fresh().select(np.array([1.0, 0.8]), np.zeros(2), none), (2, 0))
+    assert np.allclose(fresh().select(np.array([2.9, -0.5]), np.zeros(2), none), (2, 0))
+
+
 def test_velocity_obstacle_flags_only_collision_courses():
     obstacles = np.array([
         [5.0, 0.0, 0.0, 0.0, 0.5],     # dead ahead, still: hit

@@ -17,8 +17,11 @@ after each re-plan) and asked each control period for the current subgoal with
   distance *and* the velocity-obstacle test (yang2023 eq 12-14) predicts a collision.
 
 Stage targets (key / turning points) advance when the robot comes within
-``switch_radius`` of them, and are skipped when a sensed obstacle leaves less than the
-robot radius around them (yuan2021 §4.1 step 5).
+``switch_radius`` of them, when it has gone past them (beyond the perpendiculars at the
+target of both the leg that ends there and the leg that starts there: a robot that swerved
+round a mover and missed the target by more than ``switch_radius`` would otherwise be sent
+back to it), and are skipped when a sensed obstacle leaves less than the robot radius
+around them (yuan2021 §4.1 step 5).
 """
 from __future__ import annotations
 
@@ -67,6 +70,7 @@ class SubgoalStrategy:
         self.radius = float(robot_radius)
         self.switch_radius = float(switch_radius)
         self.targets = np.zeros((0, 2))
+        self.origin = np.zeros(2)
         self.index = 0
 
     def stage_targets(self, path: np.ndarray, world) -> np.ndarray:
@@ -80,7 +84,16 @@ class SubgoalStrategy:
         if not len(T) or np.hypot(*(T[-1] - goal)) > 1e-9:
             T = np.vstack([T, goal])
         self.targets = T
+        self.origin = P[0] if len(P) else np.asarray(goal, dtype=float)
         self.index = 0
+
+    def _passed(self, i: int, position: np.ndarray) -> bool:
+        """Whether the robot is past stage target ``i`` (not the last): beyond the
+        perpendicular at the target of the leg that ends there and of the leg after it."""
+        T = self.targets
+        before = T[i - 1] if i > 0 else self.origin
+        offset = position - T[i]
+        return bool(offset @ (T[i] - before) > 0 and offset @ (T[i + 1] - T[i]) > 0)
 
     def _blocked(self, point: np.ndarray, static_distance) -> bool:
         return static_distance is not None and float(static_distance(point)) < self.radius
@@ -89,6 +102,7 @@ class SubgoalStrategy:
         """The current target ``(2,)``: advance past reached or obstructed stage targets."""
         last = len(self.targets) - 1
         while self.index < last and (np.hypot(*(self.targets[self.index] - position)) <= self.switch_radius
+                                     or self._passed(self.index, position)
                                      or self._blocked(self.targets[self.index], static_distance)):
             self.index += 1
         return self.targets[self.index]
