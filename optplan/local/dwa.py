@@ -16,8 +16,9 @@ When critics or filters leave no candidate, their vetoes are relaxed (admissibil
 kept); when every trajectory meets a predicted mover, the admissible one whose contact
 comes latest and that stays farthest from the movers is taken ("evade"); when nothing is
 admissible the sample that misses its stopping distance by the least is taken. A robot
-that static obstacles leave with only turns in place admissible turns to face away from the obstacle ("escape-turn") instead of towards the
-goal, which would keep it pinned. The case is reported in ``Command.info["mode"]``.
+pinned by static obstacles (every admissible forward sample stops within a few
+centimetres) turns in place to face away from them ("escape-turn"), instead of towards
+the goal, which would keep it pinned. The case is reported in ``Command.info["mode"]``.
 """
 from __future__ import annotations
 
@@ -32,7 +33,7 @@ from ..world.robot import Command, RobotSpec, RobotState
 from .base import LocalContext
 from .critics import CRITICS, Critic
 from .mechanisms import MECHANISMS, Mechanism
-from .rollout import Rollouts, Step, assess, rollout, rollout_ramped
+from .rollout import Rollouts, Step, assess, rollout, rollout_ramped, static_gradient
 from .window import Window, dynamic_window, sample_grid
 
 
@@ -310,10 +311,8 @@ class DWAPlanner:
         forward = step.admissible & (roll.speed > 0)
         if not pool.any() or (step.free_distance[forward] >= _PINNED).any():
             return None  # a way forward exists
-        h = 0.05  # finite-difference step, m: well below a grid cell
-        probe = np.array([[h, 0.0], [-h, 0.0], [0.0, h], [0.0, -h]]) + [ctx.state.x, ctx.state.y]
-        d = np.asarray(ctx.static_distance(probe[None]), dtype=float).ravel()
-        away = math.atan2(d[2] - d[3], d[0] - d[1])
+        grad = static_gradient(ctx, [complex(ctx.state.x, ctx.state.y)])[0]
+        away = math.atan2(grad.imag, grad.real)
         need = math.remainder(away - ctx.state.theta, 2 * math.pi)
         miss = np.abs(need - roll.w * ctx.dt)
         miss[~pool] = np.inf

@@ -42,7 +42,7 @@ from ..world.robot import RobotSpec, RobotState
 from .base import LocalContext
 from .dwa import DWAPlanner, Preset
 from .limiter import RuckigLimiter
-from .rollout import Step
+from .rollout import Step, static_gradient
 from .window import Window, dynamic_window
 
 _SLACK_LINEAR, _SLACK_QUADRATIC = 1e2, 1e4
@@ -224,14 +224,7 @@ class QPDWAPlanner(DWAPlanner):
                 if all(abs(t - q) >= 3 for q in picked):  # spread the rows along the trajectory
                     picked.append(int(t))
             if picked:
-                h = 0.05
-                pts = z[picked]
-                probe = np.concatenate([pts + h, pts - h, pts + 1j * h, pts - 1j * h])
-                dist = np.asarray(ctx.static_distance(probe.view(np.float64).reshape(-1, 2)))
-                n = len(pts)
-                gx = (dist[:n] - dist[n:2 * n]) / (2 * h)
-                gy = (dist[2 * n:3 * n] - dist[3 * n:]) / (2 * h)
-                grad_z = gx + 1j * gy
+                grad_z = static_gradient(ctx, z[picked])
                 for q, t in enumerate(picked):
                     grads.append([(np.conj(grad_z[q]) * dzc[t]).real for dzc in dz])
                     gaps.append(sg[t])

@@ -227,6 +227,18 @@ def current_gaps(ctx: LocalContext, robot: RobotSpec) -> tuple[float, float]:
     return static, moving
 
 
+def static_gradient(ctx: LocalContext, points: np.ndarray, h: float = 0.05) -> np.ndarray:
+    """Gradient ``(n,)`` (complex ``d/dx + i d/dy``) of the static distance at the complex
+    ``points``, by central differences ``h`` metres wide (well below a grid cell)."""
+    pts = np.asarray(points, dtype=complex).ravel()
+    probe = np.concatenate([pts + h, pts - h, pts + 1j * h, pts - 1j * h])
+    dist = np.asarray(ctx.static_distance(probe.view(np.float64).reshape(-1, 2)), dtype=float).ravel()
+    n = len(pts)
+    gx = (dist[:n] - dist[n:2 * n]) / (2 * h)  # real divisions: a complex one rounds differently
+    gy = (dist[2 * n:3 * n] - dist[3 * n:]) / (2 * h)
+    return gx + 1j * gy
+
+
 def first_hit(hit: np.ndarray) -> np.ndarray:
     """Index of the first ``True`` of each row (the row length when there is none)."""
     return np.where(hit.any(axis=1), np.argmax(hit, axis=1), hit.shape[1])
