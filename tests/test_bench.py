@@ -72,6 +72,17 @@ def test_shipped_specs_load_for_every_paper():
         assert spec.expand() and spec.paper == n.split("_")[0]
 
 
+def test_benchmark_specs_load_and_the_held_out_seeds_are_disjoint_from_the_main_ones():
+    bench = EXAMPLES.parent / "benchmarks"
+    specs = {p.stem: load_spec(p) for p in sorted(bench.glob("*.yaml"))}
+    assert {"dynamic_qp_dwa", "dynamic_qp_dwa_heldout", "dynamic_presets"} <= set(specs)
+    main, held = specs["dynamic_qp_dwa"], specs["dynamic_qp_dwa_heldout"]
+    assert len(held.seeds) == len(main.seeds) == 50 and not set(held.seeds) & set(main.seeds)
+    same_runs = [(r.target, r.local_planner, r.params) for r in main.expand()]
+    assert same_runs == [(r.target, r.local_planner, r.params) for r in held.expand()]  # only the seeds differ
+    assert {r.target for r in specs["dynamic_presets"].expand()} == {r.target for r in main.expand()}
+
+
 @pytest.mark.parametrize("change,error,needle", [
     ({"algoritms": ["gwo"]}, ScenarioError, "unknown key(s) 'algoritms'"),
     ({"algorithms": ["nope"]}, UnknownAlgorithmError, "unknown algorithm 'nope'"),
