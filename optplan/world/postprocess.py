@@ -55,6 +55,14 @@ def remove_collinear(path, tol: float = 1e-9) -> np.ndarray:
     return P[keep]
 
 
+def _sight_from(world, P: np.ndarray, anchor: int, clearance: float) -> tuple[np.ndarray, np.ndarray]:
+    """The indices after ``anchor`` and whether the straight segment from ``P[anchor]`` to
+    each is free (one batched query)."""
+    later = np.arange(anchor + 1, len(P))
+    free = np.asarray(world.segments_free(np.repeat(P[anchor:anchor + 1], len(later), 0), P[later], clearance))
+    return later, free
+
+
 def key_points(world, path, clearance: float = 0.0) -> np.ndarray:
     """Key turning points of a path (li2023 §4.4).
 
@@ -69,8 +77,7 @@ def key_points(world, path, clearance: float = 0.0) -> np.ndarray:
     kept = [0]
     anchor = 0
     while anchor < n - 1:
-        later = np.arange(anchor + 1, n)
-        free = np.asarray(world.segments_free(np.repeat(P[anchor:anchor + 1], len(later), 0), P[later], clearance))
+        later, free = _sight_from(world, P, anchor, clearance)
         blocked = np.nonzero(~free)[0]
         # the first blocked target (if any) makes its predecessor the next key point
         nxt = later[blocked[0]] - 1 if blocked.size else n - 1
@@ -91,8 +98,7 @@ def prune_direct(world, path, clearance: float = 0.0) -> np.ndarray:
     kept = [0]
     anchor = 0
     while anchor < n - 1:
-        later = np.arange(anchor + 1, n)
-        free = np.asarray(world.segments_free(np.repeat(P[anchor:anchor + 1], len(later), 0), P[later], clearance))
+        later, free = _sight_from(world, P, anchor, clearance)
         visible = later[free]
         nxt = int(visible.max()) if visible.size else anchor + 1
         kept.append(nxt)
