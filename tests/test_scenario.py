@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -94,19 +95,25 @@ def test_every_shipped_scenario_loads_and_realises(name):
     (base(unknown_obstacles=[{"cells": [[0, 0]]}]), "unknown obstacle overlaps the robot at the start"),
     (base(unknown_obstacles=[{"cells": [[9, 9]]}]), "outside the 6x4 map"),
     (base(unknown_obstacles=[{"cells": [[1.5, 2]]}]), "integer cell indices"),
+    (base(unknown_obstacles=[{"cells": [[1, 2], [1e300, 2]]}]), "cell [1e+300, 2.0] is outside any map"),
     (base(unknown_obstacles=[{"box": [1, 2]}]), "unknown key(s) ['box']"),
     (base(dynamic_obstacles=[{"radius": 0.3, "start": [0.8, 0.5], "velocity": [0, 0]}]), "overlaps the robot's start"),
     (base(dynamic_obstacles=[{"radius": 0.3, "waypoints": [[1, 1], [2, 2]]}]), "no 'speed'"),
     (base(dynamic_obstacles=[{"radius": 0.3, "start": [4, 3], "velocity": [1, 0], "at_border": "wrap"}]), "at_border"),
     (base(dynamic_obstacles=[{"waypoints": [[1, 1]], "speed": 1}]), "missing 'radius'"),
     (base(random_obstacles={"size": 1}), "missing 'count'"),
+    (base(random_obstacles={"count": 10 ** 9}), "random_obstacles.count (1000000000) is more than"),
+    (base(random_obstacles={"count": 2, "size": 1e300}), "random_obstacles.size (1e+300 cells) is larger"),
+    (base(random_dynamic={"count": 10 ** 9}), "random_dynamic.count (1000000000) is more than 84 discs"),
+    (base(random_dynamic={"count": 1, "radius": 1e6}), "random_dynamic.radius (1e+06 m) is larger"),
     (base(map=[[0, 2], [0, 0]]), "list of equal-length rows of 0/1"),
     (base(map="no_such_map_anywhere"), "does not exist"),
     ({"map": "yang2023_env1", "start": [0.3, 0.3], "goal": [9.7, 9.7], "unknown_obstacles": [{"cells": [[1, 1]]}]},
      "need a grid map"),
 ])
 def test_malformed_scenarios_raise_scenario_error_naming_the_problem(data, needle):
-    with pytest.raises(ScenarioError) as exc:
+    with pytest.raises(ScenarioError) as exc, warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)  # caught by a check, not by overflowing numpy
         load_scenario(data)
     assert needle in str(exc.value)
 

@@ -55,6 +55,9 @@ Optional keys added by optplan (all validated like the rest):
   (not run along it), so a robot that cannot reverse can always wait outside one
   mover's sweep. Sweeps of different movers may overlap along the path; the robot
   then has to cross them together.
+* Draws no map can hold are refused when the file is read: more random obstacles than
+  the map has cells (at most 10,000) or blocks wider than the map, and more random
+  movers than discs of their radius fit apart in the map (at most 1,000).
 
 * ``timing_jitter``: seconds (default 0). Each moving obstacle of the file is advanced
   along its motion by a time drawn uniformly from ``[0, timing_jitter]`` with the
@@ -85,6 +88,9 @@ TOP_KEYS = ("map", "resolution", "robot", "start", "goal", "sensor_range", "dt",
             "random_obstacles", "random_dynamic", "timing_jitter")
 REQUIRED = ("map", "start", "goal")
 BORDER_MODES = ("bounce", "stop", "pass")
+# random draws larger than these are fills, not scenarios; refusing them keeps a hostile
+# file from making the draw allocate without bound or retry for ever
+MAX_RANDOM_OBSTACLES, MAX_RANDOM_MOVERS = 10_000, 1_000
 
 
 # ----------------------------------------------------------------- value checks
@@ -384,6 +390,7 @@ def validate(sc: Scenario) -> None:
         if true < r:
             raise ScenarioError(f"an unknown obstacle overlaps the robot at the {what} ({p[0]:g}, {p[1]:g}) "
                                 f"(clearance {true:.3g} m < radius {r:g} m); move the obstacle or the {what}")
+    _check_random_draws(sc)
     for i, ob in enumerate(sc.dynamic):
         _check_mover(ob, i)
         pos, _ = ob.state(0.0, sc.bounds)
@@ -391,6 +398,32 @@ def validate(sc: Scenario) -> None:
         if gap < 0:
             raise ScenarioError(f"dynamic obstacle {i} at ({pos[0]:g}, {pos[1]:g}) overlaps the robot's start "
                                 f"(gap {gap:.3g} m); move it away by at least {-gap:.3g} m")
+
+
+def _check_random_draws(sc: Scenario) -> None:
+    """Refuse random obstacles and movers that no map of this size can hold."""
+    xmin, ymin, xmax, ymax = sc.bounds
+    span, area = max(xmax - xmin, ymax - ymin), (xmax - xmin) * (ymax - ymin)
+    blocks, movers = sc.random_obstacles or {}, sc.random_dynamic or {}
+    if blocks.get("count", 0):
+        count, size = blocks["count"], blocks["size"]
+        limit, size_limit, unit = MAX_RANDOM_OBSTACLES, span, "m"
+        if sc.is_grid:  # size in cells
+            w, h = sc.world.width, sc.world.height
+            limit, size_limit, unit = min(limit, w * h), max(w, h), "cells"
+        if count > limit:
+            raise ScenarioError(f"random_obstacles.count ({count}) is more than this map can take (at most {limit})")
+        if size > size_limit:
+            raise ScenarioError(f"random_obstacles.size ({size:g} {unit}) is larger than the map ({size_limit:g} {unit})")
+    if movers.get("count", 0):
+        count, radius = movers["count"], movers["radius"]
+        if radius > span / 2:
+            raise ScenarioError(f"random_dynamic.radius ({radius:g} m) is larger than half the map ({span / 2:g} m)")
+        # movers never touch, so their discs alone must fit in the map
+        limit = min(MAX_RANDOM_MOVERS, int(area / (math.pi * radius ** 2)))
+        if count > limit:
+            raise ScenarioError(f"random_dynamic.count ({count}) is more than {limit} discs of radius {radius:g} m "
+                                f"that fit apart in this map; lower count or radius")
 
 
 def _check_mover(ob: DynamicObstacle, i: int) -> None:
@@ -455,6 +488,9 @@ def _read_unknown(items, world) -> tuple[np.ndarray, np.ndarray]:
             pts = _points(item["cells"], f"{key}.cells")
             if not np.all(pts == np.round(pts)):
                 raise ScenarioError(f"{key}.cells must be integer cell indices [ix, iy]")
+            huge = np.any(np.abs(pts) > 2 ** 31, axis=1)  # would overflow the integer cast below
+            if huge.any():
+                raise ScenarioError(f"{key}.cells: cell {pts[np.argmax(huge)].tolist()} is outside any map")
             cells.append(pts.astype(np.int64))
         else:
             c = _vector(item["circle"], f"{key}.circle", (3,))
