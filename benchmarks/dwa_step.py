@@ -133,8 +133,8 @@ def main() -> None:
         print(f"\nqp-dwa QP: median update+solve {wall:.1f} us (OSQP solve time {inner:.1f} us) over "
               f"{len(qp_info)} active solves in {args.contexts} contexts ({solved} solved, the rest fell back; "
               "goal <= 60 us)")
-        # the same calls on the same data, repeated back to back: what they cost once the
-        # caches hold the solver (in the control loop the rollouts evict it between solves)
+        # the same calls on the same data, repeated back to back: what they cost when nothing
+        # runs in between (in the control loop the step's rollouts do)
         warm = make_local_planner("qp-dwa", robot, DT, n_v=N_V, n_w=N_W)._lean
         repeats = []
         for qp_args in qp_inputs:
@@ -146,7 +146,7 @@ def main() -> None:
                 times.append(time.perf_counter() - t)
             repeats.append(np.median(times[1:]) * 1e6)
         print(f"the same update+solve calls repeated on warm caches: median {np.median(repeats):.1f} us "
-              "(in the control loop the rollouts run between solves and evict the solver from the caches)")
+              "(in the control loop the step's rollouts run between two solves)")
         # and inside a real closed loop, where consecutive steps differ little
         sc = load_scenario("li2023_exp2_4")
         for n_v, n_w in ((N_V, N_W), (11, 21)):

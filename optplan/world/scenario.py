@@ -55,6 +55,7 @@ Optional keys added by optplan (all validated like the rest):
   (not run along it), so a robot that cannot reverse can always wait outside one
   mover's sweep. Sweeps of different movers may overlap along the path; the robot
   then has to cross them together.
+
 * Draws no map can hold are refused when the file is read: more random obstacles than
   the map has cells (at most 10,000) or blocks wider than the map, and more random
   movers than discs of their radius fit apart in the map (at most 1,000).
