@@ -14,7 +14,7 @@ from .errors import (
     UnknownAlgorithmError,
 )
 from .lazy import lazy_exports
-from .results import OptimizeResult, PlanResult, SimResult
+from .results import OptimizeResult, PlanResult, ProgramResult, SimResult
 
 __version__ = "0.1.0"
 
@@ -35,9 +35,19 @@ _LAZY = {
     "Scenario": "optplan.world.scenario",
     "load_scenario": "optplan.world.scenario",
     "simulate": "optplan.sim",
+    "PathProgram": "optplan.programs",
+    "Waypoints": "optplan.programs",
+    "Points": "optplan.programs",
+    "BSpline": "optplan.programs",
+    "ColumnNodes": "optplan.programs",
+    "CellSequence": "optplan.programs",
+    "paper_program": "optplan.programs",
+    "smoothing_program": "optplan.programs",
+    "show_options": "optplan.programs",
+    "compare": "optplan.bench.compare",
 }
 
 __getattr__, __dir__, __all__ = lazy_exports("optplan", _LAZY, globals(), eager=[
     "OptplanError", "MapFormatError", "InfeasibleQueryError", "UnknownAlgorithmError",
-    "ParameterError", "ScenarioError", "OptimizeResult", "PlanResult", "SimResult",
+    "ParameterError", "ScenarioError", "OptimizeResult", "PlanResult", "ProgramResult", "SimResult",
 ])

@@ -180,3 +180,43 @@ class SimResult(_ToDict):
 
     JSON_KEYS = ("reached", "collisions", "time_s", "path_length", "min_clearance", "max_abs_accel",
                  "max_abs_ang_accel", "steps", "mean_step_ms", "trajectory")
+
+
+@dataclass
+class ProgramResult(_ToDict):
+    """Outcome of ``PathProgram.solve`` (any solver or chain).
+
+    Attributes:
+        solver: the solver's name (``"msiar-gwo"``, ``"ipopt"``, ``"msiar-gwo>ipopt"``).
+        cost: the program's objective at ``path`` (``prog.evaluate(path)[0]``).
+        feasible: the exact verdict: every constraint holds and the exact collision test
+            accepts the path.
+        path: ``(N, 2)`` points, start first, goal last.
+        x: the decision vector the path was decoded from.
+        violations: one entry per constraint, 0 where it holds.
+        status: the solver's status word (``"max_evals"``, ``"Solve_Succeeded"``, ...).
+        message: what happened, in words (fallbacks, surrogates, rejected stages).
+        nfev: objective evaluations (rows for swarms; the solver's own count for IPOPT,
+            SLSQP; QP solves for OSQP/cvxpy), summed over a chain's stages.
+        runtime_s: wall time, seconds.
+        stages: per stage of a chain (or of ``op.plan(..., refine=...)``): solver, cost
+            before and after, feasible, accepted, nfev, runtime_s, message.
+        seed: the seed used, if any.
+        history: best cost per iteration (swarms; empty otherwise).
+        variables: the variables' name (``"Waypoints(6)"``).
+    """
+
+    solver: str
+    cost: float
+    feasible: bool
+    path: np.ndarray
+    x: np.ndarray
+    violations: dict
+    status: str
+    message: str
+    nfev: int
+    runtime_s: float
+    stages: list = field(default_factory=list)
+    seed: int | None = None
+    history: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    variables: str = ""

@@ -1,0 +1,254 @@
+"""The clearance model that gradient solvers see (CasADi).
+
+Verdicts are never taken here: every result is judged by the exact segment rule.
+This model only has to be smooth and close, so that the solver's answer usually
+passes that rule on the first try.
+
+* Circle worlds: every segment's exact distance to the centre of each grown
+  circle (all of them, or with many circles the nearest few to each segment),
+  and every interior vertex inside the border: segment-exact, no samples.
+* Grid maps: every segment's distance to the convex obstacle corners nearest it
+  (where a straight piece can cut in between samples), and the distance from
+  samples along each segment (closer than half a cell) to the blocked boundary
+  cells nearest them, for walls between corners; the map border. Maxima are
+  smoothed (:func:`soft_plus`), which gradient solvers need, and the bound adds
+  back what the smoothing overshoots.
+
+Which obstacles each piece is kept off is read off the current path
+(:func:`active_sets`) and re-read when a solve is repeated. As an objective term,
+clearance uses the signed distance field as a CasADi B-spline interpolant.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .namespaces import Sym
+
+
+def grid_sdf_interpolant(grid, subdiv: int = 4):
+    """CasADi B-spline interpolant of the grid's signed distance field (cached on the map)."""
+    import casadi as ca
+
+    from ..world.fields import grid_distance_field
+
+    key = ("casadi_sdf", int(subdiv))
+    interp = grid._cache.get(key)
+    if interp is None:
+        field_ = grid_distance_field(grid, subdiv)
+        interp = ca.interpolant("sdf", "bspline", [field_.xs, field_.ys], field_.values.ravel())
+        grid._cache[key] = interp
+    return interp
+
+
+def sample_points(P: Sym, per_segment: int):
+    """CasADi columns ``(qx, qy)`` of the interior vertices and ``per_segment - 1`` points
+    inside every segment of the symbolic path ``P`` ``(N, 2)``."""
+    import casadi as ca
+
+    m = P.m
+    xs, ys = m[:, 0], m[:, 1]
+    qx = [xs[1:-1]] if P.shape[0] > 2 else []
+    qy = [ys[1:-1]] if P.shape[0] > 2 else []
+    for j in range(1, per_segment):
+        t = j / per_segment
+        qx.append((1 - t) * xs[:-1] + t * xs[1:])
+        qy.append((1 - t) * ys[:-1] + t * ys[1:])
+    if not qx:
+        return ca.DM.zeros(0, 1), ca.DM.zeros(0, 1)
+    return ca.vertcat(*qx), ca.vertcat(*qy)
+
+
+def symbolic_signed_distance(P: Sym, ctx, per_segment: int) -> Sym:
+    """Signed distance at the sample points, as one symbolic vector (for clearance used as
+    an objective term). Circles: the smallest distance over circles and border (piecewise smooth)."""
+    import casadi as ca
+
+    qx, qy = sample_points(P, per_segment)
+    M = qx.shape[0]
+    if ctx.is_grid:
+        d = grid_sdf_interpolant(ctx.world)(ca.horzcat(qx, qy).T).T
+        return Sym(d, (M,))
+    xmin, ymin, xmax, ymax = ctx.world.bounds
+    d = ca.fmin(ca.fmin(qx - xmin, xmax - qx), ca.fmin(qy - ymin, ymax - qy))
+    circles, radii = ctx.world.circles, ctx.world.radii
+    for (cx, cy, _), R in zip(circles, radii):
+        d = ca.fmin(d, ca.sqrt((qx - cx) ** 2 + (qy - cy) ** 2 + 1e-12) - R)
+    return Sym(d, (M,))
+
+
+SMOOTHING = 0.02   # width of the smooth max(x, 0) below, in cells (grids) or parameter units
+
+
+def soft_plus(ca, x, eps: float):
+    """A smooth ``max(x, 0)``: ``(x + sqrt(x^2 + eps^2)) / 2``, above it by at most ``eps / 2``.
+    Gradient solvers converge far better on it than on the kinked maximum."""
+    return 0.5 * (x + ca.sqrt(x * x + eps * eps))
+
+
+def _segment_point_dist2(ca, ax, ay, bx, by, qx, qy):
+    """Squared distance from segments ``a -> b`` to points ``q`` (CasADi columns, element-wise),
+    with the projection parameter clamped smoothly to [0, 1]."""
+    ux, uy = bx - ax, by - ay
+    t = ((qx - ax) * ux + (qy - ay) * uy) / (ux * ux + uy * uy + 1e-12)
+    t = 1 - soft_plus(ca, 1 - soft_plus(ca, t, SMOOTHING), SMOOTHING)
+    ex, ey = qx - ax - t * ux, qy - ay - t * uy
+    return ex * ex + ey * ey
+
+
+def clearance_rows(P: Sym, ctx, clearance: float, per_segment: int, margin: float, active=None):
+    """Constraint rows ``g >= lb`` that keep the path ``clearance + margin`` from obstacles;
+    returns ``(g, lb)`` (a CasADi column and a numpy vector).
+
+    * Circle worlds: every segment's exact distance to each grown circle's centre
+      (``active["circles"]``: ``(S, K)`` circles per segment; ``None``: all), and every
+      interior vertex inside the border. Segment-exact: no samples needed.
+    * Grids: every segment's exact distance to the convex obstacle corners near it
+      (``active["corners"]``, ``(S, K)``), which is where a straight piece between two
+      samples could cut in, plus the samples' distance to the blocked boundary cells
+      near them (``active["boxes"]``, ``(M, K)``) for walls between corners, and the border.
+    """
+    import casadi as ca
+
+    active = active or {}
+    m = P.m
+    ax, ay, bx, by = m[:-1, 0], m[:-1, 1], m[1:, 0], m[1:, 1]
+    S = P.shape[0] - 1
+    need = clearance + margin
+    if ctx.is_grid:
+        # 0 clearance still keeps out of cell interiors; the smooth box distance overshoots by
+        # up to one smoothing width, which the bound adds back
+        eps = SMOOTHING * ctx.cell
+        need = max(clearance, 1e-3 * ctx.cell) + margin + eps
+    qx, qy = sample_points(P, per_segment)
+    M = qx.shape[0]
+    xmin, ymin, xmax, ymax = ctx.world.bounds
+    rows, lbs = [], []
+    if M:
+        rows += [qx - xmin, xmax - qx, qy - ymin, ymax - qy]
+        lbs += [np.full(M, clearance + margin)] * 4
+    if ctx.is_grid:
+        boxes, corners = boundary_boxes(ctx.world), convex_corners(ctx.world)
+        box_ids, corner_ids = active.get("boxes"), active.get("corners")
+        if box_ids is not None and M:
+            for k in range(box_ids.shape[1]):
+                b = boxes[box_ids[:, k]]
+                dx = soft_plus(ca, ca.DM(b[:, 0]) - qx, eps) + soft_plus(ca, qx - ca.DM(b[:, 2]), eps)
+                dy = soft_plus(ca, ca.DM(b[:, 1]) - qy, eps) + soft_plus(ca, qy - ca.DM(b[:, 3]), eps)
+                rows.append(dx * dx + dy * dy)
+                lbs.append(np.full(M, need * need))
+        if corner_ids is not None:
+            for k in range(corner_ids.shape[1]):
+                c = corners[corner_ids[:, k]]
+                rows.append(_segment_point_dist2(ca, ax, ay, bx, by, ca.DM(c[:, 0]), ca.DM(c[:, 1])))
+                lbs.append(np.full(S, need * need))
+    else:
+        circles, radii = ctx.world.circles, ctx.world.radii
+        ids = active.get("circles")
+        if len(circles):
+            if ids is None:
+                ids = np.broadcast_to(np.arange(len(circles)), (S, len(circles)))
+            for k in range(ids.shape[1]):
+                idx = ids[:, k]
+                rows.append(_segment_point_dist2(ca, ax, ay, bx, by, ca.DM(circles[idx, 0]), ca.DM(circles[idx, 1])))
+                lbs.append((radii[idx] + need) ** 2)
+    if not rows:
+        return ca.DM.zeros(0, 1), np.zeros(0)
+    return ca.vertcat(*rows), np.concatenate(lbs)
+
+
+def convex_corners(grid) -> np.ndarray:
+    """``(V, 2)`` grid vertices (metres) where a path can wrap round an obstacle: exactly one
+    of the four cells around the vertex is blocked, or two diagonal ones are (the map's
+    outside counts as blocked); cached on the map."""
+    key = "convex_corners"
+    out = grid._cache.get(key)
+    if out is None:
+        pad = np.pad(np.asarray(grid.occ, bool), 1, constant_values=True)
+        a, b = pad[:-1, :-1], pad[:-1, 1:]      # cells below-left, below-right of vertex (iy, ix)
+        c, d = pad[1:, :-1], pad[1:, 1:]        # above-left, above-right
+        count = a.astype(int) + b + c + d
+        diagonal = (count == 2) & ((a & d) | (b & c))
+        iy, ix = np.nonzero((count == 1) | diagonal)
+        r = float(grid.resolution)
+        out = np.stack([grid.origin[0] + ix * r, grid.origin[1] + iy * r], axis=1)
+        grid._cache[key] = out
+    return out
+
+
+def segment_point_distances(path: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """``(S, V)`` distances from the segments of a numeric path to points."""
+    P = np.asarray(path, float)
+    a, u = P[:-1, None, :], (P[1:] - P[:-1])[:, None, :]
+    q = np.asarray(points, float)[None]
+    t = np.clip(((q - a) * u).sum(-1) / np.maximum((u * u).sum(-1), 1e-12), 0, 1)
+    e = q - a - t[..., None] * u
+    return np.hypot(e[..., 0], e[..., 1])
+
+
+def active_sets(ctx, path: np.ndarray, per_segment: int, k: int = 3) -> dict:
+    """Which obstacles each segment / sample of ``path`` is kept off (the nearest ``k``)."""
+    out = {}
+    if ctx.is_grid:
+        corners = convex_corners(ctx.world)
+        if len(corners):
+            kk = min(k, len(corners))
+            d = segment_point_distances(path, corners)
+            out["corners"] = np.argsort(d, axis=1)[:, :kk]
+        samples = numeric_sample_points(path, per_segment)
+        if len(samples):
+            out["boxes"] = nearest_box_ids(ctx.world, samples, k)
+        return out
+    circles = ctx.world.circles
+    if len(circles) > ALL_CIRCLES:
+        d = segment_point_distances(path, circles[:, :2]) - ctx.world.radii[None]
+        out["circles"] = np.argsort(d, axis=1)[:, :k]
+    return out
+
+
+ALL_CIRCLES = 40   # up to this many circles every segment is kept off every circle
+
+
+def numeric_sample_points(path: np.ndarray, per_segment: int) -> np.ndarray:
+    """The points :func:`sample_points` uses, for a numeric path ``(N, 2)``: ``(M, 2)``."""
+    P = np.asarray(path, float)
+    parts = [P[1:-1]]
+    for j in range(1, per_segment):
+        t = j / per_segment
+        parts.append((1 - t) * P[:-1] + t * P[1:])
+    return np.vstack(parts)
+
+
+def boundary_boxes(grid) -> np.ndarray:
+    """``(M, 4)`` boxes ``(xmin, ymin, xmax, ymax)`` of the blocked cells that touch a free
+    cell (the only ones a path can come near), metres; cached on the map."""
+    key = "boundary_boxes"
+    boxes = grid._cache.get(key)
+    if boxes is None:
+        occ = np.asarray(grid.occ, bool)
+        pad = np.pad(occ, 1, constant_values=True)
+        free_near = np.zeros_like(occ)
+        for dy in (-1, 0, 1):
+            for dx in (-1, 0, 1):
+                free_near |= ~pad[1 + dy:1 + dy + occ.shape[0], 1 + dx:1 + dx + occ.shape[1]]
+        iy, ix = np.nonzero(occ & free_near)
+        r = float(grid.resolution)
+        ox, oy = (float(v) for v in grid.origin)
+        boxes = np.stack([ox + ix * r, oy + iy * r, ox + (ix + 1) * r, oy + (iy + 1) * r], axis=1)
+        grid._cache[key] = boxes
+    return boxes
+
+
+def nearest_box_ids(grid, points: np.ndarray, k: int) -> np.ndarray | None:
+    """``(M, k)`` indices of the ``k`` boundary boxes nearest each point (``None`` when the map
+    has no blocked cell)."""
+    from scipy.spatial import cKDTree
+
+    boxes = boundary_boxes(grid)
+    if not len(boxes):
+        return None
+    k = min(k, len(boxes))
+    tree = grid._cache.get("boundary_box_tree")
+    if tree is None:
+        tree = grid._cache["boundary_box_tree"] = cKDTree((boxes[:, :2] + boxes[:, 2:]) / 2)
+    _, idx = tree.query(points, k=k)
+    return np.asarray(idx, dtype=np.int64).reshape(len(points), k)

@@ -1,0 +1,65 @@
+"""Each paper's path fitness as a program, and the smoothing energy as one.
+
+The weights come from the fitness presets (:mod:`optplan.formulations.presets`,
+one table, cited there); here they become objective terms, and the papers'
+obstacle handling becomes the constraint ``clearance >= c`` (solved with the
+feasibility rule by default; a swarm's ``constraint="penalty"`` gives the
+penalised form).
+"""
+from __future__ import annotations
+
+from ..errors import UnknownAlgorithmError
+from . import expressions as T
+from .presets import PRESETS, get_preset
+from .program import PathProgram
+from .variables import BSpline, ColumnNodes, Points, Variables
+
+# the variables each paper plans with on grids (circle worlds: always the spline)
+PAPER_VARIABLES = {
+    "hou2024": ColumnNodes, "yuan2021": ColumnNodes, "yuan2021-smooth": ColumnNodes, "li2023": ColumnNodes,
+    "chen2025": ColumnNodes, "length": ColumnNodes,
+    "yang2023": lambda: BSpline(ctrl=3, samples=100),
+}
+
+
+def fitness_expression(preset) -> T.Expr:
+    """The weighted terms of a fitness preset as one objective expression."""
+    p = get_preset(preset)
+    expr = p.length * T.length()
+    if p.turn_angle:
+        expr = expr + p.turn_angle * T.turn_angles().sum()
+    if p.turn_count:
+        expr = expr + p.turn_count * T.turn_count()
+    if p.turn_cost:
+        expr = expr + p.turn_cost * T.turn_cost()
+    return expr
+
+
+def paper_program(name: str, world, start, goal, variables: Variables | None = None,
+                  clearance: float = 0.0, program_class=PathProgram) -> PathProgram:
+    """The path fitness of paper ``name`` (``hou2024``, ``yang2023``, ``yuan2021``,
+    ``yuan2021-smooth``, ``li2023``, ``chen2025`` or ``length``) as a program: its weighted
+    terms minimised subject to ``clearance() >= clearance`` (the exact collision rule).
+
+    ``variables`` defaults to the paper's encoding (column nodes on grids; a cubic
+    B-spline for yang2023 and on circle worlds)."""
+    if name not in PRESETS:
+        raise UnknownAlgorithmError(f"unknown paper program {name!r}; known: {', '.join(sorted(PRESETS))}")
+    if variables is None:
+        on_grid = hasattr(world, "occ")
+        variables = PAPER_VARIABLES.get(name, ColumnNodes)() if on_grid else BSpline(ctrl=3, samples=100)
+    prog = program_class(world, start, goal, variables=variables, name=name)
+    prog.minimize(fitness_expression(name))
+    prog.subject_to(T.clearance() >= float(clearance))
+    return prog
+
+
+def smoothing_program(world, start, goal, n: int = 50, w_smooth: float = 0.5, clearance: float = 0.0,
+                      program_class=PathProgram) -> PathProgram:
+    """The refinement's energy ``sum |dp|^2 + w_smooth * sum |d2p|^2`` over ``n`` dense
+    points, subject to ``clearance() >= clearance``: quadratic, so IPOPT, SLSQP, OSQP
+    and cvxpy all take it."""
+    prog = program_class(world, start, goal, variables=Points(n), name=f"smoothing(n={n}, w={w_smooth:g})")
+    prog.minimize(T.squared_length() + float(w_smooth) * T.bending())
+    prog.subject_to(T.clearance() >= float(clearance))
+    return prog

@@ -1,0 +1,259 @@
+"""Path programs: one planning problem, written once, for every solver.
+
+A :class:`PathProgram` holds decision variables (:mod:`.variables`), an objective
+built from terms (:mod:`.expressions`) and constraints. It offers the views the
+solvers need and nothing solver-specific:
+
+* :meth:`PathProgram.population` — ``(cost, violation)`` of a population
+  ``X (n, d)``, batched numpy (the swarms' view);
+* :meth:`PathProgram.symbolic` — the objective and constraint rows as CasADi
+  expressions of one variable column (the gradient solvers' view);
+* :meth:`PathProgram.evaluate` — cost and per-constraint violations of one path,
+  the number every solver and every stage of a chain is judged by; ``feasible``
+  is the exact verdict.
+
+Solvers implement :class:`ProgramSolver` and register themselves by name
+(:func:`register_solver`; the built-in ones live in :mod:`optplan.solvers.programs`),
+so this layer never imports a solver. ``op.PathProgram`` is this class with the
+built-in solvers registered.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any, Callable
+
+import numpy as np
+
+from ..errors import ParameterError, UnknownAlgorithmError
+from ..world.queries import check_start_goal
+from .expressions import Constraint, Expr, ProgramContext
+from .variables import Variables, Waypoints, as_variables
+
+
+@dataclass(frozen=True)
+class Option:
+    """One solver option: its default, a checker returning the clean value, and a line of doc."""
+
+    default: Any
+    check: Callable[[str, Any], Any]
+    doc: str
+
+
+class ProgramSolver:
+    """A solver of path programs. Subclasses set ``name``, ``options`` and ``capabilities``
+    and implement :meth:`run`; :meth:`solve` checks the options first (one place)."""
+
+    name = "solver"
+    options: dict[str, Option] = {}
+    # "stochastic" (takes seed), "gradient" (symbolic view), "quadratic" (QP), "needs_init", "chain"
+    capabilities: frozenset = frozenset()
+
+    def __init__(self, **settings) -> None:
+        self.settings = self.check_options(settings)
+
+    def check_options(self, given: dict) -> dict:
+        """The given options checked and cleaned; an unknown one is a ParameterError naming
+        the solver and its options."""
+        known = self.all_options()
+        unknown = sorted(set(given) - set(known))
+        if unknown:
+            raise ParameterError(f"{self.name} has no option {', '.join(map(repr, unknown))}; its options are "
+                                 f"{', '.join(sorted(known)) or 'none'} (op.show_options({self.name!r}) lists them)")
+        return {k: known[k].check(k, v) for k, v in given.items()}
+
+    def all_options(self) -> dict[str, Option]:
+        return dict(self.options)
+
+    def show_options(self) -> str:
+        """One line per option: name, default and meaning."""
+        return "\n".join(f"{k} = {o.default!r}: {o.doc}" for k, o in sorted(self.all_options().items()))
+
+    def solve(self, program: "PathProgram", **options):
+        opts = {k: o.default for k, o in self.all_options().items()}
+        opts.update(self.settings)
+        opts.update(self.check_options(options))
+        return self.run(program, **opts)
+
+    def run(self, program: "PathProgram", **options):  # pragma: no cover - abstract
+        raise NotImplementedError
+
+
+SOLVERS: dict[str, Callable[[], ProgramSolver]] = {}
+
+
+def register_solver(name: str, factory: Callable[[], ProgramSolver]) -> None:
+    """Make a program solver available by ``name`` (lower case)."""
+    SOLVERS[name.lower()] = factory
+
+
+def get_solver(solver) -> ProgramSolver:
+    """A solver instance for a name, a list of names (a chain) or an instance."""
+    if isinstance(solver, ProgramSolver):
+        return solver
+    if isinstance(solver, (list, tuple)):
+        if "chain" not in SOLVERS:
+            raise UnknownAlgorithmError("no chain solver is registered (use op.PathProgram, which registers them)")
+        return SOLVERS["chain"](stages=list(solver))
+    if not isinstance(solver, str):
+        raise UnknownAlgorithmError(f"solver must be a name, a list of names (a chain) or a solver instance, "
+                                    f"got {solver!r}")
+    key = solver.lower()
+    if key not in SOLVERS:
+        hint = ("; no solver is registered yet: use op.PathProgram (it registers the built-in solvers)"
+                if not SOLVERS else "")
+        raise UnknownAlgorithmError(f"unknown program solver {solver!r}; known: "
+                                    f"{', '.join(sorted(k for k in SOLVERS if k != 'chain'))}{hint}")
+    return SOLVERS[key]()
+
+
+def solver_names() -> list[str]:
+    return sorted(k for k in SOLVERS if k != "chain")
+
+
+# -------------------------------------------------------------------- program
+
+
+class PathProgram:
+    """A path planning problem as a constrained program.
+
+    Args:
+        world: a GridMap or CircleWorld.
+        start, goal: ``(x, y)`` metres (fixed, not variables).
+        variables: how a decision vector becomes a path (default ``Waypoints(6)``).
+        name: shown in tables.
+    """
+
+    def __init__(self, world, start, goal, variables: Variables | None = None, name: str = "") -> None:
+        s, g = check_start_goal(world, start, goal)
+        self.world = world
+        self.start, self.goal = s, g
+        self.ctx = ProgramContext(world, s, g)
+        self.variables = as_variables(variables if variables is not None else Waypoints(6)).bind(self.ctx)
+        self.objective: Expr | None = None
+        self.constraints: list[Constraint] = []
+        self.name = name or "program"
+
+    # building ---------------------------------------------------------------
+    def minimize(self, objective: Expr) -> "PathProgram":
+        """Set the objective (a scalar term expression). Returns the program."""
+        if not isinstance(objective, Expr):
+            raise ParameterError(f"minimize takes a term expression such as T.length() + 0.1 * T.bending(), "
+                                 f"got {objective!r}")
+        if objective.vector:
+            raise ParameterError(f"the objective must be a scalar; reduce {objective.name} with .sum(), "
+                                 ".sumsq() or .max()")
+        self.objective = objective
+        return self
+
+    def subject_to(self, *constraints: Constraint) -> "PathProgram":
+        """Add constraints (``term >= number`` or ``term <= number``). Returns the program."""
+        for c in constraints:
+            if not isinstance(c, Constraint):
+                raise ParameterError(f"subject_to takes constraints such as T.clearance() >= 0.2, got {c!r}")
+            if c.is_clearance:
+                for p, what in ((self.start, "start"), (self.goal, "goal")):
+                    self.world.check_query_point(p, what, c.lower)
+            self.constraints.append(c)
+        return self
+
+    @property
+    def clearance(self) -> float:
+        """The largest clearance any constraint asks for (0 without one), metres."""
+        return max([c.lower for c in self.constraints if c.is_clearance], default=0.0)
+
+    def _need_objective(self) -> Expr:
+        if self.objective is None:
+            raise ParameterError("the program has no objective: call prog.minimize(...) first")
+        return self.objective
+
+    # views -----------------------------------------------------------------
+    def path_costs(self, P: np.ndarray) -> np.ndarray:
+        """Objective of paths ``P`` ``(n, N, 2)``, ``(n,)``."""
+        out = np.asarray(self._need_objective().batch(P, self.ctx), float).reshape(-1)
+        return np.broadcast_to(out, (len(P),)) if out.size == 1 else out
+
+    def path_violations(self, P: np.ndarray) -> np.ndarray:
+        """Violation of each constraint by paths ``P`` ``(n, N, 2)``, ``(n, m)``."""
+        if not self.constraints:
+            return np.zeros((len(P), 0))
+        return np.stack([c.violation(P, self.ctx) for c in self.constraints], axis=1)
+
+    def population(self, X: np.ndarray, variables: Variables | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """``(cost, total violation)`` of a population ``X`` ``(n, d)`` (the swarms' view)."""
+        P = (variables or self.variables).decode(X)
+        return self.path_costs(P), self.path_violations(P).sum(axis=1)
+
+    def evaluate(self, path) -> tuple[float, dict[str, float]]:
+        """Cost and violations (one entry per constraint, 0 when it holds) of one path ``(N, 2)``."""
+        P = np.asarray(path, dtype=float)
+        if P.ndim != 2 or P.shape[1] != 2 or len(P) < 2:
+            raise ParameterError(f"evaluate takes an (N, 2) path, got shape {P.shape}")
+        cost = float(self.path_costs(P[None])[0])
+        viol = self.path_violations(P[None])[0]
+        return cost, {c.name: float(v) for c, v in zip(self.constraints, viol)}
+
+    def judge(self, path) -> tuple[float, dict[str, float], bool]:
+        """``(cost, violations, feasible)``: feasible means the path runs from start to goal,
+        every constraint holds, and the exact collision test accepts it."""
+        from ..world.geometry import validate_path
+
+        cost, viol = self.evaluate(path)
+        P = np.asarray(path, float)
+        ends = np.allclose(P[0], self.start, atol=1e-9) and np.allclose(P[-1], self.goal, atol=1e-9)
+        ok = ends and all(v == 0 for v in viol.values()) and bool(validate_path(self.world, P, self.clearance))
+        return cost, viol, bool(ok and math.isfinite(cost))
+
+    def symbolic(self, variables: Variables, x, per_segment: int, margin: float, active=None):
+        """The objective and constraint rows for one variable column ``x`` (CasADi).
+
+        Returns ``(f, g, lbg, ubg, names)``: ``lbg <= g <= ubg`` row-wise, ``names[i]``
+        the constraint of row ``i``. Clearance constraints use the model of
+        :func:`~optplan.formulations.clearance_model.clearance_rows` with ``per_segment``
+        samples per segment, ``margin`` extra metres and the obstacles ``active``."""
+        import casadi as ca
+
+        from .clearance_model import clearance_rows
+
+        P = variables.decode_symbolic(x)
+        f = self._need_objective().symbolic(P, self.ctx).m
+        rows, lb, ub, names = [], [], [], []
+        for c in self.constraints:
+            if c.is_clearance:
+                g, lo = clearance_rows(P, self.ctx, c.lower, per_segment, margin, active)
+                hi = np.full(len(lo), np.inf)
+            else:
+                s = c.expr.symbolic(P, self.ctx)
+                g = s.m
+                k = int(np.prod(s.shape)) if s.shape else 1
+                lo = np.full(k, -np.inf if c.lower is None else c.lower)
+                hi = np.full(k, np.inf if c.upper is None else c.upper)
+            rows.append(g)
+            lb.append(lo)
+            ub.append(hi)
+            names.extend([c.name] * len(lo))
+        g = ca.vertcat(*rows) if rows else ca.DM.zeros(0, 1)
+        lbg = np.concatenate(lb) if lb else np.zeros(0)
+        ubg = np.concatenate(ub) if ub else np.zeros(0)
+        return f, g, lbg, ubg, names
+
+    def surrogate_notes(self) -> list[str]:
+        """Which terms a gradient solver replaces by a smooth surrogate, and how."""
+        notes = self._need_objective().surrogates()
+        for c in self.constraints:
+            notes.extend(c.expr.surrogates())
+        return notes
+
+    # solving ---------------------------------------------------------------
+    def solve(self, solver="msiar-gwo", **options):
+        """Solve with a registered solver name, a chain ``["msiar-gwo", "ipopt"]`` or a
+        solver instance; returns a :class:`optplan.results.ProgramResult`. Options are
+        checked by the solver (``op.show_options(name)``); an unknown one is a
+        ParameterError."""
+        self._need_objective()
+        return get_solver(solver).solve(self, **options)
+
+    def __repr__(self) -> str:
+        obj = self.objective.name if self.objective is not None else "(no objective)"
+        cons = "; ".join(c.name for c in self.constraints) or "none"
+        return f"PathProgram({self.name}: minimize {obj} over {self.variables.name}; subject to {cons})"

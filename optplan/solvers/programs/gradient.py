@@ -1,0 +1,164 @@
+"""IPOPT and SLSQP on the program's symbolic view (CasADi gives both exact derivatives).
+
+Both optimise the variables' continuous form (``variables.relaxed()``); terms with
+no smooth form are replaced by their documented surrogates, and the result says
+which. Clearance constraints use the model of
+:mod:`optplan.formulations.clearance_model`: segment-exact distances to circles
+and to obstacle corners, samples against walls, with the obstacles each piece
+is kept off read from the current path, and (on grids) a cap on segment growth
+so the samples stay dense. A start that passed the exact test is never asked
+for more than it has (each row's bound widened to include it). The answer is
+judged by the exact rule; when it fails, the solve is repeated from where it
+ended with the obstacles re-read and a small margin (``attempts`` in all).
+"""
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from ...checks import integer, mapping, number
+from ...formulations.clearance_model import active_sets
+from ...formulations.expressions import Clearance
+from ...formulations.program import Option, ProgramSolver
+from .common import INIT_OPTION, result_of, start_vector, straight_start
+
+IPOPT_DEFAULTS = {"print_level": 0, "sb": "yes", "mu_strategy": "adaptive"}
+SEGMENT_GROWTH = 2.0     # grids: a segment may grow to this multiple of the start's longest one
+
+
+class GradientSolver(ProgramSolver):
+    capabilities = frozenset({"gradient"})
+    options = {
+        "init": INIT_OPTION,
+        "max_iter": Option(500, integer(1), "iteration limit"),
+        "tol": Option(1e-6, number(0.0, strict_minimum=True), "convergence tolerance"),
+        "per_segment": Option(None, integer(1, 200, optional=True),
+                              "clearance samples per segment (default: from the start's segment lengths)"),
+        "attempts": Option(3, integer(1, 10), "solves in all when the exact check rejects the answer"),
+    }
+
+    def run(self, program, **o):
+        t0 = time.perf_counter()
+        variables = program.variables.relaxed()
+        x0 = start_vector(program, variables, o["init"])
+        if x0 is None:
+            x0 = straight_start(program, variables)
+        notes = []
+        if variables is not program.variables:
+            notes.append(f"{self.name} optimised the relaxation of {program.variables.name} "
+                         f"({program.variables.relax_note})")
+        notes.extend(f"{self.name} used the smooth surrogate of {n}" for n in program.surrogate_notes())
+        ctx = program.ctx
+        has_clearance = any(c.is_clearance for c in program.constraints)
+        x, nfev, status, message = x0, 0, "not run", ""
+        start = x0
+        for attempt in range(o["attempts"]):
+            x = start
+            P0 = variables.decode(x[None])[0]
+            seg = np.hypot(*np.diff(P0, axis=0).T)
+            longest = max(float(seg.max()) * SEGMENT_GROWTH, 1e-3)
+            if ctx.is_grid:   # samples closer than half a cell catch every wall between two corners
+                k = o["per_segment"] or int(np.clip(math.ceil(longest / (0.5 * ctx.cell)), 1, 100))
+                margin = 1e-6 * ctx.cell if attempt == 0 else 0.02 * ctx.cell * 2 ** (attempt - 1)
+            else:             # circles are kept off segment by segment, exactly
+                k = o["per_segment"] or 1
+                margin = 1e-6 * 10 ** attempt
+            active = active_sets(ctx, P0, k) if has_clearance else None
+            cap = longest if ctx.is_grid and has_clearance else None
+            relax = program.judge(P0)[2]   # a feasible start is never asked for more margin than it has
+            try:
+                x, calls, status = self._solve_nlp(program, variables, x, k, margin, active, cap, o, relax)
+            except RuntimeError as exc:   # CasADi reports solver failures as RuntimeError
+                message = f"{self.name} failed: {str(exc).splitlines()[0][:160]}"
+                break
+            nfev += calls
+            path = variables.decode(x[None])[0]
+            if program.judge(path)[2]:
+                message = "" if attempt == 0 else f"feasible on attempt {attempt + 1} (obstacles re-read, margin added)"
+                break
+            message = f"attempt {attempt + 1} of {o['attempts']} ended infeasible"
+            if not relax:          # no feasible start to go back to: go on from where it ended
+                start = x
+        return result_of(program, variables, x, self.name, status, message, nfev, t0, notes=notes)
+
+    def _nlp(self, program, variables, k, margin, active, cap, x0=None, relax=False):
+        import casadi as ca
+
+        # SX is several times faster; only a clearance term in the objective (the grid's
+        # B-spline interpolant of the distance field) needs MX
+        needs_mx = program.ctx.is_grid and any(isinstance(t, Clearance) for t in program.objective.leaves())
+        sym = ca.MX if needs_mx else ca.SX
+        x = sym.sym("x", variables.dim)
+        f, g, lbg, ubg, _ = program.symbolic(variables, x, k, margin, active)
+        if cap is not None:
+            P = variables.decode_symbolic(x).m
+            d = P[1:, :] - P[:-1, :]
+            g = ca.vertcat(g, d[:, 0] ** 2 + d[:, 1] ** 2)
+            n = P.shape[0] - 1
+            lbg = np.concatenate([lbg, np.full(n, -np.inf)])
+            ubg = np.concatenate([ubg, np.full(n, cap ** 2)])
+        if relax and g.shape[0]:
+            # the start passed the exact test: widen each row's bounds to include it, so the NLP
+            # starts feasible and the cushion only binds where the start keeps it already
+            g0 = np.asarray(ca.Function("g0", [x], [g])(x0), float).reshape(-1)
+            lbg, ubg = np.minimum(lbg, g0), np.maximum(ubg, g0)
+        return x, f, g, lbg, ubg
+
+
+class IpoptSolver(GradientSolver):
+    """CasADi + IPOPT (interior point, sparse exact Hessians)."""
+
+    name = "ipopt"
+    options = {**GradientSolver.options,
+               "ipopt": Option({}, mapping("IPOPT options (e.g. {'mu_strategy': 'monotone'})"),
+                               "IPOPT's own options for this call")}
+
+    def _solve_nlp(self, program, variables, x0, k, margin, active, cap, o, relax):
+        import casadi as ca
+
+        x, f, g, lbg, ubg = self._nlp(program, variables, k, margin, active, cap, x0, relax)
+        opts = {**IPOPT_DEFAULTS, "max_iter": o["max_iter"], "tol": o["tol"], **o["ipopt"]}
+        solver = ca.nlpsol("program", "ipopt", {"x": x, "f": f, "g": g}, {"print_time": False, "ipopt": opts})
+        sol = solver(x0=x0, lbx=variables.lower, ubx=variables.upper, lbg=lbg, ubg=ubg)
+        st = solver.stats()
+        xs = np.asarray(sol["x"], float).reshape(-1)
+        if not np.all(np.isfinite(xs)):
+            raise RuntimeError(f"IPOPT returned non-finite values ({st.get('return_status')})")
+        return xs, int(st.get("n_call_nlp_f", 0)), str(st.get("return_status", ""))
+
+
+class SlsqpSolver(GradientSolver):
+    """SciPy's SLSQP (dense sequential least squares) with CasADi derivatives."""
+
+    name = "slsqp"
+    options = {**GradientSolver.options, "max_iter": Option(200, integer(1), "iteration limit")}
+
+    def _solve_nlp(self, program, variables, x0, k, margin, active, cap, o, relax):
+        import casadi as ca
+        from scipy.optimize import Bounds, minimize
+
+        x, f, g, lbg, ubg = self._nlp(program, variables, k, margin, active, cap, x0, relax)
+        F = ca.Function("f", [x], [f, ca.gradient(f, x)])
+        lo_rows, hi_rows = np.isfinite(lbg), np.isfinite(ubg)
+        G = ca.Function("g", [x], [g, ca.jacobian(g, x)])
+        count = {"f": 0}
+
+        def fun(z):
+            count["f"] += 1
+            v, gr = F(z)
+            return float(v), np.asarray(gr, float).reshape(-1)
+
+        def cons(z):
+            v = np.asarray(G(z)[0], float).reshape(-1)
+            return np.concatenate([v[lo_rows] - lbg[lo_rows], ubg[hi_rows] - v[hi_rows]])
+
+        def cons_jac(z):
+            J = np.asarray(ca.densify(G(z)[1]), float)
+            return np.vstack([J[lo_rows], -J[hi_rows]])
+
+        constraints = [{"type": "ineq", "fun": cons, "jac": cons_jac}] if (lo_rows.any() or hi_rows.any()) else []
+        res = minimize(fun, x0, jac=True, method="SLSQP", bounds=Bounds(variables.lower, variables.upper),
+                       constraints=constraints, options={"maxiter": o["max_iter"], "ftol": o["tol"]})
+        return np.asarray(res.x, float), count["f"], str(res.message)
