@@ -43,7 +43,6 @@ _THIS_BRANCH = "structure branch: fixed in a later commit"
 KNOWN_OFFENCES: dict[str, str] = {
     "cycle: local.dwa <-> local.mechanisms": _THIS_BRANCH,
     "cycle: solvers.graph <-> solvers.result <-> solvers.tangent_graph <-> solvers.tube": _GRAPH,
-    "cycle: solvers.nlp.smoothing <-> solvers.qp <-> solvers.qp.smoothing": _THIS_BRANCH,
     "private name: bench.plots uses bench.runner._plan_target": _THIS_BRANCH,
     "private name: bench.plots uses viz.plots._pyplot": _BENCH_FIGURES,
     "private name: bench.reports uses bench.runner._function_target": _THIS_BRANCH,
