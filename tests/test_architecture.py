@@ -43,12 +43,7 @@ _THIS_BRANCH = "structure branch: fixed in a later commit"
 KNOWN_OFFENCES: dict[str, str] = {
     "cycle: local.dwa <-> local.mechanisms": _THIS_BRANCH,
     "cycle: solvers.graph <-> solvers.result <-> solvers.tangent_graph <-> solvers.tube": _GRAPH,
-    "private name: bench.plots uses bench.runner._plan_target": _THIS_BRANCH,
     "private name: bench.plots uses viz.plots._pyplot": _BENCH_FIGURES,
-    "private name: bench.reports uses bench.runner._function_target": _THIS_BRANCH,
-    "private name: bench.reports uses bench.runner._plan_target": _THIS_BRANCH,
-    "private name: bench.summary uses bench.runner._function_target": _THIS_BRANCH,
-    "private name: bench.summary uses bench.runner._plan_target": _THIS_BRANCH,
     "private name: solvers.result uses solvers.tube._cells_within": _GRAPH,
     "private name: solvers.result uses solvers.tube._densify": _GRAPH,
     "private name: viz.convergence uses viz.plots._pyplot": _VIZ,
