@@ -52,7 +52,6 @@ KNOWN_OFFENCES: dict[str, str] = {
     "upward import: bench.reports (bench) imports viz.convergence (viz/cli)": _BENCH_FIGURES,
     "upward import: sim.command (sim) imports viz.animate (viz/cli)": _VIZ,
     "upward import: sim.experiments (sim) imports viz.animate (viz/cli)": _VIZ,
-    "upward import: world.scenario (world) imports solvers.graph (solvers)": _THIS_BRANCH,
 }
 
 

@@ -35,6 +35,7 @@ from ..nav.navigator import Navigator, preset_defaults
 from ..results import SimResult
 from ..world.robot import Command, RobotState
 from ..world.scenario import Scenario, load_scenario
+from ..worldgen.scenarios import realize
 from .environment import SimEnvironment
 from .kinematics import step_pose
 
@@ -83,7 +84,7 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
     """Run the robot of ``scenario`` from start to goal in closed loop.
 
     The global path is planned first; the scenario's random parts are then drawn from
-    ``seed`` on that path (``Scenario.realize(seed, path)``; :func:`realized_scenario`
+    ``seed`` on that path (``optplan.worldgen.scenarios.realize``; :func:`realized_scenario`
     gives the same world for plotting).
 
     Args:
@@ -137,7 +138,7 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
     planner = make_planner(local_planner, robot, dt, dict(options.get("planner_params") or {}))
     # the global plan comes first: random obstacles are placed on the path the robot is given
     nav.plan_initial(options.get("global_plan"))
-    sc = sc.realize(seed, path=nav.path)
+    sc = realize(sc, seed, path=nav.path)
     env = SimEnvironment(sc)
     progress = options.get("progress")
     if progress is True:
@@ -240,7 +241,7 @@ def realized_scenario(scenario, seed, global_plan) -> Scenario:
     sc = load_scenario(scenario)
     nav = Navigator(sc.world, sc.robot, sc.start[:2], sc.goal)
     nav.plan_initial(global_plan)
-    return sc.realize(seed, path=nav.path)
+    return realize(sc, seed, path=nav.path)
 
 
 def _result(sc: Scenario, traj: np.ndarray, vys: np.ndarray, step_ms, collisions: int, min_clear: float, status: str,
