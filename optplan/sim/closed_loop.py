@@ -30,7 +30,7 @@ from typing import Any, Callable
 import numpy as np
 
 from ..errors import ParameterError, UnknownAlgorithmError
-from ..local.base import LocalContext
+from ..local.base import LocalContext, MoverSweepSource
 from ..nav.navigator import Navigator, preset_defaults
 from ..results import SimResult
 from ..world.robot import Command, RobotState
@@ -167,7 +167,7 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
             status = "reached"
             break
         if nav.check_stuck(pos, t, dt):
-            sweeps = planner.mover_sweeps() if hasattr(planner, "mover_sweeps") else None
+            sweeps = planner.mover_sweeps() if isinstance(planner, MoverSweepSource) else None
             if not nav.recover_stuck(env.believed_world(), pos, t, avoid=sweeps):
                 if nav.gave_up:
                     status = "stuck"
@@ -213,7 +213,7 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
             break
         if env.sense(pos):
             nav.on_new_obstacles(env.believed_world(), pos, t)
-        if hasattr(planner, "mover_sweeps"):
+        if isinstance(planner, MoverSweepSource):
             nav.on_sweeps(env.believed_world(), pos, t, planner.mover_sweeps())
         if progress:
             progress(t, state, {"to_goal": float(np.hypot(*(pos - sc.goal))), "collisions": collisions,
