@@ -22,7 +22,6 @@ from __future__ import annotations
 
 import ast
 import re
-from collections import defaultdict
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -32,14 +31,13 @@ REPO = Path(__file__).resolve().parents[1]
 PACKAGE = REPO / "optplan"
 ARCHITECTURE_DOC = REPO / "docs" / "architecture.md"
 
-# Offences that other branches are fixing (issue 25). Each entry is the exact string the
-# checks below produce. Remove an entry when its fix lands: the test fails while a listed
-# offence no longer occurs.
+# Offences left to others (issue 25), each with its owner. Each entry is the exact string
+# the checks below produce. Remove an entry when its fix lands: the test fails while a
+# listed offence no longer occurs.
 _GRAPH = "being fixed on another branch (owners of solvers/graph, result.py, tube.py, tangent_graph.py)"
 _VIZ = "being fixed on another branch (owners of sim/command.py, sim/experiments.py and viz/)"
 _BENCH_FIGURES = ("bench draws its figures with viz functions; not owned by the structure branch, needs a "
                   "decision with the viz owners on where figure calls live (reported in issue 25)")
-_THIS_BRANCH = "structure branch: fixed in a later commit"
 KNOWN_OFFENCES: dict[str, str] = {
     "cycle: solvers.graph <-> solvers.result <-> solvers.tangent_graph <-> solvers.tube": _GRAPH,
     "private name: bench.plots uses viz.plots._pyplot": _BENCH_FIGURES,
@@ -90,11 +88,11 @@ def layer_of(module: str, table) -> tuple[int, str]:
 
 
 # ------------------------------------------------------------------- the graph
-def module_files() -> dict[str, Path]:
+def module_files(package: Path = PACKAGE) -> dict[str, Path]:
     """Dotted module name -> file, for every module of the package (``__init__`` = the package)."""
     out = {}
-    for f in sorted(PACKAGE.rglob("*.py")):
-        parts = list(f.relative_to(REPO).with_suffix("").parts)
+    for f in sorted(package.rglob("*.py")):
+        parts = list(f.relative_to(package.parent).with_suffix("").parts)
         if parts[-1] == "__init__":
             parts.pop()
         out[".".join(parts)] = f
@@ -192,9 +190,8 @@ def uses(module: str, path: Path, modules) -> list[Use]:
     return [u for u in out if u.target != module]
 
 
-def dependency_graph() -> tuple[dict[str, set[str]], dict[str, list[Use]]]:
+def dependency_graph(files: dict[str, Path]) -> tuple[dict[str, set[str]], dict[str, list[Use]]]:
     """``module -> modules it depends on`` and ``module -> its uses``."""
-    files = module_files()
     all_uses = {m: uses(m, f, files) for m, f in files.items()}
     return {m: {u.target for u in us} for m, us in all_uses.items()}, all_uses
 
@@ -237,10 +234,10 @@ def _short(module: str) -> str:
     return module.removeprefix("optplan.") if module != "optplan" else "optplan"
 
 
-def offences() -> set[str]:
+def offences(files: dict[str, Path] | None = None, table=None) -> set[str]:
     """Every offence of the package, one string each (the form :data:`KNOWN_OFFENCES` uses)."""
-    graph, all_uses = dependency_graph()
-    table = layer_table()
+    graph, all_uses = dependency_graph(module_files() if files is None else files)
+    table = layer_table() if table is None else table
     found = set()
     for comp in strongly_connected(graph):
         found.add("cycle: " + " <-> ".join(_short(m) for m in comp))
@@ -263,8 +260,12 @@ def test_layer_table_covers_the_package_in_the_design_order():
     # DESIGN.md's layers, in its order (world < formulations < solvers < local < nav < sim < bench < viz/cli)
     design = ["world", "formulations", "solvers", "local", "nav", "sim", "bench", "viz/cli"]
     assert [n for n in names if n in design] == design
-    for m in module_files():
+    files = module_files()
+    for m in files:
         layer_of(m, table)  # raises if a module has no layer
+    listed = [p for _, _, prefixes in table for p in prefixes]
+    assert not [p for p in listed if p not in files], "the table names modules that do not exist"
+    assert len(set(listed)) == len(listed), "a module is listed in two layers"
 
 
 def test_no_cycles_no_upward_imports_no_private_names_across_modules():
@@ -285,12 +286,7 @@ def _graph_of(tmp_path, files: dict[str, str]):
         p = tmp_path / "optplan" / rel
         p.parent.mkdir(parents=True, exist_ok=True)
         p.write_text(text)
-    mods = {}
-    for f in sorted((tmp_path / "optplan").rglob("*.py")):
-        parts = list(f.relative_to(tmp_path).with_suffix("").parts)
-        if parts[-1] == "__init__":
-            parts.pop()
-        mods[".".join(parts)] = f
+    mods = module_files(tmp_path / "optplan")
     return {m: uses(m, f, mods) for m, f in mods.items()}
 
 
@@ -314,6 +310,26 @@ def test_checker_sees_every_kind_of_import(tmp_path):
     assert deps["optplan.c.d"] == {("optplan.a", None)}
     graph = {m: {t for t, _ in d} for m, d in deps.items()}
     assert strongly_connected(graph) == [["optplan.a", "optplan.a.b", "optplan.c.d"]]
+
+
+def test_checker_reports_cycles_upward_imports_and_private_names(tmp_path):
+    _graph_of(tmp_path, {
+        "__init__.py": "",
+        "low/__init__.py": "",
+        "low/a.py": "def f():\n    from ..high.b import g\n    return g\n",
+        "low/c.py": "from .d import x\n",
+        "low/d.py": "from . import c\nfrom .a import _helper\n",
+        "high/__init__.py": "",
+        "high/b.py": "from ..low import a\ny = a._z\n",
+    })
+    table = [(0, "low", ("optplan", "optplan.low")), (1, "high", ("optplan.high",))]
+    assert offences(module_files(tmp_path / "optplan"), table) == {
+        "cycle: high.b <-> low.a",
+        "cycle: low.c <-> low.d",
+        "upward import: low.a (low) imports high.b (high)",
+        "private name: low.d uses low.a._helper",
+        "private name: high.b uses low.a._z",
+    }
 
 
 @pytest.mark.parametrize("module,expected", [("optplan.world.grid", "world"), ("optplan.cli", "viz/cli")])
