@@ -8,7 +8,7 @@ import pytest
 
 import optplan as op
 from optplan.local import PRESETS, algorithm_names, make_local_planner
-from optplan.local.base import LocalContext
+from optplan.local.base import LocalContext, MoverSweepSource
 from optplan.local.mechanisms import VelocityObstacle
 from optplan.local.reference import reference_dwa
 from optplan.local.rollout import assess, rollout, rollout_ramped
@@ -267,6 +267,25 @@ def test_iga_dwa_turns_to_the_first_subgoal_first(field):
     assert planner.initial_heading == pytest.approx(math.pi / 2)  # li2023 eq 11
     cmd = planner.command(ctx_at(field, st, (2.0, 9.0), path=path))
     assert cmd.info["mode"] == "align-initial-heading" and cmd.v == 0.0 and cmd.w > 0
+
+
+def test_mechanisms_see_a_read_only_view_and_publish_what_they_learn():
+    robot = RobotSpec()
+    planner = make_local_planner("iga-dwa", robot, DT, n_v=7)
+    assert planner.view.robot is robot and planner.view.dt == DT and planner.view.options["n_v"] == 7
+    with pytest.raises(TypeError):
+        planner.view.options["n_v"] = 3  # mechanisms cannot change the planner's options
+    planner.reset(RobotState(2.0, 5.0, 0.0), [[2.0, 5.0], [2.0, 9.0]])
+    (turn,) = [m for m in planner.mechanisms if m.name == "initial_heading"]
+    assert turn.heading == planner.initial_heading == pytest.approx(math.pi / 2)
+    assert make_local_planner("dwa", robot, DT).initial_heading is None  # no such mechanism
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_every_preset_declares_the_mover_sweep_capability(name):
+    planner = make_local_planner(name, RobotSpec(), DT)
+    assert isinstance(planner, MoverSweepSource)
+    assert planner.mover_sweeps().shape == (0, 5)  # nothing learnt before a run
 
 
 def test_ba_dwa_gdist_pulls_towards_the_global_path():

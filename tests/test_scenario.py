@@ -10,6 +10,7 @@ import pytest
 import optplan as op
 from optplan.errors import ScenarioError
 from optplan.world.scenario import DynamicObstacle, load_scenario, scenario_names
+from optplan.worldgen.scenarios import realize
 
 ROWS = [
     [0, 0, 0, 0, 0, 0],
@@ -73,7 +74,7 @@ def test_shipped_map_name_and_circle_world():
 def test_every_shipped_scenario_loads_and_realises(name):
     sc = load_scenario(name)
     assert sc.description, f"{name} must say which paper experiment it stands in for"
-    r1, r2 = sc.realize(3), sc.realize(3)
+    r1, r2 = realize(sc, 3), realize(sc, 3)
     assert np.array_equal(r1.unknown_cells, r2.unknown_cells)
     assert [d.phase for d in r1.dynamic] == [d.phase for d in r2.dynamic]
 
@@ -145,7 +146,7 @@ def test_random_parts_are_drawn_from_the_seed_on_the_path_and_keep_the_goal_reac
     sc = load_scenario({"map": "li2023_11", "start": [0.5, 0.5, 0], "goal": [10.5, 10.5],
                         "random_obstacles": {"count": 2, "keep_away": 2.0},
                         "random_dynamic": {"count": 2, "radius": 0.3, "speed": [0.3, 0.5], "length": [3, 5]}})
-    a, b, c = sc.realize(0), sc.realize(0), sc.realize(1)
+    a, b, c = realize(sc, 0), realize(sc, 0), realize(sc, 1)
     assert a.unknown_cells.tolist() == b.unknown_cells.tolist()
     assert 1 <= len(a.unknown_cells) <= 2 and a.random_obstacles is None
     assert len(a.dynamic) == 2
@@ -162,7 +163,7 @@ def test_random_parts_are_drawn_from_the_seed_on_the_path_and_keep_the_goal_reac
 
 
 def test_segment_distance_is_zero_for_crossing_segments_and_exact_otherwise():
-    from optplan.world.scenario import _segments_distance
+    from optplan.worldgen.scenarios import _segments_distance
     o = np.zeros(2)
     assert _segments_distance(o, np.array([2.0, 2.0]), np.array([0.0, 2.0]), np.array([2.0, 0.0])) == 0.0
     # parallel, 1 m apart; then end to end along one line, 0.5 m apart
@@ -179,7 +180,7 @@ def test_random_movers_never_touch_each_other(name):
     sc = load_scenario(name)
     t = np.linspace(0.0, 1.0, 401)[:, None]
     for seed in range(6):
-        movers = sc.realize(seed).dynamic
+        movers = realize(sc, seed).dynamic
         assert len(movers) == sc.random_dynamic["count"]
         for i, m in enumerate(movers):
             for n in movers[i + 1:]:
@@ -219,7 +220,7 @@ def test_random_movers_cross_the_path_at_independently_drawn_places():
     sc = load_scenario("hou2024_dynamic4")
     spreads = []
     for seed in range(6):
-        world = sc.realize(seed)
+        world = realize(sc, seed)
         centres = np.array([d.waypoints.mean(axis=0) for d in world.dynamic])
         spreads.append(float(np.max(np.hypot(*(centres[:, None] - centres[None]).transpose(2, 0, 1)))))
     # six crossings drawn along a ~70 m path: the farthest two are far apart in most draws

@@ -12,6 +12,7 @@ from optplan.errors import ParameterError
 from optplan.sim import SimEnvironment, step_pose
 from optplan.world.robot import Command
 from optplan.world.scenario import load_scenario
+from optplan.worldgen.scenarios import realize
 
 
 class GoToSubgoal:
@@ -159,7 +160,7 @@ def test_a_mover_crossing_a_waiting_robot_is_a_collision_and_swept_between_sampl
     sc = open_room(dynamic_obstacles=[{"radius": 0.1, "start": [0.5, 5.0], "velocity": [0.0, -40.0],
                                        "at_border": "pass"}], time_limit=0.5)
     res = op.simulate(sc, local_planner=Replay([]), subgoals="goal")
-    rows = SimEnvironment(sc.realize(0)).movers
+    rows = SimEnvironment(realize(sc, 0)).movers
     ys = [rows(t)[0, 1] for t in res.trajectory[:, 0]]
     assert all(abs(y - 0.5) > 0.3 for y in ys)  # no sampled instant overlaps
     assert res.collisions == 1 and res.min_clearance < 0

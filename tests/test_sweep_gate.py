@@ -8,7 +8,7 @@ import pytest
 
 from optplan.local import make_local_planner
 from optplan.local.base import LocalContext
-from optplan.local.mechanisms import SweepGate, bounce, line_reach
+from optplan.local.sweep_gate import SweepGate, bounce, line_reach
 from optplan.sim.closed_loop import simulate
 from optplan.world.robot import RobotSpec, RobotState
 from optplan.world.scenario import load_scenario
@@ -91,7 +91,7 @@ def test_gate_learns_both_turning_points_then_predicts_the_motion():
     predicted_y = track.origin.imag + sign * lo
     assert np.abs(predicted_y - truth).max() < 0.02
     # the learnt sweep, for the navigation layer's stuck recovery: a 0.35 m disc from a to b
-    (row,) = gate.sweeps()
+    (row,) = gate.mover_sweeps()
     ends = sorted([tuple(row[:2]), tuple(row[2:4])], key=lambda p: p[1])
     assert np.allclose(ends, [(6.0, 1.0), (6.0, 5.0)], atol=0.02) and row[4] == pytest.approx(0.35)
 
@@ -102,7 +102,7 @@ def test_a_track_with_an_unseen_end_is_not_reported_as_a_sweep():
     for k in range(0, 120):  # 12 s: one turn (at b, 8 s) seen, the other not yet
         gate.update(context(round(k * 0.1, 10)))
     assert len(gate.tracks) == 1 and not gate.tracks[0].known
-    assert gate.sweeps().shape == (0, 5)
+    assert gate.mover_sweeps().shape == (0, 5)
 
 
 def test_before_a_turn_is_seen_the_mover_may_turn_round_at_once():
@@ -145,12 +145,12 @@ def test_gate_rejects_passing_close_behind_a_mover_that_may_turn():
     ctx = context(t, state)
     step = planner.evaluate(ctx, planner.window(ctx))
     (gate,) = [m for m in planner.mechanisms if isinstance(m, SweepGate)]
-    keep = gate.filter(planner, step)
+    keep = gate.filter(planner.view, step)
     clear_by_prediction = step.admissible & step.mover_free
     # the constant-velocity prediction clears samples that the possible turn-round does not
     assert (clear_by_prediction & ~keep).any()
     # the kept ones stay off where the mover could be if it turned now
-    (track,) = gate._now
+    (track,) = gate.tracks_now
     lo, hi = gate.swept(track, step.roll.t)
     q = (step.roll.z[keep] - track.origin) * np.conj(track.axis)
     beyond = np.maximum(np.maximum(lo - q.real, q.real - hi), 0.0)
@@ -194,8 +194,8 @@ def test_strict_filter_judges_one_trajectory_without_the_fallback():
     straight = planner._assess(ctx, planner.rollout_of(state, [0.6], [0.0], [0.0]))  # on into the track
     (gate,) = [m for m in planner.mechanisms if isinstance(m, SweepGate)]
     assert straight.admissible[0] and straight.mover_free[0]
-    assert not gate.strict_filter(planner, straight)[0]
-    assert gate.filter(planner, straight)[0]
+    assert not gate.strict_filter(planner.view, straight)[0]
+    assert gate.filter(planner.view, straight)[0]
 
 
 def test_line_reach_stops_at_known_obstacles_and_the_border():
@@ -229,7 +229,7 @@ def crossing_step(t, track_end, **gate):
         g.update(context(round(k * 0.1, 10), state, rows(k * 0.1)))
     ctx = context(t, state, rows(t))
     step = planner.evaluate(ctx, planner.window(ctx))
-    return step, g.strict_filter(planner, step), step.roll.z.real.max(axis=1) > 5.9
+    return step, g.strict_filter(planner.view, step), step.roll.z.real.max(axis=1) > 5.9
 
 
 def test_until_both_ends_are_seen_the_whole_reachable_line_is_kept_clear():

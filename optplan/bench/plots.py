@@ -101,9 +101,9 @@ def experiment_plots(res: ExperimentResults, out_dir: str | Path, metric: str | 
 
 def _world_of(kind: str, target_spec: Mapping):
     if kind == "plan":
-        from .runner import _plan_target
+        from .runner import plan_target
 
-        return _plan_target(json.dumps(dict(target_spec), sort_keys=True))[0]
+        return plan_target(json.dumps(dict(target_spec), sort_keys=True))[0]
     try:
         from ..world.scenario import load_scenario
 

@@ -60,7 +60,7 @@ def _tail(res: ExperimentResults, plots_dir: Path | None) -> str:
 def chen2025_paths(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path | None = None) -> str:
     """chen2025 Tables 9-11 (one table per map) and Table 8 (A* against the best MSIAR-GWO path)."""
     from ..planning import plan
-    from .runner import _plan_target
+    from .runner import plan_target
     import json
 
     text = global_tables(res, fmt, notes=False).rstrip("\n")
@@ -68,7 +68,7 @@ def chen2025_paths(res: ExperimentResults, fmt: str = "markdown", plots_dir: Pat
     table = Table(["map", "A* (8-connected) [m]", f"{ref.upper()} best [m]", "exact any-angle optimum [m]"],
                   caption="chen2025 Table 8 analog")
     for t in res.spec.targets:
-        world, s, g = _plan_target(json.dumps(dict(t.spec), sort_keys=True))
+        world, s, g = plan_target(json.dumps(dict(t.spec), sort_keys=True))
         astar = plan(world, s, g, algorithm="astar")
         sets = {rs.algorithm: rs for rs in res.run_sets(t.name)}
         best = min((r.length for r in sets[ref].feasible), default=float("nan")) if ref in sets else float("nan")
@@ -79,7 +79,7 @@ def chen2025_paths(res: ExperimentResults, fmt: str = "markdown", plots_dir: Pat
 
 def functions(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path | None = None) -> str:
     """chen2025 Tables 4-6 (best/mean/worst/std of F1-F18) and Table 7 (rank-sum p-values, +/=/-)."""
-    from .runner import _function_target
+    from .runner import function_target
     import json
 
     spec = res.spec
@@ -91,7 +91,7 @@ def functions(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path | N
             results[t.name][label] = list(res.values(recs, "f"))
             tr = res.traces([r.key for r in recs if r.key in res.rows])
             histories[t.name][label] = [np.asarray(tr[k]["history"], float) for k in tr if "history" in tr[k]]
-    optima = {t.name: _function_target(json.dumps(dict(t.spec), sort_keys=True)).f_opt for t in spec.targets}
+    optima = {t.name: function_target(json.dumps(dict(t.spec), sort_keys=True)).f_opt for t in spec.targets}
     out = [f"## {spec.formatted_title()}\n", summary_table(results, fmt=fmt),
            "\nknown optima: " + ", ".join(f"{n}={v:.6g}" for n, v in optima.items()),
            f"\n## chen2025 Table 7 analog: Wilcoxon rank-sum p-values of {ref} against each algorithm\n",
@@ -141,7 +141,7 @@ def li2023_global(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path
 
     from ..planning import plan
     from ..world.postprocess import remove_collinear
-    from .runner import _plan_target
+    from .runner import plan_target
 
     def key_points(r) -> int:
         return max(len(r.path) - 2, 0)
@@ -170,7 +170,7 @@ def li2023_global(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path
                 b = stats[base]
                 red = [f"{100 * (1 - Lm / b[0]):.1f}", f"{100 * (1 - tm / b[1]):.1f}", f"{100 * (1 - km / b[2]):.1f}"]
             t1.rows.append([t.name, a, f"{Lm:.3f}", f"{100 * (Lm / opt - 1):.2f}", f"{tm:.3f}", f"{km:.1f}", *red])
-        world, s, g = _plan_target(json.dumps(dict(t.spec), sort_keys=True))
+        world, s, g = plan_target(json.dumps(dict(t.spec), sort_keys=True))
         astar = plan(world, s, g, algorithm="astar")
         iga = sets[improved]
         t2.rows.append([t.name, f"{astar.length:.3f}", str(len(remove_collinear(astar.path)) - 2),

@@ -36,7 +36,10 @@ EXECUTORS_HELP = "local | dask://HOST:PORT | dask-local"
 
 # ------------------------------------------------------------------- one run (worker side)
 @functools.lru_cache(maxsize=32)
-def _plan_target(target_json: str):
+def plan_target(target_json: str):
+    """``(world, start, goal)`` of a plan target, from its spec as sorted JSON (``{"paper_map":
+    name}`` or ``{"map": file, "start": [x, y], "goal": [x, y]}``, metres); cached per process,
+    so the runs of one target load its map once."""
     import numpy as np
 
     t = json.loads(target_json)
@@ -50,7 +53,9 @@ def _plan_target(target_json: str):
 
 
 @functools.lru_cache(maxsize=32)
-def _function_target(target_json: str):
+def function_target(target_json: str):
+    """The benchmark function of an optimize target, from its spec as sorted JSON
+    (``{"function": "F1", "shifted": bool, "dim": n}``); cached per process."""
     from ..formulations.functions import get_function
 
     t = json.loads(target_json)
@@ -60,7 +65,7 @@ def _function_target(target_json: str):
 def _run_plan(rec) -> tuple[Any, dict]:
     from ..planning import plan
 
-    world, start, goal = _plan_target(json.dumps(rec.target_spec, sort_keys=True))
+    world, start, goal = plan_target(json.dumps(rec.target_spec, sort_keys=True))
     res = plan(world, start, goal, algorithm=rec.algorithm, refine=rec.refine, seed=rec.seed, **rec.params)
     return res, {}
 
@@ -68,7 +73,7 @@ def _run_plan(rec) -> tuple[Any, dict]:
 def _run_optimize(rec) -> tuple[Any, dict]:
     from ..solvers.metaheuristics import optimize
 
-    F = _function_target(json.dumps(rec.target_spec, sort_keys=True))
+    F = function_target(json.dumps(rec.target_spec, sort_keys=True))
     res = optimize(F, F.bounds, algorithm=rec.algorithm, seed=rec.seed, **rec.params)
     return res, {"f_error": float(res.f - F.f_opt), "f_opt": float(F.f_opt)}
 

@@ -147,9 +147,9 @@ def load_results(spec: ExperimentSpec, store) -> ExperimentResults:
 @functools.lru_cache(maxsize=64)
 def _exact_optimum(target_json: str) -> float:
     from .global_runs import exact_optimum
-    from .runner import _plan_target
+    from .runner import plan_target
 
-    world, start, goal = _plan_target(target_json)
+    world, start, goal = plan_target(target_json)
     return exact_optimum(world, start, goal)
 
 
@@ -208,9 +208,9 @@ def summary_tables(res: ExperimentResults, metric: str | None = None) -> list[Ta
         if optimum is not None:
             table.notes.append(f"exact optimum (any-angle, same start/goal): {optimum:.4f} m")
         if spec.kind == "optimize":
-            from .runner import _function_target
+            from .runner import function_target
 
-            F = _function_target(json.dumps(dict(target.spec), sort_keys=True))
+            F = function_target(json.dumps(dict(target.spec), sort_keys=True))
             table.notes.append(f"known optimum of {target.name}: {F.f_opt:.6g}")
         tables.append(table)
     if tally:

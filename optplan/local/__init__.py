@@ -4,10 +4,12 @@
 the closed loop calls ``reset(state, global_path)`` once and ``command(ctx)`` every
 control period (see ``optplan.local.base``).
 
-Modules: ``window`` (dynamic window, admissibility), ``rollout`` (all samples x horizon at
-once), ``critics`` (one cost term per class), ``mechanisms`` (adaptive velocity, velocity
-obstacles, brake-and-wait, initial heading), ``dwa`` (the planner core), ``presets`` (the
-papers' planners as data), ``qp_dwa`` (QP refinement + Ruckig), ``reference`` (a loop-based
+Modules: ``base`` (the contract with the closed loop, capabilities), ``window`` (dynamic
+window, admissibility), ``rollout`` (all samples x horizon at once), ``critics`` (one cost
+term per class), ``hooks`` (the contract between the core and its mechanisms),
+``mechanisms`` (adaptive velocity, velocity obstacles, brake-and-wait, initial heading),
+``sweep_gate`` (qp-dwa's sweep gate), ``dwa`` (the planner core), ``presets`` (the papers'
+planners as data), ``qp_dwa`` (QP refinement + Ruckig), ``reference`` (a loop-based
 textbook DWA for checking and benchmarking).
 """
 from __future__ import annotations

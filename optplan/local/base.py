@@ -5,9 +5,13 @@ Each control period the loop builds a :class:`LocalContext` and calls
 ``planner.command(ctx)``; the planner returns a :class:`Command`. Planners may keep
 state between calls (previous command, Ruckig's acceleration, warm starts);
 ``reset`` clears it at the start of a run.
+
+A planner may also declare capabilities the loop uses when present, by subclassing
+(or ``register``-ing with) the capability's class: :class:`MoverSweepSource`.
 """
 from __future__ import annotations
 
+from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 from typing import Callable, Protocol
 
@@ -63,3 +67,19 @@ class LocalPlanner(Protocol):
 
     def command(self, ctx: LocalContext) -> Command:
         """The velocity command for the next control period."""
+
+
+class MoverSweepSource(ABC):
+    """Capability: knows stretches that moving obstacles sweep back and forth.
+
+    The closed loop hands them to the navigation layer, which plans round them when the
+    robot is stuck or its path crosses one (``Navigator.on_sweeps``). Every
+    ``DWAPlanner`` declares it; presets without a mechanism that learns sweeps (only
+    ``qp-dwa``'s sweep gate does) report none. A planner of one's own declares it by
+    subclassing this class or with ``MoverSweepSource.register(PlannerClass)``.
+    """
+
+    @abstractmethod
+    def mover_sweeps(self) -> np.ndarray:
+        """``(n, 5)`` rows ``(x0, y0, x1, y1, r)``, metres: a disc of radius ``r`` is known to
+        drive back and forth between ``(x0, y0)`` and ``(x1, y1)``."""

@@ -24,15 +24,17 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from types import MappingProxyType
 from typing import Any, Mapping
 
 import numpy as np
 
 from ..errors import ParameterError
 from ..world.robot import Command, RobotSpec, RobotState
-from .base import LocalContext
+from .base import LocalContext, MoverSweepSource
 from .critics import CRITICS, Critic
-from .mechanisms import MECHANISMS, Mechanism
+from .hooks import Mechanism, PlannerView
+from .mechanisms import MECHANISMS, InitialHeading
 from .rollout import Rollouts, Step, assess, rollout, rollout_ramped, static_gradient
 from .window import Window, dynamic_window, sample_grid
 
@@ -82,7 +84,7 @@ def _normalise(values: np.ndarray, cand: np.ndarray, how: str) -> np.ndarray:
     return (values - lo) / (hi - lo) if hi > lo else np.zeros_like(values)
 
 
-class DWAPlanner:
+class DWAPlanner(MoverSweepSource):
     """A dynamic-window local planner configured by a :class:`Preset`.
 
     Build it with ``optplan.local.make_local_planner(name, robot, dt, **params)``; the
@@ -122,7 +124,6 @@ class DWAPlanner:
         self.name = preset.name
         self.preset = preset
         self.robot = robot
-        self.initial_heading: float | None = None
         opts = {**self.OPTIONS, **preset.options}
         terms = {t.critic: (t.weight, dict(t.params)) for t in preset.terms}
         mechs = {m: dict(p) for m, p in preset.mechanisms}
@@ -152,6 +153,8 @@ class DWAPlanner:
                 raise ParameterError(f"unknown parameter {key!r} for local planner {preset.name!r}; "
                                      f"known: {', '.join(known)}")
         self.options = self._checked(opts)
+        # what the mechanisms see of the planner (the options read-only, live)
+        self.view = PlannerView(robot, self.dt, MappingProxyType(self.options))
         self.terms: list[tuple[Critic, float]] = []
         for cname, (w, p) in terms.items():
             w = self._number(f"weight of {cname}", w, allow_zero=True)
@@ -200,15 +203,23 @@ class DWAPlanner:
     def reset(self, state: RobotState, global_path: np.ndarray) -> None:
         """Forget the previous run (adaptive limits, alignment, previous command)."""
         self.last = None
-        self.initial_heading = None
         for m in self.mechanisms:
-            m.reset(self, state, global_path)
+            m.reset(self.view, state, global_path)
+
+    @property
+    def initial_heading(self) -> float | None:
+        """li2023 eq 11: the heading (rad) of the first global path segment, published by the
+        ``initial_heading`` mechanism at ``reset``; ``None`` without that mechanism."""
+        for m in self.mechanisms:
+            if isinstance(m, InitialHeading):
+                return m.heading
+        return None
 
     def window(self, ctx: LocalContext) -> Window:
         """The dynamic window for this step, after the mechanisms' caps."""
         win = dynamic_window(self.robot, ctx.state, self.options["lookahead"] or ctx.dt, omni=self.omni)
         for m in self.mechanisms:
-            win = m.adjust_window(self, ctx, win)
+            win = m.adjust_window(self.view, ctx, win)
         return win
 
     def evaluate(self, ctx: LocalContext, window: Window) -> Step:
@@ -236,7 +247,7 @@ class DWAPlanner:
 
         def predict(centres: np.ndarray, t: np.ndarray) -> np.ndarray:
             for m in self.mechanisms:
-                centres = m.predict(self, ctx, centres, t)
+                centres = m.predict(self.view, ctx, centres, t)
             return centres
 
         return assess(ctx, self.robot, roll, margin=o["margin"], reaction=self._reaction(), mover_range=o["mover_range"],
@@ -249,7 +260,7 @@ class DWAPlanner:
         """Index of the best candidate sample (``None`` if none is admissible) and diagnostics."""
         legal = np.ones(step.roll.n, dtype=bool)
         for m in self.mechanisms:
-            keep = m.filter(self, step)
+            keep = m.filter(self.view, step)
             if keep is not None:
                 legal &= keep
         for critic, _ in self.terms:
@@ -327,7 +338,7 @@ class DWAPlanner:
         info: dict[str, Any] = {"planner": self.name}
         step = None
         for m in self.mechanisms:
-            took = m.override(self, ctx, win)
+            took = m.override(self.view, ctx, win)
             if took is not None:
                 v, w, extra = took
                 u = win.clip(v, w, 0.0)
@@ -352,8 +363,10 @@ class DWAPlanner:
 
     def mover_sweeps(self) -> np.ndarray:
         """``(n, 5)`` rows ``(x0, y0, x1, y1, r)``: stretches the mechanisms know movers sweep
-        back and forth (the navigation layer's stuck recovery plans round them)."""
-        return np.vstack([np.zeros((0, 5))] + [m.sweeps() for m in self.mechanisms])
+        back and forth (the navigation layer's stuck recovery plans round them); the
+        mechanisms that learn them declare :class:`~optplan.local.base.MoverSweepSource`."""
+        return np.vstack([np.zeros((0, 5))] + [m.mover_sweeps() for m in self.mechanisms
+                                               if isinstance(m, MoverSweepSource)])
 
     def finish(self, ctx: LocalContext, window: Window, u: tuple[float, float, float], step: Step | None,
                info: dict) -> tuple[float, float, float]:

@@ -177,7 +177,7 @@ class QPDWAPlanner(DWAPlanner):
             win = dynamic_window(self.robot, ctx.state, ctx.dt, omni=self.omni, accel=a3, jerk=self.jerk,
                                  a_lin=self.a_lin)
         for m in self.mechanisms:
-            win = m.adjust_window(self, ctx, win)
+            win = m.adjust_window(self.view, ctx, win)
         return win
 
     def finish(self, ctx, window, u, step, info):
@@ -236,7 +236,7 @@ class QPDWAPlanner(DWAPlanner):
     def _legal_after_filters(self, check: Step) -> bool:
         """Whether the (single) trajectory of ``check`` passes the preset's filters."""
         for m in self.mechanisms:
-            keep = m.strict_filter(self, check)
+            keep = m.strict_filter(self.view, check)
             if keep is not None and not keep[0]:
                 return False
         return True

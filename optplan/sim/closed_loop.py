@@ -30,11 +30,12 @@ from typing import Any, Callable
 import numpy as np
 
 from ..errors import ParameterError, UnknownAlgorithmError
-from ..local.base import LocalContext
+from ..local.base import LocalContext, MoverSweepSource
 from ..nav.navigator import Navigator, preset_defaults
 from ..results import SimResult
 from ..world.robot import Command, RobotState
 from ..world.scenario import Scenario, load_scenario
+from ..worldgen.scenarios import realize
 from .environment import SimEnvironment
 from .kinematics import step_pose
 
@@ -83,7 +84,7 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
     """Run the robot of ``scenario`` from start to goal in closed loop.
 
     The global path is planned first; the scenario's random parts are then drawn from
-    ``seed`` on that path (``Scenario.realize(seed, path)``; :func:`realized_scenario`
+    ``seed`` on that path (``optplan.worldgen.scenarios.realize``; :func:`realized_scenario`
     gives the same world for plotting).
 
     Args:
@@ -137,7 +138,7 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
     planner = make_planner(local_planner, robot, dt, dict(options.get("planner_params") or {}))
     # the global plan comes first: random obstacles are placed on the path the robot is given
     nav.plan_initial(options.get("global_plan"))
-    sc = sc.realize(seed, path=nav.path)
+    sc = realize(sc, seed, path=nav.path)
     env = SimEnvironment(sc)
     progress = options.get("progress")
     if progress is True:
@@ -166,7 +167,7 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
             status = "reached"
             break
         if nav.check_stuck(pos, t, dt):
-            sweeps = planner.mover_sweeps() if hasattr(planner, "mover_sweeps") else None
+            sweeps = planner.mover_sweeps() if isinstance(planner, MoverSweepSource) else None
             if not nav.recover_stuck(env.believed_world(), pos, t, avoid=sweeps):
                 if nav.gave_up:
                     status = "stuck"
@@ -212,7 +213,7 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
             break
         if env.sense(pos):
             nav.on_new_obstacles(env.believed_world(), pos, t)
-        if hasattr(planner, "mover_sweeps"):
+        if isinstance(planner, MoverSweepSource):
             nav.on_sweeps(env.believed_world(), pos, t, planner.mover_sweeps())
         if progress:
             progress(t, state, {"to_goal": float(np.hypot(*(pos - sc.goal))), "collisions": collisions,
@@ -240,7 +241,7 @@ def realized_scenario(scenario, seed, global_plan) -> Scenario:
     sc = load_scenario(scenario)
     nav = Navigator(sc.world, sc.robot, sc.start[:2], sc.goal)
     nav.plan_initial(global_plan)
-    return sc.realize(seed, path=nav.path)
+    return realize(sc, seed, path=nav.path)
 
 
 def _result(sc: Scenario, traj: np.ndarray, vys: np.ndarray, step_ms, collisions: int, min_clear: float, status: str,

@@ -72,7 +72,7 @@ class SimEnvironment:
     """Ground truth and the robot's knowledge of it during one run.
 
     Args:
-        scenario: a realised scenario (``Scenario.realize`` already applied).
+        scenario: a realised scenario (``optplan.worldgen.scenarios.realize`` already applied).
     """
 
     def __init__(self, scenario: Scenario):

@@ -16,6 +16,7 @@ from ..errors import ParameterError, UnknownAlgorithmError
 from ..formulations.encodings import ColumnNodes, FreeWaypoints, SplinePath
 from ..formulations.problem import PathProblem
 from ..world.postprocess import key_points, prune_direct, remove_collinear
+from .archive import ARCHIVE_EVERY, archive_alternatives
 from .result import check_alternatives, make_plan_result
 
 # which paper's fitness and post-processing each algorithm uses by default
@@ -34,11 +35,6 @@ GRAPH_PLANNERS = ("aco", "ga", "iga")  # grid-graph / cell-sequence planners of 
 # always plans a cubic spline through free points (eq 1-4, obstacles as their outer
 # circles, §2.2), also in its 25x25 fusion world (§7.3); the other papers use grid nodes
 GRID_ENCODING = {"yang2023": "spline"}
-# iterations between the population snapshots that ``alternatives`` are drawn from.
-# Measured on the paper maps (issue 5 multi-start): the final population alone has
-# lost the better corridor on li2023_90 in most runs, snapshots every 10 iterations
-# still hold it; finer snapshots add near-copies, not corridors.
-ARCHIVE_EVERY = 10
 
 
 def algorithm_names() -> list[str]:
@@ -82,23 +78,6 @@ def postprocess_path(world, path: np.ndarray, mode: str, clearance: float = 0.0)
     if mode == "prune":
         return prune_direct(world, path, clearance)
     raise ParameterError(f"postprocess must be none, collinear, keypoints or prune; got {mode!r}")
-
-
-def archive_alternatives(world, X, violation, encoding, finish, best_x, best_path, count: int,
-                         separation: float | None, clearance: float = 0.0) -> list[np.ndarray]:
-    """Decode a population archive (rows ``X`` best first, their ``violation``) lazily
-    into up to ``count`` distinct valid paths (:func:`~optplan.solvers.result.population_alternatives`):
-    ``encoding.waypoints(row)`` then the planner's post-processing ``finish``.
-    ``separation=None`` is the default tube radius of ``refine="casadi"``."""
-    from .result import population_alternatives
-    from .tube import default_tube_radius
-
-    if count <= 0 or X is None or len(X) == 0:
-        return []
-    sep = default_tube_radius(world) if separation is None else separation
-    rows = X[np.asarray(violation) == 0]
-    return population_alternatives(world, (encoding.waypoints(x) for x in rows), best_path, count, sep, clearance,
-                                   finish=finish, best_raw=encoding.waypoints(best_x))
 
 
 def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iters: int = 500,

@@ -64,16 +64,17 @@ Optional keys added by optplan (all validated like the rest):
   along its motion by a time drawn uniformly from ``[0, timing_jitter]`` with the
   run's seed, so seeded runs of a fixed scenario meet the movers at different moments.
 
-Seed-dependent parts are realised by :meth:`Scenario.realize` (``op.simulate`` calls
-it with its ``seed`` and its initial global path), so the same scenario file, seed and
-global path always give the same world.
+This module reads and checks the file; the seed-dependent parts are realised by
+:func:`optplan.worldgen.scenarios.realize` (``op.simulate`` calls it with its ``seed``
+and its initial global path), so the same scenario file, seed and global path always
+give the same world. Drawing them needs a planner, which this layer may not import.
 Malformed files raise :class:`ScenarioError` naming the key and what to write instead.
 """
 from __future__ import annotations
 
 import math
 import os
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -240,8 +241,8 @@ class Scenario:
         goal_tolerance: metres.
         name, description: free text.
         random_obstacles, random_dynamic: seed-dependent parts (``None`` when absent);
-            :meth:`realize` turns them into unknown and moving obstacles.
-        timing_jitter: seconds; :meth:`realize` advances each mover by a random time up to this.
+            :func:`optplan.worldgen.scenarios.realize` turns them into unknown and moving obstacles.
+        timing_jitter: seconds; ``realize`` advances each mover by a random time up to this.
         source: the file it was read from, if any.
     """
 
@@ -285,34 +286,6 @@ class Scenario:
         or discs (circle worlds, without the planning safety margin). Unknown discs on a
         grid are not included; see :func:`static_clearance`."""
         return _true_world(self)
-
-    def realize(self, seed=0, path=None) -> "Scenario":
-        """A copy whose random obstacles (``random_obstacles``, ``random_dynamic``) are
-        drawn from ``seed`` and added as ordinary unknown / moving obstacles.
-
-        Args:
-            seed: int or Generator.
-            path: ``(N, 2)`` reference path (metres) the random obstacles are placed on
-                (the run's global path); default: the known map's shortest path.
-        """
-        if not self.random_obstacles and not self.random_dynamic and not self.timing_jitter:
-            return self
-        from ..rng import as_generator
-
-        rng = as_generator(seed)
-        cells, circles, dynamic = self.unknown_cells, self.unknown_circles, list(self.dynamic)
-        if self.timing_jitter:
-            dynamic = _jitter_movers(self, rng)
-        if self.random_obstacles or self.random_dynamic:
-            path = _reference_path(self) if path is None else _densify(np.asarray(path, dtype=float).reshape(-1, 2))
-        if self.random_obstacles:
-            new_cells, new_circles = _draw_random_obstacles(self, self.random_obstacles, rng, path)
-            cells = np.vstack([cells, new_cells]) if len(new_cells) else cells
-            circles = np.vstack([circles, new_circles]) if len(new_circles) else circles
-        if self.random_dynamic:
-            dynamic += _draw_random_movers(self, self.random_dynamic, rng, path)
-        return replace(self, unknown_cells=cells, unknown_circles=circles, dynamic=dynamic,
-                       random_obstacles=None, random_dynamic=None, timing_jitter=0.0)
 
 
 # ------------------------------------------------------------------ true world
@@ -661,200 +634,3 @@ def load_scenario(path_or_dict) -> Scenario:
     if not sc.name:
         sc.name = p.stem
     return sc
-
-
-# ------------------------------------------------------------- random parts
-def _reference_path(sc: Scenario) -> np.ndarray:
-    """The known map's shortest path for the robot's footprint (dense polyline)."""
-    from ..solvers.graph import shortest_path
-
-    method = "astar" if sc.is_grid else "visibility"
-    try:
-        res = shortest_path(sc.world, sc.start[:2], sc.goal, method=method, clearance=sc.robot.radius)
-    except OptplanError:
-        res = shortest_path(sc.world, sc.start[:2], sc.goal, method=method)
-    return _densify(np.vstack([sc.start[:2], res.path, sc.goal]))
-
-
-def _densify(P: np.ndarray, step: float = 0.25) -> np.ndarray:
-    """Points every ``step`` metres (or closer) along the polyline ``P``."""
-    if len(P) < 2:
-        return P.copy()
-    seg = np.diff(P, axis=0)
-    n = np.maximum(np.ceil(np.hypot(seg[:, 0], seg[:, 1]) / step).astype(int), 1)
-    dense = [P[i] + seg[i] * (np.arange(n[i])[:, None] / n[i]) for i in range(len(seg))]
-    return np.vstack(dense + [P[-1:]])
-
-
-def _reachable(sc: Scenario, cells: np.ndarray, circles: np.ndarray) -> bool:
-    """Can the robot's footprint still get from start to goal with these extra obstacles?"""
-    from ..solvers.graph import shortest_path
-
-    trial = replace(sc, unknown_cells=np.vstack([sc.unknown_cells, cells]) if len(cells) else sc.unknown_cells,
-                    unknown_circles=np.vstack([sc.unknown_circles, circles]) if len(circles) else sc.unknown_circles,
-                    random_obstacles=None, random_dynamic=None, timing_jitter=0.0)
-    world = trial.true_world()
-    if sc.is_grid and len(trial.unknown_circles):
-        return True  # discs on a grid: accepted without a reachability test
-    if sc.is_grid and sc.robot.radius <= 0.5 * world.resolution:
-        # 4-neighbour moves between free cell centres keep half a cell from every blocked
-        # cell, so 4-connectivity of the free cells suffices for this footprint
-        from scipy.ndimage import label
-
-        lab, _ = label(~world.occ)
-        (sx, sy), (gx, gy) = world.cell_of(sc.start[:2]), world.cell_of(sc.goal)
-        return bool(lab[sy, sx] != 0 and lab[sy, sx] == lab[gy, gx])
-    try:
-        shortest_path(world, sc.start[:2], sc.goal, method="astar" if sc.is_grid else "visibility",
-                      clearance=sc.robot.radius)
-    except OptplanError:
-        return False
-    return True
-
-
-def _draw_random_obstacles(sc: Scenario, spec: dict, rng, path: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    count, size, keep = int(spec["count"]), float(spec["size"]), float(spec["keep_away"])
-    if count == 0:
-        return np.zeros((0, 2), np.int64), np.zeros((0, 3))
-    far = (np.hypot(*(path - sc.start[:2]).T) >= keep) & (np.hypot(*(path - sc.goal).T) >= keep)
-    candidates = path[far]
-    if not len(candidates):
-        raise ScenarioError(f"random_obstacles: no point of the reference path is {keep:g} m from start and goal; "
-                            "lower keep_away")
-    for _ in range(200):
-        picks = candidates[rng.choice(len(candidates), size=count, replace=len(candidates) < count)]
-        if sc.is_grid:
-            k = max(int(round(size)), 1)
-            corner = sc.world.cell_of(picks) - (k - 1) // 2
-            offs = np.stack(np.meshgrid(np.arange(k), np.arange(k)), -1).reshape(-1, 2)
-            cells = np.unique((corner[:, None, :] + offs[None]).reshape(-1, 2), axis=0)
-            cells = cells[sc.world.in_map(cells)]
-            cells = cells[~sc.world.occ[cells[:, 1], cells[:, 0]]]
-            trial = replace(sc, unknown_cells=np.vstack([sc.unknown_cells, cells]), random_obstacles=None,
-                            random_dynamic=None) if len(cells) else None
-            if trial is None:
-                continue
-            try:
-                validate(trial)
-            except ScenarioError:
-                continue
-            if _reachable(sc, cells, np.zeros((0, 3))):
-                return cells, np.zeros((0, 3))
-        else:
-            circles = np.column_stack([picks, np.full(count, size / 2)])
-            try:
-                validate(replace(sc, unknown_circles=np.vstack([sc.unknown_circles, circles]),
-                                 random_obstacles=None, random_dynamic=None))
-            except ScenarioError:
-                continue
-            if _reachable(sc, np.zeros((0, 2), np.int64), circles):
-                return np.zeros((0, 2), np.int64), circles
-    raise ScenarioError("random_obstacles: no draw in 200 tries left the goal reachable; lower count or size")
-
-
-def _jitter_movers(sc: Scenario, rng) -> list[DynamicObstacle]:
-    """The scenario's movers, each advanced by ``U(0, timing_jitter)`` seconds; a shift that
-    would put a mover onto the robot's start is drawn again (then dropped to zero)."""
-    out = []
-    for ob in sc.dynamic:
-        for _ in range(20):
-            shift = float(rng.uniform(0.0, sc.timing_jitter))
-            if ob.waypoints is not None:
-                moved = replace(ob, phase=ob.phase + ob.speed * shift)
-            else:
-                pos, vel = ob.state(shift, sc.bounds)
-                moved = replace(ob, start=pos, velocity=vel if ob.at_border != "stop" else ob.velocity)
-                if ob.at_border == "stop" and not np.any(vel):
-                    moved = replace(ob, start=pos, velocity=np.zeros(2))
-            pos, _ = moved.state(0.0, sc.bounds)
-            if np.hypot(*(pos - sc.start[:2])) >= ob.radius + sc.robot.radius:
-                out.append(moved)
-                break
-        else:
-            out.append(ob)
-    return out
-
-
-def _segment_points_distance(a, b, P: np.ndarray) -> np.ndarray:
-    """Distance from each point of ``P`` ``(n, 2)`` to the segment ``a -> b``."""
-    ab = b - a
-    L2 = float(ab @ ab)
-    t = np.zeros(len(P)) if L2 == 0 else np.clip((P - a) @ ab / L2, 0.0, 1.0)
-    return np.hypot(*(P - (a + t[:, None] * ab)).T)
-
-
-def _point_segment_distance(p, a, b) -> float:
-    ab = b - a
-    L2 = float(ab @ ab)
-    t = 0.0 if L2 == 0 else float(np.clip((p - a) @ ab / L2, 0.0, 1.0))
-    return float(np.hypot(*(p - (a + t * ab))))
-
-
-def _segments_distance(a, b, c, d) -> float:
-    """Distance between the segments ``a -> b`` and ``c -> d`` (0 when they cross)."""
-    def cross(o, p, q) -> float:
-        return float((p[0] - o[0]) * (q[1] - o[1]) - (p[1] - o[1]) * (q[0] - o[0]))
-    d1, d2, d3, d4 = cross(c, d, a), cross(c, d, b), cross(a, b, c), cross(a, b, d)
-    if d1 * d2 < 0 and d3 * d4 < 0:
-        return 0.0
-    # otherwise the closest pair has an end point of one segment
-    return float(min(_segment_points_distance(c, d, np.array([a, b])).min(),
-                     _segment_points_distance(a, b, np.array([c, d])).min()))
-
-
-def _draw_random_movers(sc: Scenario, spec: dict, rng, path: np.ndarray) -> list[DynamicObstacle]:
-    count, radius, keep = int(spec["count"]), float(spec["radius"]), float(spec["keep_away"])
-    if count == 0:
-        return []
-    far = (np.hypot(*(path - sc.start[:2]).T) >= keep) & (np.hypot(*(path - sc.goal).T) >= keep)
-    idx = np.nonzero(far)[0]
-    if not len(idx):
-        raise ScenarioError(f"random_dynamic: no point of the reference path is {keep:g} m from start and goal; "
-                            "lower keep_away")
-    world = sc.world
-    out: list[DynamicObstacle] = []
-    tries = 0
-    while len(out) < count:
-        tries += 1
-        if tries > 500 * count:
-            raise ScenarioError("random_dynamic: could not place the moving obstacles in free space; "
-                                "lower count, radius or length")
-        i = idx[rng.integers(len(idx))]
-        j = min(i + 1, len(path) - 1)
-        tangent = path[j] - path[max(j - 1, 0)]
-        ang = math.atan2(tangent[1], tangent[0]) + math.radians(rng.uniform(60, 120)) * rng.choice([-1, 1])
-        u = np.array([math.cos(ang), math.sin(ang)])
-        half = rng.uniform(*spec["length"]) / 2
-        a, b = path[i] - half * u, path[i] + half * u
-        # shorten each half until it keeps the radius from known obstacles and the border
-        for end in ("a", "b"):
-            for _ in range(20):
-                p = a if end == "a" else b
-                if bool(world.segments_free(path[i], p, radius)):
-                    break
-                p = path[i] + 0.8 * (p - path[i])
-                a, b = (p, b) if end == "a" else (a, p)
-        if not bool(world.segments_free(a, b, radius)) or np.hypot(*(b - a)) < max(1.0, spec["length"][0] / 2):
-            continue
-        # the mover must never touch the robot waiting at the start or arrived at the goal
-        near = radius + sc.robot.radius + 0.5
-        if min(_point_segment_distance(sc.start[:2], a, b), _point_segment_distance(sc.goal, a, b)) < near:
-            continue
-        # it must *cross* the path once, not run along it (say, up and down a corridor the path
-        # follows), so that a robot that cannot reverse can always wait before its sweep
-        swept = np.nonzero(_segment_points_distance(a, b, path) < near)[0]
-        crossing = 2 * near / math.sin(math.radians(60)) + 0.5
-        if not len(swept) or swept[-1] - swept[0] + 1 != len(swept) or \
-                float(np.hypot(*np.diff(path[swept], axis=0).T).sum()) > crossing:
-            continue
-        # movers are solid: two tracks keep the movers apart whatever their timing (drawn
-        # independently, tracks used to cross or share an end, and movers drove through
-        # each other)
-        if any(_segments_distance(a, b, other.waypoints[0], other.waypoints[-1]) < radius + other.radius + 0.1
-               for other in out):
-            continue
-        speed = rng.uniform(*spec["speed"])
-        ob = DynamicObstacle(radius, waypoints=np.round(np.array([a, b]), 3), speed=round(float(speed), 3), loop=True,
-                             phase=round(float(rng.uniform(0, 2 * np.hypot(*(b - a)))), 3))
-        out.append(ob)
-    return out

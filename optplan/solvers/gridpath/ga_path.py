@@ -36,6 +36,7 @@ from ...formulations.encodings import ColumnNodes
 from ...formulations.problem import PathProblem
 from ...rng import as_generator
 from ...world.postprocess import key_points, remove_collinear
+from ..archive import ARCHIVE_EVERY, archive_alternatives
 from ..metaheuristics.engine import pooled_archive
 from ..result import check_alternatives, make_plan_result
 
@@ -266,8 +267,6 @@ def plan_ga(world, start, goal, *, improved: bool, seed=0, pop: int = 50, iters:
     if problem.encoding.dim == 0:
         return make_plan_result(world, np.stack([s, g]), name, time.perf_counter() - t0, clearance=clearance)
     p = GAParams(improved=improved, **params)
-    from ..paths import ARCHIVE_EVERY, archive_alternatives
-
     count, separation = check_alternatives(alternatives, alternative_separation)
     snapshots = [] if count else None
     x, fbest, history, nfev, gens = ga_path(problem, pop=pop, iters=iters, seed=seed, params=p, max_evals=max_evals,

@@ -38,12 +38,12 @@ unchanged with the reason (never a colliding path).
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
 
 import numpy as np
 
 from ...errors import ParameterError
 from ...world.geometry import validate_path
+from ..smoother import SmoothResult, WarmStart, check_seed_ends, default_points, resample
 
 IPOPT_OPTIONS = {
     "print_level": 0,
@@ -71,68 +71,6 @@ IPOPT_WARM_OPTIONS = {
     "warm_start_slack_bound_frac": 1e-9,
     "warm_start_mult_bound_push": 1e-9,
 }
-
-
-@dataclass
-class WarmStart:
-    """A solved smoothing NLP's primal-dual point, to start a later solve of the same size.
-
-    Attributes:
-        points: ``(N, 2)`` solution, metres.
-        lam_x: multipliers of the variable bounds.
-        lam_g: multipliers of the clearance constraints.
-        neighbours: ``(2N-3, K)`` circle indices of each query point (circle worlds), else None.
-        key: which NLP produced it; a warm start from another NLP is ignored.
-    """
-
-    points: np.ndarray
-    lam_x: np.ndarray
-    lam_g: np.ndarray
-    neighbours: np.ndarray | None
-    key: tuple
-
-
-@dataclass
-class SmoothResult:
-    """Outcome of a smoother (:func:`smooth_path`, :func:`optplan.solvers.qp.smooth_path_qp`).
-
-    Attributes:
-        path: the refined path when ``success``, otherwise the seed unchanged, ``(N, 2)`` metres.
-        success: the refined path passed ``validate_path``.
-        message: empty on a first-try success, otherwise what happened (the reason for a fallback).
-        solve_time_s: wall time of the whole call, seconds.
-        iterations: solver iterations (IPOPT iterations / OSQP ADMM iterations, summed over rounds).
-        objective: the smoothing objective ``J`` of ``path`` (NaN when not computed).
-        rounds: solves made (neighbour-reassignment rounds / corridor rounds, over all attempts).
-        warm: primal-dual point for warm-starting a later call (CasADi smoother only).
-    """
-
-    path: np.ndarray
-    success: bool
-    message: str
-    solve_time_s: float
-    iterations: int = 0
-    objective: float = float("nan")
-    rounds: int = 0
-    warm: WarmStart | None = field(default=None, repr=False)
-
-
-def resample(path: np.ndarray, n: int) -> np.ndarray:
-    """``n`` points equally spaced by arc length along a polyline (ends kept)."""
-    P = np.asarray(path, dtype=float)
-    seg = np.hypot(*np.diff(P, axis=0).T)
-    s = np.concatenate([[0.0], np.cumsum(seg)])
-    if s[-1] == 0:
-        return np.repeat(P[:1], n, axis=0)
-    t = np.linspace(0.0, s[-1], n)
-    return np.stack([np.interp(t, s, P[:, 0]), np.interp(t, s, P[:, 1])], axis=1)
-
-
-def default_points(path: np.ndarray, spacing: float) -> int:
-    """Number of points for a path: about one per ``spacing`` metres, rounded up to
-    a multiple of 10 (so paths of similar length share one built NLP), 20 to 100."""
-    L = float(np.hypot(*np.diff(np.asarray(path, float), axis=0).T).sum())
-    return int(np.clip(10 * np.ceil((L / spacing + 1) / 10), 20, 100))
 
 
 def smoothing_objective(points: np.ndarray, w_smooth: float) -> float:
@@ -350,19 +288,6 @@ def _polish(world, X: np.ndarray, clearance: float, w_smooth: float) -> tuple[np
     if q.success:
         return q.path, ""
     return X, f"QP polish skipped ({q.message})"
-
-
-def check_seed_ends(world, seed_path, clearance: float) -> tuple[np.ndarray, SmoothResult | None]:
-    """The seed as an ``(M, 2)`` array, and a failed :class:`SmoothResult` saying why when it
-    cannot be refined at all (bad shape, or start/goal not ``clearance`` metres clear);
-    shared by every smoother so they refuse the same inputs with the same words."""
-    P = np.asarray(seed_path, dtype=float)
-    if P.ndim != 2 or P.shape[1] != 2 or len(P) < 2:
-        return P, SmoothResult(P, False, "the seed must be an (M, 2) path with at least two points", 0.0)
-    for p, what in ((P[0], "start"), (P[-1], "goal")):
-        if not bool(world.is_free(p, clearance)):
-            return P, SmoothResult(P, False, f"the {what} is not {clearance:g} m clear of obstacles", 0.0)
-    return P, None
 
 
 def smooth_path(world, seed_path, clearance: float = 0.0, n_points: int | None = None, w_smooth: float = 0.5,

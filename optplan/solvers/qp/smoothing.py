@@ -27,7 +27,7 @@ import numpy as np
 
 from ...errors import ParameterError
 from ...world.geometry import validate_path
-from ..nlp.smoothing import SmoothResult, check_seed_ends, default_points
+from ..smoother import SmoothResult, check_seed_ends, default_points
 from .corridor import build_corridor, sample_for_corridor
 from .program import corridor_program, objective_value
 
