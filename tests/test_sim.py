@@ -279,3 +279,28 @@ def test_path_switches_are_a_result_field():
     res = op.simulate("yuan2021_path_switch", local_planner="ba-dwa", seed=0, time_limit=160)
     assert res.path_switches == 2 and res.replans >= res.path_switches
     assert path_switches(res) == 2 and "2 path switch" in res.message
+
+
+def test_a_mover_on_a_zero_length_loop_is_seen_and_hit():
+    # waypoints [[5, 3], [5, 3]] with speed > 0 once gave the mover a NaN position: the robot drove
+    # through it and the run said reached, 0 collisions. It stands still now, in the robot's way.
+    sc = open_room(start=[0.5, 3.0, 0], goal=[9.5, 3.0],
+                   dynamic_obstacles=[{"radius": 0.4, "waypoints": [[5, 3], [5, 3]], "speed": 1.0}])
+    assert np.allclose(SimEnvironment(sc).movers(3.0), [[5.0, 3.0, 0.0, 0.0, 0.4]])
+    res = op.simulate(sc, local_planner=GoToSubgoal(sc.robot, sc.dt), subgoals="goal")  # ignores obstacles
+    assert res.collisions > 0 and res.min_clearance < 0
+
+
+def test_a_non_finite_mover_position_stops_the_run_instead_of_hiding_the_mover(monkeypatch):
+    from optplan.errors import ScenarioError
+    from optplan.world.scenario import DynamicObstacle
+
+    sc = open_room(dynamic_obstacles=[{"radius": 0.4, "waypoints": [[5, 3], [6, 3]], "speed": 1.0}])
+    monkeypatch.setattr(DynamicObstacle, "state", lambda self, t, bounds: (np.full(2, np.nan), np.zeros(2)))
+    with pytest.raises(ScenarioError, match="dynamic obstacle 0"):
+        op.simulate(sc, local_planner=Replay([]), subgoals="goal")
+    env = SimEnvironment(open_room())
+    with pytest.raises(ParameterError, match="non-finite"):
+        env.moving_gap(np.zeros(2), np.ones(2), np.array([[np.nan, 1.0, 0, 0, 0.3]]), np.array([[1.0, 1.0, 0, 0, 0.3]]))
+    with pytest.raises(ParameterError, match="non-finite"):
+        env.static_check(np.array([[0.5, 0.5], [np.nan, 0.5]]))
