@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 
 from .spec import ExperimentSpec, RunRecord
-from .stats import compare, summary
+from .stats import TOO_FEW, compare, summary, too_few_note
 from .tables import Table
 
 GroupKey = tuple  # (label, refine, local_planner)
@@ -173,6 +173,7 @@ def summary_tables(res: ExperimentResults, metric: str | None = None) -> list[Ta
     tables = []
     for target in spec.targets:
         groups = res.groups(target.name)
+        too_few = False
         head = ["algorithm", "runs", "failed", "success", f"best {metric}", f"mean {metric}", f"worst {metric}",
                 f"std {metric}"]
         optimum = None
@@ -203,7 +204,11 @@ def summary_tables(res: ExperimentResults, metric: str | None = None) -> list[Ta
                     # chen2025 Table 7 convention: '+' means the reference is significantly better
                     p, sign = compare(res.values(groups[ref], metric), vals, spec.alpha)
                     cells += ["-" if not np.isfinite(p) else f"{p:.3g}", sign]
-                    tally.setdefault(name, {"+": 0, "=": 0, "-": 0})[sign] += 1
+                    counts = tally.setdefault(name, {"+": 0, "=": 0, "-": 0})
+                    if sign == TOO_FEW:
+                        too_few = True
+                    else:
+                        counts[sign] += 1
             table.rows.append(cells)
         if optimum is not None:
             table.notes.append(f"exact optimum (any-angle, same start/goal): {optimum:.4f} m")
@@ -212,6 +217,8 @@ def summary_tables(res: ExperimentResults, metric: str | None = None) -> list[Ta
 
             F = _function_target(json.dumps(dict(target.spec), sort_keys=True))
             table.notes.append(f"known optimum of {target.name}: {F.f_opt:.6g}")
+        if too_few:
+            table.notes.append(too_few_note(spec.alpha))
         tables.append(table)
     if tally:
         t = Table(["algorithm vs reference", "+", "=", "-"],
