@@ -145,7 +145,7 @@ def load_results(spec: ExperimentSpec, store) -> ExperimentResults:
 
 
 @functools.lru_cache(maxsize=64)
-def _exact_optimum(target_json: str) -> float:
+def _exact_optimum(target_json: str, inputs: str) -> float:
     from .global_runs import exact_optimum
     from .runner import _plan_target
 
@@ -154,8 +154,11 @@ def _exact_optimum(target_json: str) -> float:
 
 
 def exact_optimum_of(target_spec) -> float:
-    """Length (metres) of the exact any-angle optimum of a plan target, cached per process."""
-    return _exact_optimum(json.dumps(dict(target_spec), sort_keys=True))
+    """Length (metres) of the exact any-angle optimum of a plan target, cached per process
+    (by the content of its map file too, so an edited map gets its own optimum)."""
+    from .inputs import inputs_digest
+
+    return _exact_optimum(json.dumps(dict(target_spec), sort_keys=True), inputs_digest("plan", target_spec))
 
 
 def _fmt(x: float) -> str:
