@@ -1,4 +1,6 @@
-"""The ``optplan`` command line. Errors print one line and exit with status 2."""
+"""The ``optplan`` command line. Errors print one line and exit with status 2;
+``optplan simulate`` exits with status 1 when the robot did not reach the goal without a
+collision (the outcome is still printed in full)."""
 from __future__ import annotations
 
 import argparse
@@ -8,6 +10,9 @@ import sys
 from pathlib import Path
 
 from .errors import OptplanError
+
+EXIT_ERROR = 2          # an OptplanError (bad file, bad parameter, ...): its message is printed
+EXIT_GOAL_MISSED = 1    # simulate: the run ended without reaching the goal collision-free
 
 # Subcommands whose arguments and handler live with their layer: each module defines
 # ``add_<name>_arguments(parser)`` and ``run_<name>(args) -> int``. ``simulate`` lives here
@@ -21,7 +26,8 @@ EXAMPLES = {
     "plan": "example: optplan plan arena --start 1.5 37.5 --goal 40.5 10.5 --algo visibility --plot arena.png",
     "algorithms": "example: optplan algorithms",
     "demo": "example: optplan demo --out demo.png",
-    "simulate": "example: optplan simulate hou2024_dynamic1 --global astar --local missa-dwa --gif run.gif",
+    "simulate": "example: optplan simulate hou2024_dynamic1 --global astar --local missa-dwa --gif run.gif   "
+                "(exit status: 0 goal reached with no collision, 1 not (stuck, timeout or collision), 2 error)",
 }
 
 
@@ -84,8 +90,9 @@ def _add_simulate_arguments(parser) -> None:
 
 
 def _cmd_simulate(args) -> int:
-    """Run ``optplan simulate``; returns the exit status (0 also when the goal is missed:
-    the outcome is reported, not an error)."""
+    """Run ``optplan simulate``; returns the exit status: 0 when the robot reached the goal
+    with no collision, :data:`EXIT_GOAL_MISSED` (1) when it did not (stuck, timed out or
+    collided; the outcome is printed all the same)."""
     from .sim.closed_loop import realized_scenario, simulate
     from .sim.experiments import plan_global
     from .world.scenario import load_scenario
@@ -104,9 +111,10 @@ def _cmd_simulate(args) -> int:
         from .viz.animate import animate_run
 
         animate_run(realized_scenario(scenario, args.seed, plan), res, args.gif)
+    status = 0 if res.reached and res.collisions == 0 else EXIT_GOAL_MISSED
     if args.json:
         print(json.dumps(res.to_json_dict()))
-        return 0
+        return status
     print(f"scenario       {scenario.name}")
     print(f"planners       {res.global_planner} + {res.local_planner}" + (f" (refine {res.refine})" if res.refine else ""))
     print(f"status         {res.status}: {res.message}")
@@ -118,7 +126,7 @@ def _cmd_simulate(args) -> int:
     print(f"max |accel|    {res.max_abs_accel:.3f} m/s^2, max |ang accel| {res.max_abs_ang_accel:.3f} rad/s^2")
     if args.gif:
         print(f"wrote {args.gif}")
-    return 0
+    return status
 
 
 def _cmd_algorithms(args) -> int:
@@ -213,7 +221,8 @@ def _check_outputs(args) -> None:
 
 def main(argv: list[str] | None = None) -> int:
     """Run the command line with ``argv`` (default ``sys.argv[1:]``); returns the exit status
-    (0 success, 2 an OptplanError whose message was printed on one line, 130 interrupted)."""
+    (0 success, 1 a simulation that missed the goal or collided, 2 an OptplanError whose
+    message was printed on one line, 130 interrupted)."""
     parser = build_parser()
     args = parser.parse_args(argv)
     if not getattr(args, "command", None):
@@ -224,11 +233,11 @@ def main(argv: list[str] | None = None) -> int:
         return int(args.func(args) or 0)
     except OptplanError as exc:
         print(f"optplan: error: {exc}", file=sys.stderr)
-        return 2
+        return EXIT_ERROR
     except OSError as exc:  # a file the user named could not be read or written
         where = f" {exc.filename}" if getattr(exc, "filename", None) else ""
         print(f"optplan: error: cannot access{where}: {exc.strerror or exc}", file=sys.stderr)
-        return 2
+        return EXIT_ERROR
     except KeyboardInterrupt:
         print("optplan: interrupted", file=sys.stderr)
         return 130

@@ -215,11 +215,34 @@ def test_cli_json_has_exactly_the_contract_keys(tmp_path, capsys, monkeypatch):
     gif = tmp_path / "run.gif"
     assert main(["simulate", str(f), "--local", "dwa", "--json", "--seed", "1", "--gif", str(gif)]) == 0
     out = json.loads(capsys.readouterr().out)
+    # DESIGN.md's keys first, in its order, then the ones optplan adds
     assert list(out) == ["reached", "collisions", "time_s", "path_length", "min_clearance", "max_abs_accel",
-                         "max_abs_ang_accel", "steps", "mean_step_ms", "trajectory"]
+                         "max_abs_ang_accel", "steps", "mean_step_ms", "trajectory",
+                         "status", "message", "seed", "global_path"]
     assert out["reached"] is True and len(out["trajectory"]) == out["steps"] + 1
     assert len(out["trajectory"][0]) == 6
+    assert out["status"] == "reached" and out["seed"] == 1 and out["message"]
+    assert out["global_path"][0] == [0.5, 0.5] and out["global_path"][-1] == [2.5, 0.5]
     assert gif.stat().st_size > 1000 and gif.read_bytes()[:3] == b"GIF"
+
+
+@pytest.mark.parametrize("as_json", [True, False])
+def test_cli_exits_1_when_the_goal_is_missed(tmp_path, capsys, monkeypatch, as_json):
+    # a robot that never moves times out: the outcome is printed, and the exit status says so
+    import optplan.sim.closed_loop as loop
+    from optplan.cli import EXIT_GOAL_MISSED, main
+
+    monkeypatch.setattr(loop, "make_planner", lambda name, robot, dt, params: Replay([]))
+    f = tmp_path / "s.yaml"
+    f.write_text("map: li2023_11\nstart: [0.5, 0.5, 0]\ngoal: [2.5, 0.5]\ntime_limit: 1.0\n")
+    status = main(["simulate", str(f), "--seed", "4"] + (["--json"] if as_json else []))
+    assert status == EXIT_GOAL_MISSED == 1
+    out = capsys.readouterr().out
+    if as_json:
+        d = json.loads(out)
+        assert d["reached"] is False and d["status"] == "timeout" and d["seed"] == 4 and "time limit" in d["message"]
+    else:
+        assert "status         timeout" in out
 
 
 def test_omni_robot_slides_sideways_in_the_loop():
