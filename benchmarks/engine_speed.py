@@ -4,8 +4,12 @@
 
 Prints wall time (median of 5 runs) and the framework overhead per evaluation:
 (wall time - time spent inside the objective) / evaluations. Goal (issue 3):
-GWO under 0.03 s and under 2 us per evaluation. If mealpy is installed (the
-``bench`` extra), its GWO runs on the same problem for comparison.
+GWO under 0.03 s and under 2 us per evaluation. If mealpy is installed, its GWO runs
+on the same problem for comparison. mealpy is not one of optplan's extras: it pins an
+older numpy, which breaks cvxpy, so install it in a venv of its own::
+
+    python3 -m venv /tmp/mealpy-venv && . /tmp/mealpy-venv/bin/activate
+    pip install -e . mealpy && python benchmarks/engine_speed.py
 """
 from __future__ import annotations
 
@@ -68,7 +72,8 @@ def main() -> None:
     if m is not None:
         print(f"| mealpy GWO (reference) | {m[0]:.4f} | {m[1]:.2f} (incl. objective) | 15000 |")
     else:
-        print("\nmealpy is not installed (pip install -e '.[bench]' to compare)")
+        print("\nmealpy is not installed; to compare, run this in a venv of its own with "
+              "'pip install -e . mealpy' (it downgrades numpy, so keep it out of optplan's venv)")
     print("\ngoal: gwo under 0.03 s and under 2 us/eval of overhead")
 
 

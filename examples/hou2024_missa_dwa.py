@@ -43,7 +43,8 @@ def main(argv=None) -> int:
 
 
 def part_local(args) -> int:
-    from optplan.sim.experiments import paper_local, write_gif
+    from optplan.sim.experiments import paper_local
+    from optplan.viz.animate import write_run_gif
 
     if args.quick:
         paper_local("hou2024 Table 4 analog (quick: 1 random obstacle, A* global path)", ["hou2024_table4_1"], 1,
@@ -56,7 +57,7 @@ def part_local(args) -> int:
         paper_local("hou2024 §4.5 analog: dynamic environments 1-4 (MISSA global path)",
                     [f"hou2024_dynamic{k}" for k in range(1, 5)], runs, global_planner="missa", global_options=gopts)
     if args.gif:
-        print(write_gif("hou2024_dynamic1", "missa-dwa", args.gif, global_planner="astar" if args.quick else "missa",
+        print(write_run_gif("hou2024_dynamic1", "missa-dwa", args.gif, global_planner="astar" if args.quick else "missa",
                         global_options=None if args.quick else {"pop": 60, "iters": args.iters or 300}))
     return 0
 

@@ -93,7 +93,8 @@ def main(argv=None) -> int:
 
 
 def part_local(args) -> int:
-    from optplan.sim.experiments import paper_local, write_gif
+    from optplan.sim.experiments import paper_local
+    from optplan.viz.animate import write_run_gif
 
     if args.quick:
         paper_local("li2023 Experiment I analog (quick): traditional DWA vs IGA-DWA, A* global path", ["li2023_exp1"], 1,
@@ -119,7 +120,7 @@ def part_local(args) -> int:
             print(f"| {p} | " + " | ".join(cells) + " |")
         print("\n(successful runs / runs in brackets)")
     if args.gif:
-        print(write_gif("li2023_exp2_3", "iga-dwa", args.gif, **({"time_limit": 20} if args.quick else {})))
+        print(write_run_gif("li2023_exp2_3", "iga-dwa", args.gif, **({"time_limit": 20} if args.quick else {})))
     return 0
 
 

@@ -53,7 +53,8 @@ def main(argv=None) -> int:
 
 
 def part_local(args) -> int:
-    from optplan.sim.experiments import paper_local, write_gif
+    from optplan.sim.experiments import paper_local
+    from optplan.viz.animate import write_run_gif
 
     if args.quick:
         paper_local("yang2023 §7.2 analog (quick): DWA vs IDWA, two crossing movers", ["yang2023_idwa_crossing"], 1,
@@ -64,7 +65,7 @@ def part_local(args) -> int:
         paper_local("yang2023 §7.3 analog: fusion on the 25x25 dynamic map (IPSO global path)", ["yang2023_fusion"],
                     args.runs, global_planner="ipso", global_options={"pop": 50, "iters": args.iters or 300})
     if args.gif:
-        print(write_gif("yang2023_idwa_crossing", "idwa", args.gif))
+        print(write_run_gif("yang2023_idwa_crossing", "idwa", args.gif))
     return 0
 
 

@@ -49,7 +49,8 @@ def main(argv=None) -> int:
 
 
 def part_local(args) -> int:
-    from optplan.sim.experiments import paper_local, path_switches, write_gif
+    from optplan.sim.experiments import paper_local, path_switches
+    from optplan.viz.animate import write_run_gif
 
     if args.quick:
         sets = paper_local("yuan2021 §5.3 analog (quick): path switch, A* global path", ["yuan2021_path_switch"], 1,
@@ -68,7 +69,7 @@ def part_local(args) -> int:
             print(f"| {s.planner} | {len(s.results)} | {sum(switches) / len(s.results):.2f} | "
                   f"{sum(r.replans for r in s.results) / len(s.results):.2f} |")
     if args.gif:
-        print(write_gif("yuan2021_path_switch", "ba-dwa", args.gif))
+        print(write_run_gif("yuan2021_path_switch", "ba-dwa", args.gif))
     return 0
 
 

@@ -1,4 +1,6 @@
-"""The ``optplan`` command line. Errors print one line and exit with status 2."""
+"""The ``optplan`` command line. Errors print one line and exit with status 2;
+``optplan simulate`` exits with status 1 when the robot did not reach the goal without a
+collision (the outcome is still printed in full)."""
 from __future__ import annotations
 
 import argparse
@@ -9,10 +11,13 @@ from pathlib import Path
 
 from .errors import OptplanError
 
+EXIT_ERROR = 2          # an OptplanError (bad file, bad parameter, ...): its message is printed
+EXIT_GOAL_MISSED = 1    # simulate: the run ended without reaching the goal collision-free
+
 # Subcommands whose arguments and handler live with their layer: each module defines
-# ``add_<name>_arguments(parser)`` and ``run_<name>(args) -> int``.
+# ``add_<name>_arguments(parser)`` and ``run_<name>(args) -> int``. ``simulate`` lives here
+# instead, because it draws (--gif) and the simulator layer must not import optplan.viz.
 LAYER_COMMANDS = (
-    ("simulate", "optplan.sim.command", "run a robot through a scenario (global + local planner)"),
     ("bench", "optplan.bench.command", "run an experiment spec (maps x algorithms x seeds) into SQLite"),
     ("reproduce", "optplan.bench.command", "run a paper's shipped experiments and print its tables"),
 )
@@ -21,6 +26,8 @@ EXAMPLES = {
     "plan": "example: optplan plan arena --start 1.5 37.5 --goal 40.5 10.5 --algo visibility --plot arena.png",
     "algorithms": "example: optplan algorithms",
     "demo": "example: optplan demo --out demo.png",
+    "simulate": "example: optplan simulate hou2024_dynamic1 --global astar --local missa-dwa --gif run.gif   "
+                "(exit status: 0 goal reached with no collision, 1 not (stuck, timeout or collision), 2 error)",
 }
 
 
@@ -64,6 +71,62 @@ def _cmd_plan(args) -> int:
         if args.plot:
             print(f"wrote {args.plot}")
     return 0
+
+
+def _add_simulate_arguments(parser) -> None:
+    parser.add_argument("scenario", help="scenario YAML file or the name of a shipped scenario")
+    parser.add_argument("--global", dest="global_planner", default="astar",
+                        help="global planner (see 'optplan algorithms'); default astar (visibility on circle worlds)")
+    parser.add_argument("--local", dest="local_planner", default="dwa",
+                        help="local planner: dwa, missa-dwa, idwa, ba-dwa, iga-dwa, qp-dwa; default dwa")
+    parser.add_argument("--refine", default="none", choices=["none", "casadi", "qp"], help="refine the global path")
+    parser.add_argument("--seed", type=int, default=0, help="random seed (global planner, random obstacles); default 0")
+    parser.add_argument("--subgoals", default=None,
+                        help="subgoal strategy: goal, key_points, turning_points, navigation_points "
+                             "(default: the local planner's paper default)")
+    parser.add_argument("--json", action="store_true", help="print exactly one JSON object")
+    parser.add_argument("--gif", metavar="FILE.gif", help="write an animation of the run")
+    parser.add_argument("--progress", action="store_true", help="print a status line every 10 simulated seconds")
+
+
+def _cmd_simulate(args) -> int:
+    """Run ``optplan simulate``; returns the exit status: 0 when the robot reached the goal
+    with no collision, :data:`EXIT_GOAL_MISSED` (1) when it did not (stuck, timed out or
+    collided; the outcome is printed all the same)."""
+    from .sim.closed_loop import realized_scenario, simulate
+    from .sim.experiments import plan_global
+    from .world.scenario import load_scenario
+
+    scenario = load_scenario(args.scenario)
+    options = {}
+    if args.subgoals:
+        options["subgoals"] = args.subgoals
+    if args.progress:
+        options["progress"] = True
+    refine = None if args.refine == "none" else args.refine
+    plan = plan_global(scenario, args.global_planner, refine, args.seed)
+    res = simulate(scenario, global_planner=args.global_planner, local_planner=args.local_planner, refine=refine,
+                   seed=args.seed, global_plan=plan, **options)
+    if args.gif:
+        from .viz.animate import animate_run
+
+        animate_run(realized_scenario(scenario, args.seed, plan), res, args.gif)
+    status = 0 if res.reached and res.collisions == 0 else EXIT_GOAL_MISSED
+    if args.json:
+        print(json.dumps(res.to_json_dict()))
+        return status
+    print(f"scenario       {scenario.name}")
+    print(f"planners       {res.global_planner} + {res.local_planner}" + (f" (refine {res.refine})" if res.refine else ""))
+    print(f"status         {res.status}: {res.message}")
+    print(f"reached        {res.reached}")
+    print(f"collisions     {res.collisions}")
+    print(f"time           {res.time_s:.1f} s ({res.steps} steps, {res.mean_step_ms:.2f} ms per local-planner call)")
+    print(f"path length    {res.path_length:.3f} m")
+    print(f"min clearance  {res.min_clearance:.3f} m")
+    print(f"max |accel|    {res.max_abs_accel:.3f} m/s^2, max |ang accel| {res.max_abs_ang_accel:.3f} rad/s^2")
+    if args.gif:
+        print(f"wrote {args.gif}")
+    return status
 
 
 def _cmd_algorithms(args) -> int:
@@ -113,6 +176,11 @@ def build_parser() -> argparse.ArgumentParser:
     a = sub.add_parser("algorithms", help="list every registered planner", epilog=EXAMPLES["algorithms"])
     a.set_defaults(func=_cmd_algorithms)
 
+    m = sub.add_parser("simulate", help="run a robot through a scenario (global + local planner)",
+                       epilog=EXAMPLES["simulate"])
+    _add_simulate_arguments(m)
+    m.set_defaults(func=_cmd_simulate)
+
     for name, module, help_text in LAYER_COMMANDS:
         try:
             mod = importlib.import_module(module)
@@ -153,7 +221,8 @@ def _check_outputs(args) -> None:
 
 def main(argv: list[str] | None = None) -> int:
     """Run the command line with ``argv`` (default ``sys.argv[1:]``); returns the exit status
-    (0 success, 2 an OptplanError whose message was printed on one line, 130 interrupted)."""
+    (0 success, 1 a simulation that missed the goal or collided, 2 an OptplanError whose
+    message was printed on one line, 130 interrupted)."""
     parser = build_parser()
     args = parser.parse_args(argv)
     if not getattr(args, "command", None):
@@ -164,11 +233,11 @@ def main(argv: list[str] | None = None) -> int:
         return int(args.func(args) or 0)
     except OptplanError as exc:
         print(f"optplan: error: {exc}", file=sys.stderr)
-        return 2
+        return EXIT_ERROR
     except OSError as exc:  # a file the user named could not be read or written
         where = f" {exc.filename}" if getattr(exc, "filename", None) else ""
         print(f"optplan: error: cannot access{where}: {exc.strerror or exc}", file=sys.stderr)
-        return 2
+        return EXIT_ERROR
     except KeyboardInterrupt:
         print("optplan: interrupted", file=sys.stderr)
         return 130

@@ -65,7 +65,7 @@ def run_demo(out: str | Path = "optplan_demo.png", seed: int = 0, stream=None) -
     print("exact optimum = visibility graph over obstacle corners (any-angle, cell centres); "
           "'+ casadi' / '+ qp' = the msiar-gwo path refined by IPOPT / the OSQP corridor smoother "
           "(times include the metaheuristic; every path passed the exact collision check)", file=stream)
-    png = plot_paths(grid, {k: v.path for k, v in results.items()}, out,
-                     title=f"{DEMO_MAP}: planners vs exact any-angle optimum")
-    print(f"wrote {png}", file=stream)
+    plot_paths(grid, {k: v.path for k, v in results.items()}, out,
+               title=f"{DEMO_MAP}: planners vs exact any-angle optimum")
+    print(f"wrote {out}", file=stream)
     return rows

@@ -178,8 +178,11 @@ class SimResult(_ToDict):
     max_abs_jerk: float = 0.0
     path_switches: int = 0
 
+    # DESIGN.md's keys, then what a script needs to tell a failed run from a good one and to
+    # reproduce it: why the run ended, in words, its seed and the global path it followed
     JSON_KEYS = ("reached", "collisions", "time_s", "path_length", "min_clearance", "max_abs_accel",
-                 "max_abs_ang_accel", "steps", "mean_step_ms", "trajectory")
+                 "max_abs_ang_accel", "steps", "mean_step_ms", "trajectory", "status", "message", "seed",
+                 "global_path")
 
 
 @dataclass

@@ -357,3 +357,73 @@ def test_closed_loop_report_pools_scenarios_and_pairs_runs_by_seed(tmp_path):
     lo, hi = (float(x) for x in dwa[4].split("-"))
     assert (lo, hi) == pytest.approx((8.2, 64.1), abs=0.1)  # Wilson 95 % for 2/7
     assert "### all scenarios" in render_report(res)
+
+
+# ----------------------------------------------------------------------------- stale results
+def _write_rows(path: Path, wall: bool) -> None:
+    rows = [[0] * 10 for _ in range(10)]
+    if wall:  # a wall across the middle with a gap at the right edge: a long detour
+        rows[5] = [1] * 9 + [0]
+    path.write_text("\n".join(" ".join(map(str, r)) for r in rows) + "\n")
+
+
+def test_editing_the_map_file_between_two_runs_makes_the_second_recompute(tmp_path):
+    # the key used to hash the file's path, so a rerun served the result of the old map
+    map_file = tmp_path / "room.txt"
+    _write_rows(map_file, wall=False)
+    raw = {"kind": "plan", "algorithms": ["astar"], "runs": 1,
+           "maps": [{"name": "room", "map": str(map_file), "start": [0.5, 0.5], "goal": [0.5, 9.5]}]}
+    store = ResultStore(tmp_path / "runs.sqlite")
+    first = load_spec(raw).expand()
+    assert run_records(first, store, workers=1, progress=False).ran == 1
+    assert run_records(load_spec(raw).expand(), store, workers=1, progress=False).ran == 0  # unchanged: resumed
+    _write_rows(map_file, wall=True)
+    second = load_spec(raw).expand()
+    assert second[0].key != first[0].key
+    assert run_records(second, store, workers=1, progress=False).ran == 1
+    rows = store.rows([first[0].key, second[0].key])
+    assert rows[first[0].key]["length"] == pytest.approx(9.0)
+    assert rows[second[0].key]["length"] > 17.0  # planned on the edited map, not on a cached copy
+    _write_rows(map_file, wall=False)  # back to the old content: the old stored result is valid again
+    assert [r.key for r in load_spec(raw).expand()] == [first[0].key]
+
+
+def test_a_simulate_key_follows_the_scenario_and_the_map_it_references(tmp_path):
+    map_file = tmp_path / "room.txt"
+    _write_rows(map_file, wall=False)
+    scenario = tmp_path / "s.yaml"
+    text = "map: room.txt\nstart: [0.5, 0.5, 90]\ngoal: [0.5, 9.5]\ntime_limit: 60\n"
+    scenario.write_text(text)
+    raw = {"kind": "simulate", "scenarios": [str(scenario)], "algorithms": ["astar"], "local_planners": ["dwa"],
+           "runs": 1}
+    store = ResultStore(tmp_path / "runs.sqlite")
+    first = load_spec(raw).expand()
+    assert run_records(first, store, workers=1, progress=False).ran == 1
+    _write_rows(map_file, wall=True)
+    second = load_spec(raw).expand()
+    assert second[0].key != first[0].key
+    assert run_records(second, store, workers=1, progress=False).ran == 1
+    rows = store.rows([first[0].key, second[0].key])
+    # driven on the walled map (a cached copy of the open one would repeat the first run exactly)
+    assert abs(rows[second[0].key]["path_length"] - rows[first[0].key]["path_length"]) > 0.5
+    scenario.write_text(text.replace("time_limit: 60", "time_limit: 50"))
+    assert load_spec(raw).expand()[0].key not in (first[0].key, second[0].key)
+
+
+def test_the_inputs_of_shipped_targets_and_ros_maps_are_found(tmp_path):
+    from optplan.bench.inputs import input_files, inputs_digest
+    from optplan.world.loaders import load_map, save_map
+
+    files = input_files("simulate", {"scenario": "hou2024_dynamic1"})
+    assert [role for role, _ in files] == ["scenario", "map"] and all(p is not None and p.is_file() for _, p in files)
+    assert [role for role, _ in input_files("plan", {"paper_map": "chen2025_20"})] == ["map"]
+    assert inputs_digest("optimize", {"function": "F1"}) == ""
+    save_map(load_map("arena"), tmp_path / "arena.yaml")   # metadata + a .pgm image beside it
+    target = {"map": str(tmp_path / "arena.yaml"), "start": [1.5, 37.5], "goal": [40.5, 10.5]}
+    assert [p.name for _, p in input_files("plan", target)] == ["arena.yaml", "arena.pgm"]
+    before = inputs_digest("plan", target)
+    image = tmp_path / "arena.pgm"
+    data = bytearray(image.read_bytes())
+    data[-1] ^= 0xFF   # one pixel of the image changes; the metadata file does not
+    image.write_bytes(bytes(data))
+    assert inputs_digest("plan", target) != before

@@ -234,7 +234,7 @@ def test_iga_dwa_brakes_and_waits_for_a_crossing_mover(field):
     # it keeps waiting at standstill while the mover is in front, then drives on
     still = RobotState(2.0, 5.0, 0.0, 0.0, 0.0)
     assert planner.command(ctx_at(field, still, (9.5, 5.0), [crossing], path)).v == 0.0
-    gone = [3.2, 6.6, 0.0, 0.5, 0.3]  # past the path and more than 60 deg off the heading
+    gone = [2.6, 6.6, 0.0, 0.5, 0.3]  # past the path and more than 60 deg off the heading (69 deg)
     assert planner.command(ctx_at(field, still, (9.5, 5.0), [gone], path)).info["mode"] == "sample"
     head_on = [3.2, 5.0, -0.5, 0.0, 0.3]  # coming head-on: left to the DWA (condition 4)
     assert planner.command(ctx_at(field, st, (9.5, 5.0), [head_on], path)).info["mode"] != "brake-and-wait"

@@ -225,3 +225,49 @@ def test_random_movers_cross_the_path_at_independently_drawn_places():
         spreads.append(float(np.max(np.hypot(*(centres[:, None] - centres[None]).transpose(2, 0, 1)))))
     # six crossings drawn along a ~70 m path: the farthest two are far apart in most draws
     assert np.median(spreads) > 10.0, spreads
+
+
+def _room(**over):
+    d = {"map": [[0] * 10 for _ in range(6)], "start": [0.5, 3.0, 0], "goal": [9.5, 3.0]}
+    d.update(over)
+    return load_scenario(d)
+
+
+def test_a_waypoint_loop_of_zero_length_is_a_mover_that_stands_still():
+    # two waypoints at one place with speed > 0 once gave s % 0 = NaN: a mover nowhere
+    still = DynamicObstacle(0.4, waypoints=np.array([[5.0, 3.0], [5.0, 3.0]]), speed=1.0, loop=True)
+    for t in (0.0, 0.1, 7.3, 100.0):
+        pos, vel = still.state(t, (0.0, 0.0, 10.0, 6.0))
+        assert pos.tolist() == [5.0, 3.0] and vel.tolist() == [0.0, 0.0]
+    sc = _room(dynamic_obstacles=[{"radius": 0.4, "waypoints": [[5, 3], [5, 3]], "speed": 1.0}])
+    assert np.isfinite(sc.dynamic[0].state(2.0, sc.bounds)[0]).all()
+
+
+def test_a_bouncing_mover_wider_than_the_map_is_refused_naming_it():
+    # radius 3.5 m on a 6 m tall map: bouncing would have to put it somewhere it never was
+    with pytest.raises(ScenarioError, match=r"dynamic_obstacles\[1\].*radius 3.5"):
+        _room(dynamic_obstacles=[{"radius": 0.3, "start": [8, 1], "velocity": [0, 0.5]},
+                                 {"radius": 3.5, "start": [5, 3], "velocity": [0.2, 0.0]}])
+    with pytest.raises(ScenarioError, match=r"dynamic_obstacles\[0\]"):
+        _room(dynamic_obstacles=[{"radius": 3.5, "start": [5, 3], "velocity": [0.2, 0.0], "at_border": "stop"}])
+    # leaving the map is its own choice, and needs no room inside it
+    sc = _room(dynamic_obstacles=[{"radius": 3.5, "start": [5, 12], "velocity": [0.2, 0.0], "at_border": "pass"}])
+    assert sc.dynamic[0].state(1.0, sc.bounds)[0].tolist() == [5.2, 12.0]
+    with pytest.raises(ScenarioError, match="wider than"):
+        DynamicObstacle(3.5, start=np.array([5.0, 3.0]), velocity=np.array([0.2, 0.0])).state(1.0, sc.bounds)
+
+
+def test_a_bouncing_mover_that_starts_over_the_border_is_not_moved():
+    # x = 9.8 with radius 0.5 on a 10 m wide map: the disc pokes out. It used to be folded
+    # into the map at t = 0 (x = 9.2); now it drives on until it is inside, then bounces.
+    bounds = (0.0, 0.0, 10.0, 6.0)
+    inward = DynamicObstacle(0.5, start=np.array([9.8, 3.0]), velocity=np.array([-1.0, 0.0]))
+    assert np.allclose(inward.state(0.0, bounds)[0], (9.8, 3.0))
+    assert np.allclose(inward.state(0.2, bounds)[0], (9.6, 3.0))
+    assert np.allclose(inward.state(0.3 + 9.0 + 1.0, bounds), [(1.5, 3.0), (1.0, 0.0)])  # off x = 0.5, back
+    outward = DynamicObstacle(0.5, start=np.array([9.8, 3.0]), velocity=np.array([0.5, 0.0]))
+    assert np.allclose(outward.state(4.0, bounds), [(11.8, 3.0), (0.5, 0.0)])  # leaves, never folded back
+    parked = DynamicObstacle(0.5, start=np.array([9.8, 3.0]), velocity=np.array([0.0, 0.5]))
+    assert np.allclose(parked.state(1.0, bounds)[0], (9.8, 3.5))
+    exact = DynamicObstacle(3.0, start=np.array([5.0, 3.0]), velocity=np.array([0.5, 0.5]))  # just fits in y
+    assert np.allclose(exact.state(1.7, bounds), [(5.85, 3.0), (0.5, 0.0)])

@@ -216,11 +216,34 @@ def test_cli_json_has_exactly_the_contract_keys(tmp_path, capsys, monkeypatch):
     gif = tmp_path / "run.gif"
     assert main(["simulate", str(f), "--local", "dwa", "--json", "--seed", "1", "--gif", str(gif)]) == 0
     out = json.loads(capsys.readouterr().out)
+    # DESIGN.md's keys first, in its order, then the ones optplan adds
     assert list(out) == ["reached", "collisions", "time_s", "path_length", "min_clearance", "max_abs_accel",
-                         "max_abs_ang_accel", "steps", "mean_step_ms", "trajectory"]
+                         "max_abs_ang_accel", "steps", "mean_step_ms", "trajectory",
+                         "status", "message", "seed", "global_path"]
     assert out["reached"] is True and len(out["trajectory"]) == out["steps"] + 1
     assert len(out["trajectory"][0]) == 6
+    assert out["status"] == "reached" and out["seed"] == 1 and out["message"]
+    assert out["global_path"][0] == [0.5, 0.5] and out["global_path"][-1] == [2.5, 0.5]
     assert gif.stat().st_size > 1000 and gif.read_bytes()[:3] == b"GIF"
+
+
+@pytest.mark.parametrize("as_json", [True, False])
+def test_cli_exits_1_when_the_goal_is_missed(tmp_path, capsys, monkeypatch, as_json):
+    # a robot that never moves times out: the outcome is printed, and the exit status says so
+    import optplan.sim.closed_loop as loop
+    from optplan.cli import EXIT_GOAL_MISSED, main
+
+    monkeypatch.setattr(loop, "make_planner", lambda name, robot, dt, params: Replay([]))
+    f = tmp_path / "s.yaml"
+    f.write_text("map: li2023_11\nstart: [0.5, 0.5, 0]\ngoal: [2.5, 0.5]\ntime_limit: 1.0\n")
+    status = main(["simulate", str(f), "--seed", "4"] + (["--json"] if as_json else []))
+    assert status == EXIT_GOAL_MISSED == 1
+    out = capsys.readouterr().out
+    if as_json:
+        d = json.loads(out)
+        assert d["reached"] is False and d["status"] == "timeout" and d["seed"] == 4 and "time limit" in d["message"]
+    else:
+        assert "status         timeout" in out
 
 
 def test_omni_robot_slides_sideways_in_the_loop():
@@ -280,3 +303,28 @@ def test_path_switches_are_a_result_field():
     res = op.simulate("yuan2021_path_switch", local_planner="ba-dwa", seed=0, time_limit=160)
     assert res.path_switches == 2 and res.replans >= res.path_switches
     assert path_switches(res) == 2 and "2 path switch" in res.message
+
+
+def test_a_mover_on_a_zero_length_loop_is_seen_and_hit():
+    # waypoints [[5, 3], [5, 3]] with speed > 0 once gave the mover a NaN position: the robot drove
+    # through it and the run said reached, 0 collisions. It stands still now, in the robot's way.
+    sc = open_room(start=[0.5, 3.0, 0], goal=[9.5, 3.0],
+                   dynamic_obstacles=[{"radius": 0.4, "waypoints": [[5, 3], [5, 3]], "speed": 1.0}])
+    assert np.allclose(SimEnvironment(sc).movers(3.0), [[5.0, 3.0, 0.0, 0.0, 0.4]])
+    res = op.simulate(sc, local_planner=GoToSubgoal(sc.robot, sc.dt), subgoals="goal")  # ignores obstacles
+    assert res.collisions > 0 and res.min_clearance < 0
+
+
+def test_a_non_finite_mover_position_stops_the_run_instead_of_hiding_the_mover(monkeypatch):
+    from optplan.errors import ScenarioError
+    from optplan.world.scenario import DynamicObstacle
+
+    sc = open_room(dynamic_obstacles=[{"radius": 0.4, "waypoints": [[5, 3], [6, 3]], "speed": 1.0}])
+    monkeypatch.setattr(DynamicObstacle, "state", lambda self, t, bounds: (np.full(2, np.nan), np.zeros(2)))
+    with pytest.raises(ScenarioError, match="dynamic obstacle 0"):
+        op.simulate(sc, local_planner=Replay([]), subgoals="goal")
+    env = SimEnvironment(open_room())
+    with pytest.raises(ParameterError, match="non-finite"):
+        env.moving_gap(np.zeros(2), np.ones(2), np.array([[np.nan, 1.0, 0, 0, 0.3]]), np.array([[1.0, 1.0, 0, 0, 0.3]]))
+    with pytest.raises(ParameterError, match="non-finite"):
+        env.static_check(np.array([[0.5, 0.5], [np.nan, 0.5]]))

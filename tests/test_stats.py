@@ -3,8 +3,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from optplan.bench.stats import (compare, mcnemar_p, ranksum_p, summary, summary_table, wilcoxon_table,
-                                 wilson_interval)
+from optplan.bench.stats import (TOO_FEW, compare, mcnemar_p, ranksum_p, smallest_p, summary, summary_table,
+                                 wilcoxon_table, wilson_interval)
 
 
 def test_summary_and_ranksum():
@@ -45,3 +45,33 @@ def test_mcnemar_counts_only_the_discordant_pairs():
     assert mcnemar_p([True, False], [True, False]) == (1.0, 0, 0)
     with pytest.raises(ValueError):
         mcnemar_p([True], [True, False])
+
+
+def test_three_against_three_is_exact_and_never_significant():
+    # the normal approximation gave p = 0.0495 for complete separation, so --quick tables (3 runs
+    # per group) marked such cells '+'; the exact test gives 2 / C(6, 3) = 0.1
+    assert ranksum_p([1.0, 2.0, 3.0], [4.0, 5.0, 6.0]) == pytest.approx(0.1)
+    assert compare([1.0, 2.0, 3.0], [4.0, 5.0, 6.0]) == (pytest.approx(0.1), TOO_FEW)
+    assert smallest_p(3, 3) == pytest.approx(0.1) and smallest_p(4, 4) == pytest.approx(2 / 70)
+    assert compare([1.0, 2.0, 3.0, 3.5], [4.0, 5.0, 6.0, 7.0]) == (pytest.approx(2 / 70), "+")
+    t = wilcoxon_table({"F1": {"x": [1, 2, 3], "y": [4, 5, 6]}}, "x")
+    assert "0.1 (n/a)" in t and "| +/=/- | 0/0/0 |" in t and "too few runs" in t
+
+
+def test_the_exact_rank_sum_matches_scipy_without_ties_and_brute_force_with_ties():
+    from itertools import combinations
+
+    from scipy.stats import mannwhitneyu, rankdata
+
+    rng = np.random.default_rng(3)
+    for n, m in ((2, 5), (5, 7), (10, 10), (30, 30)):
+        a, b = rng.normal(0, 1, n), rng.normal(0.7, 1, m)
+        assert ranksum_p(a, b) == pytest.approx(mannwhitneyu(a, b, method="exact").pvalue, rel=1e-12)
+    a, b = [1, 1, 2, 3, 5], [2, 2, 3, 4, 4, 5]
+    r = rankdata(a + b)
+    far = abs(r[:5].sum() - 5 * 12 / 2)
+    splits = list(combinations(range(11), 5))
+    want = sum(abs(r[list(c)].sum() - 30) >= far - 1e-9 for c in splits) / len(splits)
+    assert ranksum_p(a, b) == pytest.approx(want, rel=1e-12)
+    big = rng.normal(0, 1, 40), rng.normal(0, 1, 40)  # past the exact range: normal approximation
+    assert ranksum_p(*big) == pytest.approx(mannwhitneyu(*big, method="asymptotic", use_continuity=False).pvalue)

@@ -20,15 +20,15 @@ def _safe(name: str) -> str:
     return re.sub(r"[^0-9A-Za-z_.+-]", "_", name)
 
 
-def box_plot(groups: Mapping[str, Sequence[float]], filename: str | Path, title: str = "", ylabel: str = "",
-             reference_line: float | None = None) -> Path:
+def box_plot(groups: Mapping[str, Sequence[float]], filename: str | Path | None = None, title: str = "",
+             ylabel: str = "", reference_line: float | None = None):
     """One box per group (median, quartiles, 1.5 IQR whiskers, outliers) with the runs jittered on top;
-    empty groups are shown by name with no box. ``reference_line`` draws e.g. the exact optimum."""
-    from ..viz.plots import _pyplot, save_figure
+    empty groups are shown by name with no box. ``reference_line`` draws e.g. the exact optimum.
+    Returns the Figure, after writing it as a PNG to ``filename`` when one is given."""
+    from ..viz.plots import finish_figure, new_figure
 
-    plt = _pyplot()
     names = list(groups)
-    fig, ax = plt.subplots(figsize=(max(4.0, 0.9 * len(names) + 2), 4.2))
+    fig, ax = new_figure((max(4.0, 0.9 * len(names) + 2), 4.2))
     data = [np.asarray(groups[n], float) for n in names]
     pos = [i + 1 for i, d in enumerate(data) if len(d)]
     if pos:
@@ -44,7 +44,7 @@ def box_plot(groups: Mapping[str, Sequence[float]], filename: str | Path, title:
     ax.set_xticklabels(names, rotation=30, ha="right", fontsize=8)
     ax.set_xlim(0.4, len(names) + 0.6)
     ax.set_ylabel(ylabel)
-    return save_figure(fig, filename, title)
+    return finish_figure(fig, filename, title)
 
 
 def experiment_plots(res: ExperimentResults, out_dir: str | Path, metric: str | None = None) -> list[Path]:
@@ -66,8 +66,8 @@ def experiment_plots(res: ExperimentResults, out_dir: str | Path, metric: str | 
             ref_line = exact_optimum_of(t.spec)
         vals = {names[g]: res.values(recs, metric) for g, recs in groups.items()}
         if any(len(v) for v in vals.values()):
-            files.append(box_plot(vals, out_dir / f"{_safe(spec.name)}_{_safe(t.name)}_box.png",
-                                  title=f"{t.name}: {metric}", ylabel=metric, reference_line=ref_line))
+            files.append(out_dir / f"{_safe(spec.name)}_{_safe(t.name)}_box.png")
+            box_plot(vals, files[-1], title=f"{t.name}: {metric}", ylabel=metric, reference_line=ref_line)
         histories, paths = {}, {}
         for g, recs in groups.items():
             ok = [r for r in recs if res.successful(r)] or [r for r in recs if r.key in res.rows
@@ -87,15 +87,15 @@ def experiment_plots(res: ExperimentResults, out_dir: str | Path, metric: str | 
                     paths[names[g]] = np.asarray(trace["trajectory"], float)[:, 1:3]
         if histories:
             positive = all((h > 0).all() for hs in histories.values() for h in hs)
-            files.append(plot_convergence(histories, out_dir / f"{_safe(spec.name)}_{_safe(t.name)}_convergence.png",
-                                          title=f"{t.name}: best value per iteration", log=positive))
+            files.append(out_dir / f"{_safe(spec.name)}_{_safe(t.name)}_convergence.png")
+            plot_convergence(histories, files[-1], title=f"{t.name}: best value per iteration", log=positive)
         if paths:
             world = _world_of(spec.kind, t.spec)
             if world is not None:
                 from ..viz.plots import plot_paths
 
-                files.append(plot_paths(world, paths, out_dir / f"{_safe(spec.name)}_{_safe(t.name)}_paths.png",
-                                        title=f"{t.name}: best run of each"))
+                files.append(out_dir / f"{_safe(spec.name)}_{_safe(t.name)}_paths.png")
+                plot_paths(world, paths, files[-1], title=f"{t.name}: best run of each")
     return files
 
 

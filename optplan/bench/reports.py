@@ -204,12 +204,13 @@ def closed_loop(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path |
     """Closed-loop runs (``op.simulate``): per scenario and pipeline, success (goal reached with
     zero collisions), goal reached, collision-free runs, timeouts, time, distance, clearance and
     smoothness, with the rank-sum p-value of the time to goal."""
-    from .stats import compare
+    from .stats import TOO_FEW, compare, too_few_note
 
     spec = res.spec
     out = [f"## {spec.formatted_title()}\n"]
     for t in spec.targets:
         groups = res.groups(t.name)
+        too_few = False
         table = Table(["pipeline", "runs", "failed", "success", "reached", "collision-free", "timeouts", "mean time [s]",
                        "mean distance [m]", "min clearance [m]", "max |a| [m/s^2]", "max |alpha| [rad/s^2]",
                        "mean step [ms]", "p time vs reference"])
@@ -226,6 +227,7 @@ def closed_loop(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path |
             if ref is not None and ref != g and ref in groups:
                 pv, sign = compare(res.values(groups[ref], "time_s"), res.values(recs, "time_s"), spec.alpha)
                 p = "-" if not np.isfinite(pv) else f"{pv:.3g} ({sign})"
+                too_few |= sign == TOO_FEW
             table.rows.append([_pipeline_name(res, g),
                                f"{stored}/{len(recs)}", str(failed),
                                *(f"{n}/{stored}" for n in _outcomes(rows)), col("time_s"),
@@ -234,6 +236,8 @@ def closed_loop(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path |
         errors = {res.rows[r.key]["error"] for recs in groups.values() for r in recs
                   if r.key in res.rows and res.rows[r.key]["status"] != "ok"}
         table.notes += [f"failed: {e}" for e in sorted(e for e in errors if e)][:3]
+        if too_few:
+            table.notes.append(too_few_note(spec.alpha))
         out += [f"### {t.name}\n", table.render(fmt), ""]
     if len(spec.targets) > 1:
         out += ["### all scenarios\n", closed_loop_overall(res).render(fmt), ""]

@@ -35,11 +35,16 @@ EXECUTORS_HELP = "local | dask://HOST:PORT | dask-local"
 
 
 # ------------------------------------------------------------------- one run (worker side)
-@functools.lru_cache(maxsize=32)
 def plan_target(target_json: str):
-    """``(world, start, goal)`` of a plan target, from its spec as sorted JSON (``{"paper_map":
-    name}`` or ``{"map": file, "start": [x, y], "goal": [x, y]}``, metres); cached per process,
-    so the runs of one target load its map once."""
+    """``(world, start, goal)`` of a plan target, cached per process by the content of its
+    files as well as by its description, so an edited map file is read again."""
+    from .inputs import inputs_digest
+
+    return _load_plan_target(target_json, inputs_digest("plan", json.loads(target_json)))
+
+
+@functools.lru_cache(maxsize=32)
+def _load_plan_target(target_json: str, inputs: str):
     import numpy as np
 
     t = json.loads(target_json)
@@ -78,21 +83,35 @@ def _run_optimize(rec) -> tuple[Any, dict]:
     return res, {"f_error": float(res.f - F.f_opt), "f_opt": float(F.f_opt)}
 
 
+def _scenario_inputs(target_json: str) -> str:
+    from .inputs import inputs_digest
+
+    return inputs_digest("simulate", json.loads(target_json))
+
+
+def _scenario_target(target_json: str, inputs: str | None = None):
+    """The scenario of a simulate target, cached per process by the content of its files
+    (``inputs``, computed when not given) as well as by its description."""
+    return _load_scenario_target(target_json, _scenario_inputs(target_json) if inputs is None else inputs)
+
+
 @functools.lru_cache(maxsize=16)
-def _scenario_target(target_json: str):
+def _load_scenario_target(target_json: str, inputs: str):
     from ..world.scenario import load_scenario
 
     return load_scenario(json.loads(target_json)["scenario"])
 
 
 @functools.lru_cache(maxsize=64)
-def _shared_global_plan(target_json: str, algorithm: str, refine: str | None, seed: int, options_json: str):
-    """The global plan of one (scenario, planner, refine, seed), made once per worker process and
-    shared by the runs that differ only in the local planner (``optplan.sim.experiments.plan_global``);
-    planning is seeded, so sharing changes no number, it only saves the metaheuristic's time."""
+def _shared_global_plan(target_json: str, inputs: str, algorithm: str, refine: str | None, seed: int,
+                        options_json: str):
+    """The global plan of one (scenario with these file contents, planner, refine, seed), made once
+    per worker process and shared by the runs that differ only in the local planner
+    (``optplan.sim.experiments.plan_global``); planning is seeded, so sharing changes no number,
+    it only saves the metaheuristic's time."""
     from ..sim.experiments import plan_global
 
-    return plan_global(_scenario_target(target_json), algorithm, refine, seed, json.loads(options_json))
+    return plan_global(_scenario_target(target_json, inputs), algorithm, refine, seed, json.loads(options_json))
 
 
 def _run_simulate(rec) -> tuple[Any, dict]:
@@ -102,10 +121,11 @@ def _run_simulate(rec) -> tuple[Any, dict]:
         raise NotImplementedError(f"closed-loop runs need op.simulate, which this version of optplan does not "
                                   f"have ({exc})") from None
     target_json = json.dumps(rec.target_spec, sort_keys=True)
-    scenario = _scenario_target(target_json)
+    inputs = _scenario_inputs(target_json)
+    scenario = _scenario_target(target_json, inputs)
     params = dict(rec.params)
     try:
-        plan = _shared_global_plan(target_json, rec.algorithm, rec.refine, rec.seed,
+        plan = _shared_global_plan(target_json, inputs, rec.algorithm, rec.refine, rec.seed,
                                    json.dumps(params.get("global_options") or {}, sort_keys=True))
     except ImportError:  # no shared-plan helper in this version: simulate plans by itself
         plan = None

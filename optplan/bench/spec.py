@@ -66,6 +66,9 @@ class RunRecord:
         local_planner: local planner name (``simulate`` runs), else ``None``.
         seed: the run's own seed.
         params: keyword arguments for the solver (``pop``, ``iters``, ``max_evals``, ...).
+        inputs: content hash of every file the run reads (map, scenario, what the scenario
+            references; :func:`optplan.bench.inputs.inputs_digest`), so that editing one of
+            them gives the run a new key; ``""`` when it reads none.
     """
 
     experiment: str
@@ -78,10 +81,12 @@ class RunRecord:
     local_planner: str | None
     seed: int
     params: Mapping[str, Any] = field(default_factory=dict)
+    inputs: str = ""
 
     @property
     def key(self) -> str:
-        """Stable identifier: the same run description always gives the same key.
+        """Stable identifier: the same run description on the same input files always gives
+        the same key, and an edited map or scenario file gives a new one.
 
         Labels and the experiment name are presentation and are left out, so two
         specs that ask for the same run share its stored result.
@@ -89,6 +94,8 @@ class RunRecord:
         ident = {"kind": self.kind, "target": dict(self.target_spec), "algorithm": self.algorithm,
                  "refine": self.refine, "local_planner": self.local_planner, "seed": self.seed,
                  "params": dict(self.params)}
+        if self.inputs:
+            ident["inputs"] = self.inputs
         blob = json.dumps(ident, sort_keys=True, separators=(",", ":"), default=str)
         return hashlib.sha256(blob.encode()).hexdigest()[:20]
 
@@ -96,12 +103,12 @@ class RunRecord:
         return {"experiment": self.experiment, "kind": self.kind, "target": self.target,
                 "target_spec": dict(self.target_spec), "algorithm": self.algorithm, "label": self.label,
                 "refine": self.refine, "local_planner": self.local_planner, "seed": self.seed,
-                "params": dict(self.params), "key": self.key}
+                "params": dict(self.params), "inputs": self.inputs, "key": self.key}
 
     @classmethod
     def from_dict(cls, d: Mapping[str, Any]) -> "RunRecord":
         return cls(d["experiment"], d["kind"], d["target"], dict(d["target_spec"]), d["algorithm"], d["label"],
-                   d["refine"], d["local_planner"], int(d["seed"]), dict(d["params"]))
+                   d["refine"], d["local_planner"], int(d["seed"]), dict(d["params"]), str(d.get("inputs") or ""))
 
 
 @dataclass(frozen=True)
@@ -164,15 +171,18 @@ class ExperimentSpec:
     def expand(self) -> list[RunRecord]:
         """Every run of the grid, in a fixed order: target, algorithm, refine, then seed and local
         planner (local planner innermost, so that runs sharing a global plan run close together)."""
+        from .inputs import inputs_digest
+
         out = []
         for t in self.targets:
+            inputs = inputs_digest(self.kind, t.spec)   # read now: the files as this expansion sees them
             for a in self.algorithms:
                 seeds = self.seeds if a.runs is None else [self.seeds[0] + k for k in range(a.runs)]
                 for r in self.refine:
                     for s in seeds:
                         for lp in self.local_planners:
                             out.append(RunRecord(self.name, self.kind, t.name, dict(t.spec), a.name, a.label, r, lp,
-                                                 int(s), dict(a.params)))
+                                                 int(s), dict(a.params), inputs))
         return out
 
 

@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 
 from .spec import ExperimentSpec, RunRecord
-from .stats import compare, summary
+from .stats import TOO_FEW, compare, summary, too_few_note
 from .tables import Table
 
 GroupKey = tuple  # (label, refine, local_planner)
@@ -145,7 +145,7 @@ def load_results(spec: ExperimentSpec, store) -> ExperimentResults:
 
 
 @functools.lru_cache(maxsize=64)
-def _exact_optimum(target_json: str) -> float:
+def _exact_optimum(target_json: str, inputs: str) -> float:
     from .global_runs import exact_optimum
     from .runner import plan_target
 
@@ -154,8 +154,11 @@ def _exact_optimum(target_json: str) -> float:
 
 
 def exact_optimum_of(target_spec) -> float:
-    """Length (metres) of the exact any-angle optimum of a plan target, cached per process."""
-    return _exact_optimum(json.dumps(dict(target_spec), sort_keys=True))
+    """Length (metres) of the exact any-angle optimum of a plan target, cached per process
+    (by the content of its map file too, so an edited map gets its own optimum)."""
+    from .inputs import inputs_digest
+
+    return _exact_optimum(json.dumps(dict(target_spec), sort_keys=True), inputs_digest("plan", target_spec))
 
 
 def _fmt(x: float) -> str:
@@ -173,6 +176,7 @@ def summary_tables(res: ExperimentResults, metric: str | None = None) -> list[Ta
     tables = []
     for target in spec.targets:
         groups = res.groups(target.name)
+        too_few = False
         head = ["algorithm", "runs", "failed", "success", f"best {metric}", f"mean {metric}", f"worst {metric}",
                 f"std {metric}"]
         optimum = None
@@ -203,7 +207,11 @@ def summary_tables(res: ExperimentResults, metric: str | None = None) -> list[Ta
                     # chen2025 Table 7 convention: '+' means the reference is significantly better
                     p, sign = compare(res.values(groups[ref], metric), vals, spec.alpha)
                     cells += ["-" if not np.isfinite(p) else f"{p:.3g}", sign]
-                    tally.setdefault(name, {"+": 0, "=": 0, "-": 0})[sign] += 1
+                    counts = tally.setdefault(name, {"+": 0, "=": 0, "-": 0})
+                    if sign == TOO_FEW:
+                        too_few = True
+                    else:
+                        counts[sign] += 1
             table.rows.append(cells)
         if optimum is not None:
             table.notes.append(f"exact optimum (any-angle, same start/goal): {optimum:.4f} m")
@@ -212,6 +220,8 @@ def summary_tables(res: ExperimentResults, metric: str | None = None) -> list[Ta
 
             F = function_target(json.dumps(dict(target.spec), sort_keys=True))
             table.notes.append(f"known optimum of {target.name}: {F.f_opt:.6g}")
+        if too_few:
+            table.notes.append(too_few_note(spec.alpha))
         tables.append(table)
     if tally:
         t = Table(["algorithm vs reference", "+", "=", "-"],

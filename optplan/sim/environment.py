@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..errors import ParameterError, ScenarioError
 from ..world.circles import CircleWorld
 from ..world.fields import grid_distance_field
 from ..world.scenario import Scenario, circle_distance
@@ -55,6 +56,15 @@ def _segment_point_distance(a: np.ndarray, b: np.ndarray, q: np.ndarray) -> np.n
     t = np.zeros(len(q)) if L2 == 0 else np.clip((q - a) @ ab / L2, 0.0, 1.0)
     c = a + t[:, None] * ab
     return np.hypot(q[:, 0] - c[:, 0], q[:, 1] - c[:, 1])
+
+
+def _require_finite(what: str, *arrays) -> None:
+    """Refuse NaN or infinite positions before a collision test: every comparison with NaN is
+    false, so a non-finite centre would silently count as no contact."""
+    for a in arrays:
+        if not np.all(np.isfinite(a)):
+            raise ParameterError(f"{what}: non-finite position {np.asarray(a).tolist()}; "
+                                 "a collision cannot be judged for it (this is a bug in what produced it)")
 
 
 def moving_min_distance(p0: np.ndarray, p1: np.ndarray, q0: np.ndarray, q1: np.ndarray) -> np.ndarray:
@@ -113,6 +123,12 @@ class SimEnvironment:
         for i, ob in enumerate(self.sc.dynamic):  # a handful of obstacles, closed form each
             pos, vel = ob.state(t, self.bounds)
             rows[i] = (pos[0], pos[1], vel[0], vel[1], ob.radius)
+        if not np.all(np.isfinite(rows)):
+            # a NaN centre compares false with every distance, so the collision test would never
+            # see this mover: the run would drive through it and report no collision
+            i = int(np.nonzero(~np.all(np.isfinite(rows), axis=1))[0][0])
+            raise ScenarioError(f"dynamic obstacle {i} has no finite position or velocity at t={t:g} s "
+                                f"(row {rows[i, :4].tolist()}); check its waypoints, speed, start and velocity")
         return rows
 
     def sensed_movers(self, position: np.ndarray, rows: np.ndarray) -> np.ndarray:
@@ -220,6 +236,7 @@ class SimEnvironment:
         ``inf`` without movers. Centres move linearly over the period (exact for that)."""
         if not len(movers0):
             return float("inf")
+        _require_finite("moving collision check", p0, p1, movers0[:, :2], movers1[:, :2])
         gap = moving_min_distance(p0, p1, movers0[:, :2], movers1[:, :2]) - movers0[:, 4] - self.radius
         return float(gap.min())
 
@@ -236,6 +253,7 @@ class SimEnvironment:
             footprint-to-obstacle distance in that period (<= 0 where ``hit``), metres.
         """
         P = np.asarray(positions, dtype=float).reshape(-1, 2)
+        _require_finite("static collision check", P)
         r = self.radius
         if len(P) < 2:
             return np.zeros(0, bool), np.zeros(0)

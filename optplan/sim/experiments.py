@@ -153,17 +153,3 @@ def paper_local(title: str, scenarios, runs: int, planners=None, global_planner:
     print(flush=True)
     return sets
 
-
-def write_gif(scenario, local_planner: str, filename, global_planner: str = "astar", seed: int = 0,
-              global_options: dict | None = None, **options) -> str:
-    """Simulate one run (``options`` go to ``op.simulate``) and write its animation; returns
-    a one-line summary."""
-    from ..viz.animate import animate_run
-    from ..world.scenario import load_scenario
-    from .closed_loop import realized_scenario, simulate
-
-    sc = load_scenario(scenario)
-    gp = plan_global(sc, global_planner, None, seed, global_options)
-    res = simulate(sc, global_planner=global_planner, local_planner=local_planner, seed=seed, global_plan=gp, **options)
-    animate_run(realized_scenario(sc, seed, gp), res, filename)
-    return f"wrote {filename}: {sc.name}, {global_planner} + {local_planner}, seed {seed}: {res.message}"

@@ -31,10 +31,8 @@ def animate_run(scenario, result, filename: str | Path, fps: int = 10, max_frame
     Returns:
         The path written.
     """
-    import matplotlib
-
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
     from matplotlib.patches import Circle, Rectangle
     from PIL import Image
 
@@ -50,7 +48,10 @@ def animate_run(scenario, result, filename: str | Path, fps: int = 10, max_frame
     env = SimEnvironment(sc)
     traj = np.asarray(result.trajectory)
     frames = np.unique(np.linspace(0, len(traj) - 1, min(max_frames, len(traj))).astype(int))
-    fig, ax = plt.subplots(figsize=(6, 6))
+    # a Figure on its own Agg canvas (blitting needs one): pyplot and the backend are left alone
+    fig = Figure(figsize=(6, 6))
+    FigureCanvasAgg(fig)
+    ax = fig.add_subplot()
     draw_world(ax, sc.world)
     res = getattr(sc.world, "resolution", 1.0)
     unknown = []
@@ -119,6 +120,20 @@ def animate_run(scenario, result, filename: str | Path, fps: int = 10, max_frame
         if palette is None:  # one palette for the whole run: quantising against it is cheap
             palette = frame.quantize(colors=96)
         images.append(frame.quantize(palette=palette, dither=Image.Dither.NONE))
-    plt.close(fig)
     images[0].save(filename, save_all=True, append_images=images[1:], duration=int(1000 / fps), loop=0)
     return filename
+
+
+def write_run_gif(scenario, local_planner: str, filename: str | Path, global_planner: str = "astar", seed: int = 0,
+                  global_options: dict | None = None, **options) -> str:
+    """Simulate one run (``options`` go to ``op.simulate``) and write its animation; returns
+    a one-line summary (the example scripts' ``--gif``)."""
+    from ..sim.closed_loop import realized_scenario, simulate
+    from ..sim.experiments import plan_global
+    from ..world.scenario import load_scenario
+
+    sc = load_scenario(scenario)
+    gp = plan_global(sc, global_planner, None, seed, global_options)
+    res = simulate(sc, global_planner=global_planner, local_planner=local_planner, seed=seed, global_plan=gp, **options)
+    animate_run(realized_scenario(sc, seed, gp), res, filename)
+    return f"wrote {filename}: {sc.name}, {global_planner} + {local_planner}, seed {seed}: {res.message}"

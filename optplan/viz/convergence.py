@@ -7,13 +7,13 @@ from typing import Mapping, Sequence
 import numpy as np
 
 
-def plot_convergence(histories: Mapping[str, Sequence[np.ndarray]], filename: str | Path, title: str = "",
-                     log: bool = True, f_opt: float | None = None) -> Path:
-    """Save a PNG of each algorithm's median curve (runs padded with their last value)."""
-    from .plots import _pyplot, save_figure
+def plot_convergence(histories: Mapping[str, Sequence[np.ndarray]], filename: str | Path | None = None,
+                     title: str = "", log: bool = True, f_opt: float | None = None):
+    """Draw each algorithm's median curve (runs padded with their last value); returns the
+    Figure, after writing it as a PNG to ``filename`` when one is given."""
+    from .plots import finish_figure, new_figure
 
-    plt = _pyplot()
-    fig, ax = plt.subplots(figsize=(6.4, 4.2))
+    fig, ax = new_figure((6.4, 4.2))
     for name, runs in histories.items():
         n = max(len(h) for h in runs)
         H = np.array([np.concatenate([h, np.full(n - len(h), h[-1])]) for h in runs], dtype=float)
@@ -31,4 +31,4 @@ def plot_convergence(histories: Mapping[str, Sequence[np.ndarray]], filename: st
     ax.set_xlabel("iteration")
     ax.set_ylabel("best value" + (" - optimum" if f_opt is not None else ""))
     ax.legend(fontsize=7)
-    return save_figure(fig, filename, title)
+    return finish_figure(fig, filename, title)

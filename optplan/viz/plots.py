@@ -1,4 +1,10 @@
-"""Static pictures of maps and paths (matplotlib, no screen needed)."""
+"""Static pictures of maps and paths (matplotlib, no screen needed).
+
+Every helper builds a :class:`matplotlib.figure.Figure` directly: pyplot is never
+imported and the backend is never switched, so calling a helper inside a notebook or
+a GUI program leaves its plotting set-up alone, and saving works on a machine with no
+display. Each helper returns its Figure (and writes it when given a file name).
+"""
 from __future__ import annotations
 
 from pathlib import Path
@@ -7,13 +13,13 @@ from typing import Mapping
 import numpy as np
 
 
-def _pyplot():
-    import matplotlib
+def new_figure(figsize: tuple[float, float] = (6.4, 4.8)):
+    """A Figure with one Axes, attached to no GUI and registered with no pyplot state;
+    returns ``(fig, ax)``."""
+    from matplotlib.figure import Figure
 
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
-
-    return plt
+    fig = Figure(figsize=figsize)
+    return fig, fig.add_subplot()
 
 
 def draw_world(ax, world) -> None:
@@ -40,10 +46,10 @@ def draw_world(ax, world) -> None:
     ax.set_ylabel("y [m]")
 
 
-def plot_paths(world, paths: Mapping[str, np.ndarray], filename: str | Path, title: str = "") -> Path:
-    """Save a PNG of ``world`` with each named ``(N, 2)`` path overlaid; returns the file path."""
-    plt = _pyplot()
-    fig, ax = plt.subplots(figsize=(6.4, 6.4))
+def plot_paths(world, paths: Mapping[str, np.ndarray], filename: str | Path | None = None, title: str = ""):
+    """Draw ``world`` with each named ``(N, 2)`` path (metres) overlaid; returns the Figure,
+    after writing it as a PNG to ``filename`` when one is given."""
+    fig, ax = new_figure((6.4, 6.4))
     draw_world(ax, world)
     styles = ["-", "--", "-.", ":"]
     for k, (name, path) in enumerate(paths.items()):
@@ -55,17 +61,17 @@ def plot_paths(world, paths: Mapping[str, np.ndarray], filename: str | Path, tit
         ax.plot(*first[0], "g^", ms=10, zorder=6, label="start")
         ax.plot(*first[-1], "r*", ms=13, zorder=6, label="goal")
     ax.legend(loc="best", fontsize=8, framealpha=0.85)
-    return save_figure(fig, filename, title, dpi=120)
+    return finish_figure(fig, filename, title, dpi=120)
 
 
-def save_figure(fig, filename: str | Path, title: str = "", dpi: int = 110) -> Path:
-    """Title, lay out, write the PNG (creating its folder) and close the figure."""
-    plt = _pyplot()
+def finish_figure(fig, filename: str | Path | None = None, title: str = "", dpi: int = 110):
+    """Title the first Axes, lay the figure out and, when ``filename`` is given, write the
+    PNG (creating its folder); returns ``fig``."""
     if title:
         fig.axes[0].set_title(title)
-    filename = Path(filename)
-    filename.parent.mkdir(parents=True, exist_ok=True)
     fig.tight_layout()
-    fig.savefig(filename, dpi=dpi)
-    plt.close(fig)
-    return filename
+    if filename is not None:
+        filename = Path(filename)
+        filename.parent.mkdir(parents=True, exist_ok=True)
+        fig.savefig(filename, dpi=dpi)
+    return fig

@@ -32,10 +32,13 @@ Optional keys added by optplan (all validated like the rest):
 * ``dynamic_obstacles[i].loop``: ``true`` (default) drives the waypoint polygon closed,
   back to the first waypoint and round again (two waypoints: back and forth);
   ``false`` stops at the last waypoint. ``phase`` (m, default 0) is the distance along
-  the polygon already driven at ``t = 0``.
+  the polygon already driven at ``t = 0``. Waypoints that are all one point make a mover
+  that stands there.
 * ``dynamic_obstacles[i].at_border`` for constant-velocity obstacles: ``bounce``
   (default; reflect off the map border shrunk by the obstacle radius), ``stop`` (halt
-  where the disc first touches the border) or ``pass`` (leave the map).
+  where the disc first touches the border) or ``pass`` (leave the map). A bouncing disc
+  that starts over the border drives on until it is inside, then bounces; ``bounce`` and
+  ``stop`` need a disc no wider than the map (a wider one is refused when the file is read).
 * ``random_obstacles: {count, size, keep_away}``: ``count`` unknown square blocks of
   ``size`` x ``size`` cells (circle worlds: discs of diameter ``size`` m), drawn from the
   run's seed on cells of the run's global path (the *reference path*: the path the
@@ -186,6 +189,8 @@ class DynamicObstacle:
         lengths = np.hypot(seg[:, 0], seg[:, 1])
         cum = np.concatenate([[0.0], np.cumsum(lengths)])
         total = cum[-1]
+        if total <= 0:  # every waypoint at one place: the mover stands there (no s % 0)
+            return P[0].copy(), np.zeros(2)
         s = self.phase + self.speed * t
         if self.loop:
             s = s % total
@@ -203,6 +208,10 @@ class DynamicObstacle:
             return p0 + v * t, v.copy()
         lo = np.array(bounds[:2]) + self.radius
         hi = np.array(bounds[2:]) - self.radius
+        if np.any(hi < lo):
+            # no place inside the map holds the disc: bouncing or stopping would have to put it
+            # somewhere it never was (validate() refuses such a mover when the file is read)
+            raise ScenarioError(_misfit_message("this mover", self.radius, bounds, self.at_border))
         if self.at_border == "stop":
             # the first time either coordinate reaches its limit
             with np.errstate(divide="ignore", invalid="ignore"):
@@ -211,15 +220,23 @@ class DynamicObstacle:
             if t >= t_stop:
                 return p0 + v * t_stop, np.zeros(2)
             return p0 + v * t, v.copy()
-        # bounce: each coordinate is a triangle wave between lo and hi
+        # bounce: each coordinate is a triangle wave between lo and hi. A disc that starts over
+        # the border moves straight on until it is wholly inside, and bounces from then on
+        # (one moving away from the map, or not moving in that coordinate, never comes in);
+        # folding its start into [lo, hi] instead would move it at t = 0.
         span = hi - lo
-        u = p0 + v * t - lo
+        free = p0 + v * t
+        u = free - lo
         period = 2 * span
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t_in = np.where(p0 < lo, np.where(v > 0, (lo - p0) / v, np.inf),
+                            np.where(p0 > hi, np.where(v < 0, (hi - p0) / v, np.inf), 0.0))
         s = np.mod(u, np.where(period > 0, period, 1.0))
         back = s > span
-        pos = lo + np.where(back, period - s, s)
-        vel = np.where(back, -v, v)
-        return pos, vel
+        pos = np.where(span > 0, lo + np.where(back, period - s, s), lo)   # span 0: the disc just fits
+        vel = np.where(span > 0, np.where(back, -v, v), 0.0)
+        outside = t < t_in
+        return np.where(outside, free, pos), np.where(outside, v, vel)
 
 
 # ----------------------------------------------------------------------- scenario
@@ -366,7 +383,7 @@ def validate(sc: Scenario) -> None:
                                 f"(clearance {true:.3g} m < radius {r:g} m); move the obstacle or the {what}")
     _check_random_draws(sc)
     for i, ob in enumerate(sc.dynamic):
-        _check_mover(ob, i)
+        _check_mover(ob, i, sc.bounds)
         pos, _ = ob.state(0.0, sc.bounds)
         gap = float(np.hypot(*(pos - sc.start[:2]))) - ob.radius - r
         if gap < 0:
@@ -400,7 +417,7 @@ def _check_random_draws(sc: Scenario) -> None:
                                 f"that fit apart in this map; lower count or radius")
 
 
-def _check_mover(ob: DynamicObstacle, i: int) -> None:
+def _check_mover(ob: DynamicObstacle, i: int, bounds=None) -> None:
     key = f"dynamic_obstacles[{i}]"
     _number(ob.radius, f"{key}.radius", positive=True)
     if (ob.waypoints is None) == (ob.start is None):
@@ -413,6 +430,17 @@ def _check_mover(ob: DynamicObstacle, i: int) -> None:
             raise ScenarioError(f"{key}.velocity must be [vx, vy] in m/s")
         if ob.at_border not in BORDER_MODES:
             raise ScenarioError(f"{key}.at_border must be one of {', '.join(BORDER_MODES)}, got {ob.at_border!r}")
+        if bounds is not None and ob.at_border != "pass":
+            xmin, ymin, xmax, ymax = bounds
+            if 2 * ob.radius > min(xmax - xmin, ymax - ymin):
+                raise ScenarioError(_misfit_message(key, ob.radius, bounds, ob.at_border))
+
+
+def _misfit_message(key: str, radius: float, bounds, at_border: str) -> str:
+    xmin, ymin, xmax, ymax = bounds
+    return (f"{key} (radius {radius:g} m) is wider than the {xmax - xmin:g} x {ymax - ymin:g} m map, so it cannot "
+            f"{at_border} at the border; use a radius of at most {min(xmax - xmin, ymax - ymin) / 2:g} m "
+            f"or at_border: pass")
 
 
 # --------------------------------------------------------------------- reading

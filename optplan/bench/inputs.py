@@ -1,0 +1,119 @@
+"""The files a run reads, and one content hash of them for its key.
+
+A run's key (:attr:`optplan.bench.spec.RunRecord.key`) must change whenever what the run
+computes could change. The target's description names its map or scenario by path or
+by shipped name, so editing the file in place would leave the key as it was and a rerun
+would serve the stored, stale result. :func:`inputs_digest` hashes the *content* of every
+file the run will read:
+
+* ``plan`` on ``{map, start, goal}``: the map file, and for a ROS ``.yaml`` map its image;
+* ``plan`` on a paper map: its catalogue entry (file, start, goal) and its map file;
+* ``simulate``: the scenario file and the map it names (relative to the scenario, a
+  shipped map name, or inline rows, which are part of the scenario file already);
+* ``optimize``: nothing (benchmark functions are code).
+
+The files are resolved by the same rules as the loaders (``load_map``, ``load_scenario``).
+A file that cannot be found or read is hashed as missing, so the run itself reports the
+problem.
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+from pathlib import Path
+from typing import Any, Mapping
+
+
+def _file_hash(path: Path) -> str:
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def _map_file(spec: str, base_dir: Path | None = None) -> Path | None:
+    """The file ``load_map`` (or a scenario's ``map:`` relative to ``base_dir``) reads for ``spec``."""
+    from ..world import maps
+
+    p = Path(spec)
+    if not p.is_absolute() and base_dir is not None and (base_dir / p).exists():
+        p = base_dir / p
+    if p.is_file():
+        return p
+    return maps.find(str(spec)) if not p.exists() else None
+
+
+def _map_files(spec: str, base_dir: Path | None = None) -> list[tuple[str, Path | None]]:
+    """``(role, path)`` of a map and what it references (the image of a ROS map YAML)."""
+    path = _map_file(spec, base_dir)
+    out: list[tuple[str, Path | None]] = [("map", path)]
+    if path is not None and path.suffix.lower() in (".yaml", ".yml"):
+        try:
+            import yaml
+
+            meta = yaml.safe_load(path.read_text())
+            image = Path(str(meta["image"]))
+        except Exception:  # unreadable metadata: the loader reports it when the run starts
+            return out
+        out.append(("map image", image if image.is_absolute() else path.parent / image))
+    return out
+
+
+def _scenario_files(spec: str) -> list[tuple[str, Path | None]]:
+    from ..world.scenario import SCENARIOS_DIR
+
+    p = Path(spec)
+    if not p.is_file():
+        shipped = SCENARIOS_DIR / (p.name if p.suffix == ".yaml" else f"{p.name}.yaml")
+        p = shipped if shipped.is_file() else None
+    out: list[tuple[str, Path | None]] = [("scenario", p)]
+    if p is None:
+        return out
+    try:
+        import yaml
+
+        data = yaml.safe_load(p.read_text())
+    except Exception:  # unreadable: load_scenario reports it when the run starts
+        return out
+    m = data.get("map") if isinstance(data, dict) else None
+    if isinstance(m, str):
+        out += _map_files(m, p.parent)
+    return out
+
+
+def input_files(kind: str, target_spec: Mapping[str, Any]) -> list[tuple[str, Path | None]]:
+    """``(role, path)`` of every file a run of ``kind`` on ``target_spec`` reads, in reading
+    order; ``path`` is ``None`` for a file that cannot be found."""
+    if kind == "simulate" and "scenario" in target_spec:
+        return _scenario_files(str(target_spec["scenario"]))
+    if kind == "plan" and "map" in target_spec:
+        return _map_files(str(target_spec["map"]))
+    if kind == "plan" and "paper_map" in target_spec:
+        from ..world.papermaps import MAPS_DIR, catalogue
+
+        entry = catalogue().get(str(target_spec["paper_map"]))
+        return [] if entry is None else _map_files(str(MAPS_DIR / entry.file))
+    return []
+
+
+def inputs_digest(kind: str, target_spec: Mapping[str, Any]) -> str:
+    """One SHA-256 over the content of every file the run reads ("" when it reads none).
+
+    Paths are left out: moving an unchanged file keeps the key, editing one changes it.
+    """
+    parts = []
+    for role, path in input_files(kind, target_spec):
+        try:
+            parts.append([role, _file_hash(path) if path is not None else "missing"])
+        except OSError:
+            parts.append([role, "unreadable"])
+    if kind == "plan" and "paper_map" in target_spec:
+        from ..world.papermaps import catalogue
+
+        entry = catalogue().get(str(target_spec["paper_map"]))
+        if entry is not None:  # start and goal come from the catalogue too
+            parts.append(["paper map entry", json.dumps([entry.file, list(entry.start), list(entry.goal)])])
+    if not parts:
+        return ""
+    return hashlib.sha256(json.dumps(parts).encode()).hexdigest()[:20]

@@ -1,0 +1,92 @@
+"""Plot helpers: they build their own Figure (no pyplot, no backend switch), return it, and
+write PNGs on a machine with no display; and the simulator layer never imports viz."""
+from __future__ import annotations
+
+import ast
+import subprocess
+import sys
+from pathlib import Path
+
+import matplotlib
+import numpy as np
+import pytest
+from matplotlib.figure import Figure
+
+import optplan
+from optplan.bench.plots import box_plot
+from optplan.viz.convergence import plot_convergence
+from optplan.viz.plots import plot_paths
+from optplan.world.loaders import load_map
+
+PACKAGE = Path(optplan.__file__).resolve().parent
+
+
+def _helpers(tmp_path: Path | None):
+    grid = load_map("multialgo20_template")
+    path = np.array([[0.5, 0.5], [10.0, 10.0], [19.5, 19.5]])
+    name = (lambda n: tmp_path / n) if tmp_path is not None else (lambda n: None)
+    return [
+        (lambda: plot_paths(grid, {"a": path}, name("paths.png"), title="paths")),
+        (lambda: plot_convergence({"a": [np.array([3.0, 2.0, 1.0]), np.array([4.0, 1.0])]}, name("conv.png"))),
+        (lambda: box_plot({"a": [1.0, 2.0, 3.0], "b": []}, name("box.png"), reference_line=1.5)),
+    ]
+
+
+@pytest.fixture
+def svg_backend():
+    """A backend other than Agg, as a notebook or a GUI program would have set one."""
+    before = matplotlib.get_backend()
+    matplotlib.use("svg")
+    yield
+    matplotlib.use(before)
+
+
+def test_plot_helpers_return_a_figure_and_leave_the_backend_alone(svg_backend, tmp_path):
+    for draw in _helpers(tmp_path):
+        fig = draw()
+        assert isinstance(fig, Figure)
+        assert matplotlib.get_backend() == "svg"
+    for name in ("paths.png", "conv.png", "box.png"):
+        assert (tmp_path / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    for draw in _helpers(None):  # no file name: only the figure
+        assert isinstance(draw(), Figure)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["box.png", "conv.png", "paths.png"]
+
+
+def test_plotting_imports_no_pyplot(tmp_path):
+    # in a fresh interpreter, since another test may have imported pyplot in this one
+    code = f"""
+import sys, matplotlib
+matplotlib.use("svg")
+from optplan.viz.plots import plot_paths
+from optplan.world.loaders import load_map
+plot_paths(load_map("arena"), {{"a": [[1.5, 37.5], [40.5, 10.5]]}}, {str(tmp_path / "a.png")!r})
+print(matplotlib.get_backend(), "matplotlib.pyplot" in sys.modules)
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.split()
+    assert out == ["svg", "False"]
+
+
+def _imported_modules(path: Path) -> set[str]:
+    """Absolute names of the modules ``path`` imports (relative imports resolved)."""
+    parts = list(path.relative_to(PACKAGE.parent).with_suffix("").parts)
+    package = parts[:-1]  # the package a module (or an __init__) belongs to
+    out = set()
+    for node in ast.walk(ast.parse(path.read_text())):
+        if isinstance(node, ast.Import):
+            out |= {a.name for a in node.names}
+        elif isinstance(node, ast.ImportFrom):
+            base = package[:len(package) - node.level + 1] if node.level else []
+            mod = ".".join(base + ([node.module] if node.module else []))
+            out.add(mod)
+            out |= {f"{mod}.{a.name}" for a in node.names}
+    return out
+
+
+def test_the_simulator_layer_never_imports_viz_or_the_command_line():
+    # DESIGN.md "Layers": sim (6) sits above bench (7), viz and cli (8); data flows one way
+    below = ("optplan.viz", "optplan.cli", "optplan.bench", "optplan.demo")
+    bad = {str(p.relative_to(PACKAGE.parent)): sorted(m for m in _imported_modules(p) if m.startswith(below))
+           for p in sorted((PACKAGE / "sim").rglob("*.py"))}
+    assert not {k: v for k, v in bad.items() if v}
+    assert "optplan.world.scenario" in _imported_modules(PACKAGE / "sim" / "environment.py")  # the check sees imports
