@@ -43,6 +43,7 @@ def number(minimum: float = -math.inf, maximum: float = math.inf, optional: bool
 
 
 def choice(*values) -> Callable[[str, Any], Any]:
+    """One of ``values`` (compared with ``in``)."""
     def check(name: str, value):
         if value not in values:
             raise ParameterError(f"{name} must be one of {', '.join(map(repr, values))}; got {value!r}")
@@ -70,4 +71,5 @@ def seed(name: str, value):
 
 
 def anything(name: str, value):
+    """Any value (the consumer checks it, e.g. an algorithm's own parameter)."""
     return value

@@ -56,6 +56,40 @@ def _request_alternatives(world, refine: str, refine_options: dict, params: dict
         params.setdefault("alternative_separation", tube_radius_for(world, refine, refine_options.get("tube_radius")))
 
 
+def _judge_stages(world, start, goal, clearance, name, preset, before, after, refine, if_worse):
+    """Record the planner's and the refinement's stage under the planner's own program (the paper
+    fitness it optimised): a refinement that raises it is reported, or rejected with ``if_worse``."""
+    from dataclasses import replace
+
+    from .formulations.paper_programs import paper_program
+    from .solvers.paths import PAPER_OF
+
+    program_name = preset if isinstance(preset, str) else PAPER_OF.get(name, "length")
+    prog = paper_program(program_name, world, start, goal, clearance=clearance)
+
+    def record(stage, solver, res):
+        cost = prog.judge(res.path)[0] if len(res.path) >= 2 else float("inf")
+        return {"stage": stage, "solver": solver, "program": program_name, "fitness": cost,
+                "length": float(res.length), "feasible": bool(res.feasible)}
+
+    first, second = record(1, name, before), record(2, refine, after)
+    second.update(fitness_before=first["fitness"], length_before=first["length"],
+                  worse=bool(after.refined and second["fitness"] > first["fitness"] + 1e-9))
+    stages = [first, second]
+    if not second["worse"]:
+        return replace(after, stages=stages)
+    note = (f"refine={refine} raised the {program_name} fitness the planner optimised from "
+            f"{first['fitness']:.4g} to {second['fitness']:.4g} (length {first['length']:.4g} -> "
+            f"{second['length']:.4g} m)")
+    if if_worse == "reject":
+        second["accepted"] = False
+        return replace(before, stages=stages, message="; ".join(m for m in (before.message, note + "; the "
+                       "planner's path is returned (refine_options if_worse='reject')") if m))
+    second["accepted"] = True
+    return replace(after, stages=stages, message="; ".join(m for m in (after.message, note + "; kept "
+                   "(refine_options if_worse='reject' returns the planner's path)") if m))
+
+
 def plan(world, start, goal, algorithm: str = "astar", refine: str | None = None, seed: int | None = 0,
          pop: int = 30, iters: int = 500, clearance: float = 0.0, refine_options: dict | None = None,
          **params) -> PlanResult:
@@ -75,8 +109,11 @@ def plan(world, start, goal, algorithm: str = "astar", refine: str | None = None
             for ``casadi``: twice the widest obstacle, for ``qp``: 0), ``{"starts": k}``:
             also refine up to ``k - 1`` other distinct paths of a metaheuristic's
             population and keep the shortest (default ``casadi`` 3, ``qp`` 1; ``1`` =
-            the best path only; see :mod:`optplan.solvers.refine`), or smoother
-            options such as ``n_points``. Ignored without ``refine``.
+            the best path only; see :mod:`optplan.solvers.refine`), ``{"if_worse":
+            "reject"}``: return the planner's path when the refinement raises the
+            planner's own fitness (default ``"keep"``: keep it and say so in
+            ``message`` and ``stages``), or smoother options such as ``n_points``.
+            Ignored without ``refine``.
         **params: extra keyword arguments for the chosen planner.
 
     Returns:
@@ -116,7 +153,14 @@ def plan(world, start, goal, algorithm: str = "astar", refine: str | None = None
     if refine not in (None, "none"):
         from .solvers.refine import refine_result
 
+        if_worse = refine_options.pop("if_worse", "keep")
+        if if_worse not in ("keep", "reject"):
+            raise ParameterError(f"refine_options['if_worse'] must be 'keep' (report it) or 'reject' (return the "
+                                 f"planner's path), got {if_worse!r}")
+        seed_result = result
         result = refine_result(world, result, method=refine, clearance=clearance, seed=seed, **refine_options)
+        result = _judge_stages(world, start, goal, clearance, name, params.get("preset"), seed_result, result,
+                               refine, if_worse)
     if result.seed is None and name not in GRAPH_METHODS and isinstance(seed, (int, np.integer)):
         result.seed = int(seed)
     return result

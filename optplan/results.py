@@ -108,6 +108,11 @@ class PlanResult(_ToDict):
             around every earlier one (``plan_path(..., alternatives=k)``, which
             ``op.plan`` asks for when a multi-start refinement will use them); empty
             for graph search and by default. Not in ``to_dict`` / JSON.
+        stages: with ``refine=``: one record per stage (the planner, then the refinement),
+            each with the planner's own program cost (``fitness``: the paper's fitness
+            the planner optimised, ``op.paper_program``), ``length`` and ``feasible``; the
+            refinement's record also has the values before it and ``worse`` (its fitness
+            rose). Empty without refinement.
     """
 
     algorithm: str
@@ -124,6 +129,7 @@ class PlanResult(_ToDict):
     message: str = ""
     nfev: int = 0
     alternatives: list[np.ndarray] = field(default_factory=list, repr=False)
+    stages: list = field(default_factory=list)
 
     NOT_IN_DICT = ("alternatives",)
     JSON_KEYS = ("algorithm", "feasible", "path", "length", "turn_angle_deg", "n_turns",

@@ -95,12 +95,16 @@ def _segment_point_dist2(ca, ax, ay, bx, by, qx, qy):
     return ex * ex + ey * ey
 
 
-def clearance_rows(P: Sym, ctx, clearance: float, per_segment: int, margin: float, active=None):
-    """Constraint rows ``g >= lb`` that keep the path ``clearance + margin`` from obstacles;
-    returns ``(g, lb)`` (a CasADi column and a numpy vector).
+def clearance_rows(P: Sym, ctx, clearance: float, per_segment: int, sym, shapes: dict):
+    """Constraint rows ``g >= 0`` that keep the path ``clearance + margin`` from obstacles.
+
+    Obstacle data and the margin are CasADi *parameters*, so one built solver serves every
+    later solve whose active sets have the same ``shapes`` (``{"boxes": (M, K), ...}``, from
+    :func:`active_sets`). Returns ``(g, p, fill)``: the rows, the parameter column and
+    ``fill(margin, active) -> values of p``.
 
     * Circle worlds: every segment's exact distance to each grown circle's centre
-      (``active["circles"]``: ``(S, K)`` circles per segment; ``None``: all), and every
+      (``active["circles"]``: ``(S, K)`` circles per segment; absent: all), and every
       interior vertex inside the border. Segment-exact: no samples needed.
     * Grids: every segment's exact distance to the convex obstacle corners near it
       (``active["corners"]``, ``(S, K)``), which is where a straight piece between two
@@ -109,51 +113,80 @@ def clearance_rows(P: Sym, ctx, clearance: float, per_segment: int, margin: floa
     """
     import casadi as ca
 
-    active = active or {}
     m = P.m
     ax, ay, bx, by = m[:-1, 0], m[:-1, 1], m[1:, 0], m[1:, 1]
     S = P.shape[0] - 1
-    need = clearance + margin
-    if ctx.is_grid:
-        # 0 clearance still keeps out of cell interiors; the smooth box distance overshoots by
-        # up to one smoothing width, which the bound adds back
-        eps = SMOOTHING * ctx.cell
-        need = max(clearance, 1e-3 * ctx.cell) + margin + eps
     qx, qy = sample_points(P, per_segment)
     M = qx.shape[0]
     xmin, ymin, xmax, ymax = ctx.world.bounds
-    rows, lbs = [], []
-    if M:
-        rows += [qx - xmin, xmax - qx, qy - ymin, ymax - qy]
-        lbs += [np.full(M, clearance + margin)] * 4
+    blocks = {"border": 1, "need": 1}
     if ctx.is_grid:
-        boxes, corners = boundary_boxes(ctx.world), convex_corners(ctx.world)
-        box_ids, corner_ids = active.get("boxes"), active.get("corners")
-        if box_ids is not None and M:
-            for k in range(box_ids.shape[1]):
-                b = boxes[box_ids[:, k]]
-                dx = soft_plus(ca, ca.DM(b[:, 0]) - qx, eps) + soft_plus(ca, qx - ca.DM(b[:, 2]), eps)
-                dy = soft_plus(ca, ca.DM(b[:, 1]) - qy, eps) + soft_plus(ca, qy - ca.DM(b[:, 3]), eps)
-                rows.append(dx * dx + dy * dy)
-                lbs.append(np.full(M, need * need))
-        if corner_ids is not None:
-            for k in range(corner_ids.shape[1]):
-                c = corners[corner_ids[:, k]]
-                rows.append(_segment_point_dist2(ca, ax, ay, bx, by, ca.DM(c[:, 0]), ca.DM(c[:, 1])))
-                lbs.append(np.full(S, need * need))
-    else:
-        circles, radii = ctx.world.circles, ctx.world.radii
-        ids = active.get("circles")
-        if len(circles):
-            if ids is None:
-                ids = np.broadcast_to(np.arange(len(circles)), (S, len(circles)))
-            for k in range(ids.shape[1]):
-                idx = ids[:, k]
-                rows.append(_segment_point_dist2(ca, ax, ay, bx, by, ca.DM(circles[idx, 0]), ca.DM(circles[idx, 1])))
-                lbs.append((radii[idx] + need) ** 2)
-    if not rows:
-        return ca.DM.zeros(0, 1), np.zeros(0)
-    return ca.vertcat(*rows), np.concatenate(lbs)
+        if "boxes" in shapes:
+            blocks["boxes"] = 4 * int(np.prod(shapes["boxes"]))
+        if "corners" in shapes:
+            blocks["corners"] = 2 * int(np.prod(shapes["corners"]))
+    elif len(ctx.world.circles):
+        k = shapes.get("circles", (S, len(ctx.world.circles)))[1]
+        blocks["circles"] = 3 * S * k
+    p = sym.sym("obstacles", sum(blocks.values()))
+    at, off = {}, 0
+    for name, size in blocks.items():
+        at[name] = p[off:off + size]
+        off += size
+    border, need = at["border"], at["need"]
+    rows = [qx - xmin - border, xmax - qx - border, qy - ymin - border, ymax - qy - border] if M else []
+    eps = SMOOTHING * ctx.cell
+    if ctx.is_grid:
+        if "boxes" in at:
+            Mb, K = shapes["boxes"]
+            blk = ca.reshape(at["boxes"], Mb, 4 * K)
+            for k in range(K):
+                lox, loy, hix, hiy = (blk[:, 4 * k + j] for j in range(4))
+                dx = soft_plus(ca, lox - qx, eps) + soft_plus(ca, qx - hix, eps)
+                dy = soft_plus(ca, loy - qy, eps) + soft_plus(ca, qy - hiy, eps)
+                rows.append(dx * dx + dy * dy - need * need)
+        if "corners" in at:
+            Sc, K = shapes["corners"]
+            blk = ca.reshape(at["corners"], Sc, 2 * K)
+            for k in range(K):
+                rows.append(_segment_point_dist2(ca, ax, ay, bx, by, blk[:, 2 * k], blk[:, 2 * k + 1]) - need * need)
+    elif "circles" in at:
+        K = blocks["circles"] // (3 * S)
+        blk = ca.reshape(at["circles"], S, 3 * K)
+        for k in range(K):
+            cx, cy, R = blk[:, 3 * k], blk[:, 3 * k + 1], blk[:, 3 * k + 2]
+            rows.append(_segment_point_dist2(ca, ax, ay, bx, by, cx, cy) - (R + need) ** 2)
+    g = ca.vertcat(*rows) if rows else sym.zeros(0, 1)
+
+    def fill(margin: float, active: dict) -> np.ndarray:
+        vals = [np.array([clearance + margin])]
+        if ctx.is_grid:
+            # 0 clearance still keeps out of cell interiors; the smooth box distance overshoots
+            # by up to one smoothing width, which the bound adds back
+            vals.append(np.array([max(clearance, 1e-3 * ctx.cell) + margin + eps]))
+            if "boxes" in at:
+                b = boundary_boxes(ctx.world)[active["boxes"]]          # (M, K, 4)
+                vals.append(b.reshape(b.shape[0], -1).ravel(order="F"))
+            if "corners" in at:
+                c = convex_corners(ctx.world)[active["corners"]]       # (S, K, 2)
+                vals.append(c.reshape(c.shape[0], -1).ravel(order="F"))
+        else:
+            vals.append(np.array([clearance + margin]))
+            if "circles" in at:
+                circles, radii = ctx.world.circles, ctx.world.radii
+                ids = active.get("circles")
+                if ids is None:
+                    ids = np.broadcast_to(np.arange(len(circles)), (S, len(circles)))
+                data = np.stack([circles[ids, 0], circles[ids, 1], radii[ids]], axis=2)   # (S, K, 3)
+                vals.append(data.reshape(S, -1).ravel(order="F"))
+        return np.concatenate(vals)
+
+    return g, p, fill
+
+
+def active_shapes(active: dict | None) -> dict:
+    """The shapes of an active-set dict (what a built solver depends on)."""
+    return {k: tuple(v.shape) for k, v in (active or {}).items() if v is not None}
 
 
 def convex_corners(grid) -> np.ndarray:

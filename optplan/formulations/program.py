@@ -108,6 +108,7 @@ def get_solver(solver) -> ProgramSolver:
 
 
 def solver_names() -> list[str]:
+    """Names of the registered program solvers (chains are lists of them)."""
     return sorted(k for k in SOLVERS if k != "chain")
 
 
@@ -133,6 +134,8 @@ class PathProgram:
         self.objective: Expr | None = None
         self.constraints: list[Constraint] = []
         self.name = name or "program"
+        # symbolic problems built by gradient solvers for this program, reused by later solves
+        self.built_solvers: dict = {}
 
     # building ---------------------------------------------------------------
     def minimize(self, objective: Expr) -> "PathProgram":
@@ -204,38 +207,47 @@ class PathProgram:
         ok = ends and all(v == 0 for v in viol.values()) and bool(validate_path(self.world, P, self.clearance))
         return cost, viol, bool(ok and math.isfinite(cost))
 
-    def symbolic(self, variables: Variables, x, per_segment: int, margin: float, active=None):
+    def symbolic(self, variables: Variables, x, per_segment: int, shapes: dict | None = None):
         """The objective and constraint rows for one variable column ``x`` (CasADi).
 
-        Returns ``(f, g, lbg, ubg, names)``: ``lbg <= g <= ubg`` row-wise, ``names[i]``
-        the constraint of row ``i``. Clearance constraints use the model of
-        :func:`~optplan.formulations.clearance_model.clearance_rows` with ``per_segment``
-        samples per segment, ``margin`` extra metres and the obstacles ``active``."""
+        Returns ``(f, g, lbg, ubg, p, fill)``: ``lbg <= g <= ubg`` row-wise; ``p`` is the
+        parameter column of the clearance model (obstacle data and margin, see
+        :func:`~optplan.formulations.clearance_model.clearance_rows`, with ``per_segment``
+        samples per segment and active sets of the given ``shapes``) and
+        ``fill(margin, active)`` its values, so a built solver is reused while the
+        shapes stay the same."""
         import casadi as ca
 
         from .clearance_model import clearance_rows
 
+        sym = ca.SX if isinstance(x, ca.SX) else ca.MX
         P = variables.decode_symbolic(x)
         f = self._need_objective().symbolic(P, self.ctx).m
-        rows, lb, ub, names = [], [], [], []
+        rows, lb, ub, params, fills = [], [], [], [], []
         for c in self.constraints:
             if c.is_clearance:
-                g, lo = clearance_rows(P, self.ctx, c.lower, per_segment, margin, active)
-                hi = np.full(len(lo), np.inf)
+                g, p, fill = clearance_rows(P, self.ctx, c.lower, per_segment, sym, shapes or {})
+                lo, hi = np.zeros(g.shape[0]), np.full(g.shape[0], np.inf)
+                params.append(p)
+                fills.append(fill)
             else:
-                s = c.expr.symbolic(P, self.ctx)
-                g = s.m
-                k = int(np.prod(s.shape)) if s.shape else 1
+                sv = c.expr.symbolic(P, self.ctx)
+                g = sv.m
+                k = int(np.prod(sv.shape)) if sv.shape else 1
                 lo = np.full(k, -np.inf if c.lower is None else c.lower)
                 hi = np.full(k, np.inf if c.upper is None else c.upper)
             rows.append(g)
             lb.append(lo)
             ub.append(hi)
-            names.extend([c.name] * len(lo))
-        g = ca.vertcat(*rows) if rows else ca.DM.zeros(0, 1)
+        g = ca.vertcat(*rows) if rows else sym.zeros(0, 1)
         lbg = np.concatenate(lb) if lb else np.zeros(0)
         ubg = np.concatenate(ub) if ub else np.zeros(0)
-        return f, g, lbg, ubg, names
+        p = ca.vertcat(*params) if params else sym.zeros(0, 1)
+
+        def fill_all(margin: float, active: dict) -> np.ndarray:
+            return np.concatenate([fn(margin, active) for fn in fills]) if fills else np.zeros(0)
+
+        return f, g, lbg, ubg, p, fill_all
 
     def surrogate_notes(self) -> list[str]:
         """Which terms a gradient solver replaces by a smooth surrogate, and how."""

@@ -328,6 +328,7 @@ class CellSequence(Variables):
 
 
 def as_variables(v) -> Variables:
+    """``v`` when it is a variable set, else a ParameterError naming the choices."""
     if isinstance(v, Variables):
         return v
     raise ParameterError(f"variables must be op.Waypoints(k), op.Points(n), op.BSpline(ctrl, samples), "

@@ -58,6 +58,7 @@ def result_of(program, variables, x, solver: str, status: str, message: str, nfe
 
 
 def total_violation(r: ProgramResult) -> float:
+    """Sum of a result's constraint violations (0 when every constraint holds)."""
     return float(sum(r.violations.values())) if r.violations else 0.0
 
 

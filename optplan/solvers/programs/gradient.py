@@ -83,28 +83,53 @@ class GradientSolver(ProgramSolver):
                 start = x
         return result_of(program, variables, x, self.name, status, message, nfev, t0, notes=notes)
 
-    def _nlp(self, program, variables, k, margin, active, cap, x0=None, relax=False):
+    def _built(self, program, variables, k, active, cap):
+        """The symbolic problem for these structural choices, built once and kept by the
+        program (``program.built_solvers``): obstacle data, margin and the segment cap are
+        parameters, so later solves with other values reuse it."""
         import casadi as ca
 
+        from ...formulations.clearance_model import active_shapes
+
+        shapes = active_shapes(active)
+        key = (self.name, variables.name, variables.dim, k, tuple(sorted(shapes.items())), cap is not None,
+               id(program.objective), tuple(id(c) for c in program.constraints))
+        cache = program.built_solvers
+        if key in cache:
+            return cache[key]
         # SX is several times faster; only a clearance term in the objective (the grid's
         # B-spline interpolant of the distance field) needs MX
         needs_mx = program.ctx.is_grid and any(isinstance(t, Clearance) for t in program.objective.leaves())
         sym = ca.MX if needs_mx else ca.SX
         x = sym.sym("x", variables.dim)
-        f, g, lbg, ubg, _ = program.symbolic(variables, x, k, margin, active)
+        f, g, lbg, ubg, p, fill = program.symbolic(variables, x, k, shapes)
         if cap is not None:
+            cap_p = sym.sym("cap")
             P = variables.decode_symbolic(x).m
             d = P[1:, :] - P[:-1, :]
-            g = ca.vertcat(g, d[:, 0] ** 2 + d[:, 1] ** 2)
+            g = ca.vertcat(g, d[:, 0] ** 2 + d[:, 1] ** 2 - cap_p ** 2)
             n = P.shape[0] - 1
             lbg = np.concatenate([lbg, np.full(n, -np.inf)])
-            ubg = np.concatenate([ubg, np.full(n, cap ** 2)])
-        if relax and g.shape[0]:
+            ubg = np.concatenate([ubg, np.zeros(n)])
+            p = ca.vertcat(p, cap_p)
+        built = {"x": x, "p": p, "f": f, "g": g, "lbg": lbg, "ubg": ubg, "fill": fill, "cap": cap is not None,
+                 "g_of": ca.Function("g_of", [x, p], [g]), "solvers": {}}
+        cache[key] = built
+        return built
+
+    def _problem(self, program, variables, k, margin, active, cap, x0, relax):
+        """The built problem and this solve's numbers: ``(built, p values, lbg, ubg)``."""
+        built = self._built(program, variables, k, active, cap)
+        pv = built["fill"](margin, active or {})
+        if built["cap"]:
+            pv = np.concatenate([pv, [cap]])
+        lbg, ubg = built["lbg"], built["ubg"]
+        if relax and built["g"].shape[0]:
             # the start passed the exact test: widen each row's bounds to include it, so the NLP
-            # starts feasible and the cushion only binds where the start keeps it already
-            g0 = np.asarray(ca.Function("g0", [x], [g])(x0), float).reshape(-1)
+            # starts feasible and the margin only binds where the start keeps it already
+            g0 = np.asarray(built["g_of"](x0, pv), float).reshape(-1)
             lbg, ubg = np.minimum(lbg, g0), np.maximum(ubg, g0)
-        return x, f, g, lbg, ubg
+        return built, pv, lbg, ubg
 
 
 class IpoptSolver(GradientSolver):
@@ -118,10 +143,14 @@ class IpoptSolver(GradientSolver):
     def _solve_nlp(self, program, variables, x0, k, margin, active, cap, o, relax):
         import casadi as ca
 
-        x, f, g, lbg, ubg = self._nlp(program, variables, k, margin, active, cap, x0, relax)
+        built, pv, lbg, ubg = self._problem(program, variables, k, margin, active, cap, x0, relax)
         opts = {**IPOPT_DEFAULTS, "max_iter": o["max_iter"], "tol": o["tol"], **o["ipopt"]}
-        solver = ca.nlpsol("program", "ipopt", {"x": x, "f": f, "g": g}, {"print_time": False, "ipopt": opts})
-        sol = solver(x0=x0, lbx=variables.lower, ubx=variables.upper, lbg=lbg, ubg=ubg)
+        okey = repr(sorted(opts.items()))
+        solver = built["solvers"].get(okey)
+        if solver is None:   # IPOPT options are fixed per instance: one instance per option set
+            nlp = {"x": built["x"], "p": built["p"], "f": built["f"], "g": built["g"]}
+            solver = built["solvers"][okey] = ca.nlpsol("program", "ipopt", nlp, {"print_time": False, "ipopt": opts})
+        sol = solver(x0=x0, p=pv, lbx=variables.lower, ubx=variables.upper, lbg=lbg, ubg=ubg)
         st = solver.stats()
         xs = np.asarray(sol["x"], float).reshape(-1)
         if not np.all(np.isfinite(xs)):
@@ -139,23 +168,27 @@ class SlsqpSolver(GradientSolver):
         import casadi as ca
         from scipy.optimize import Bounds, minimize
 
-        x, f, g, lbg, ubg = self._nlp(program, variables, k, margin, active, cap, x0, relax)
-        F = ca.Function("f", [x], [f, ca.gradient(f, x)])
+        built, pv, lbg, ubg = self._problem(program, variables, k, margin, active, cap, x0, relax)
+        fns = built["solvers"].get("slsqp")
+        if fns is None:
+            x, p, f, g = built["x"], built["p"], built["f"], built["g"]
+            fns = built["solvers"]["slsqp"] = (ca.Function("f", [x, p], [f, ca.gradient(f, x)]),
+                                               ca.Function("g", [x, p], [g, ca.jacobian(g, x)]))
+        F, G = fns
         lo_rows, hi_rows = np.isfinite(lbg), np.isfinite(ubg)
-        G = ca.Function("g", [x], [g, ca.jacobian(g, x)])
         count = {"f": 0}
 
         def fun(z):
             count["f"] += 1
-            v, gr = F(z)
+            v, gr = F(z, pv)
             return float(v), np.asarray(gr, float).reshape(-1)
 
         def cons(z):
-            v = np.asarray(G(z)[0], float).reshape(-1)
+            v = np.asarray(G(z, pv)[0], float).reshape(-1)
             return np.concatenate([v[lo_rows] - lbg[lo_rows], ubg[hi_rows] - v[hi_rows]])
 
         def cons_jac(z):
-            J = np.asarray(ca.densify(G(z)[1]), float)
+            J = np.asarray(ca.densify(G(z, pv)[1]), float)
             return np.vstack([J[lo_rows], -J[hi_rows]])
 
         constraints = [{"type": "ineq", "fun": cons, "jac": cons_jac}] if (lo_rows.any() or hi_rows.any()) else []

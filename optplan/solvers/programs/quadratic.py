@@ -22,7 +22,7 @@ from ...errors import ParameterError
 from ...formulations.program import Option, ProgramSolver
 from .common import INIT_OPTION, result_of, start_vector
 
-OSQP_DEFAULTS = {"verbose": False, "eps_abs": 1e-8, "eps_rel": 1e-8, "polish": True, "max_iter": 20000}
+OSQP_DEFAULTS = {"verbose": False, "eps_abs": 1e-8, "eps_rel": 1e-8, "polishing": True, "max_iter": 20000}
 
 
 def quadratic_form(program, variables):
@@ -60,7 +60,7 @@ class CorridorQPSolver(ProgramSolver):
         obj = program.objective
         if not obj.quadratic:
             bad = [t.name for t in obj.leaves() if not t.quadratic] or [obj.name]
-            raise ParameterError(f"{self.name} takes quadratic objectives only; {', '.join(bad)} is not quadratic "
+            raise ParameterError(f"{self.name} takes quadratic objectives only; not quadratic: {', '.join(bad)} "
                                  "(use squared_length / bending, or ipopt and slsqp)")
         for c in program.constraints:
             if not c.is_clearance:
@@ -151,7 +151,7 @@ class OsqpSolver(CorridorQPSolver):
         solver.setup(sp.triu(sp.csc_matrix(H), format="csc"), q, sp.csc_matrix(A), lo, hi,
                      **{**OSQP_DEFAULTS, **o["settings"]})
         solver.warm_start(x=x0)
-        res = solver.solve()
+        res = solver.solve(raise_error=False)
         if res.info.status_val not in (1, 2) or res.x is None:   # solved / solved inaccurate
             return None, str(res.info.status)
         return np.asarray(res.x, float), str(res.info.status)
