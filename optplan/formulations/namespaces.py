@@ -139,6 +139,15 @@ def _binary(fn):
     return f
 
 
+def _reduction(fn):
+    """``fn`` (a numpy reduction) over per-path axes of a :class:`Batch`."""
+    def reduce(x, axis=None):
+        if not isinstance(x, Batch):
+            return fn(np.asarray(x), axis=axis)
+        return Batch(fn(x.a, axis=_batch_axis(x, axis)))
+    return reduce
+
+
 class BatchNamespace:
     """numpy over a :class:`Batch` (and plain numbers)."""
 
@@ -163,27 +172,10 @@ class BatchNamespace:
     def hypot(x, y):
         return BatchNamespace.sqrt(x * x + y * y)
 
-    @staticmethod
-    def _reduce(fn, x, axis):
-        if not isinstance(x, Batch):
-            return fn(np.asarray(x), axis=axis)
-        return Batch(fn(x.a, axis=_batch_axis(x, axis)))
-
-    @staticmethod
-    def sum(x, axis=None):
-        return BatchNamespace._reduce(np.sum, x, axis)
-
-    @staticmethod
-    def mean(x, axis=None):
-        return BatchNamespace._reduce(np.mean, x, axis)
-
-    @staticmethod
-    def max(x, axis=None):
-        return BatchNamespace._reduce(np.max, x, axis)
-
-    @staticmethod
-    def min(x, axis=None):
-        return BatchNamespace._reduce(np.min, x, axis)
+    sum = staticmethod(_reduction(np.sum))
+    mean = staticmethod(_reduction(np.mean))
+    max = staticmethod(_reduction(np.max))
+    min = staticmethod(_reduction(np.min))
 
     @staticmethod
     def sumsq(x, axis=None):
@@ -498,22 +490,22 @@ class SymbolicNamespace:
         return total / max(count, 1)
 
     @staticmethod
-    def max(x, axis=None):
+    def _extreme(x, axis, whole: str, pair: str):
         import casadi as ca
 
+        both = getattr(ca, pair)
         return SymbolicNamespace._reduce(
-            x, axis, ca.mmax,
-            lambda m: _fold(ca.fmax, [m[i, :] for i in range(m.shape[0])]).T,
-            lambda m: _fold(ca.fmax, [m[:, j] for j in range(m.shape[1])]))
+            x, axis, getattr(ca, whole),
+            lambda m: _fold(both, [m[i, :] for i in range(m.shape[0])]).T,
+            lambda m: _fold(both, [m[:, j] for j in range(m.shape[1])]))
+
+    @staticmethod
+    def max(x, axis=None):
+        return SymbolicNamespace._extreme(x, axis, "mmax", "fmax")
 
     @staticmethod
     def min(x, axis=None):
-        import casadi as ca
-
-        return SymbolicNamespace._reduce(
-            x, axis, ca.mmin,
-            lambda m: _fold(ca.fmin, [m[i, :] for i in range(m.shape[0])]).T,
-            lambda m: _fold(ca.fmin, [m[:, j] for j in range(m.shape[1])]))
+        return SymbolicNamespace._extreme(x, axis, "mmin", "fmin")
 
     @staticmethod
     def sumsq(x, axis=None):

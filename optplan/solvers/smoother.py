@@ -11,6 +11,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..formulations.variables import resample_path
+
 
 @dataclass
 class WarmStart:
@@ -59,13 +61,7 @@ class SmoothResult:
 
 def resample(path: np.ndarray, n: int) -> np.ndarray:
     """``n`` points equally spaced by arc length along a polyline (ends kept)."""
-    P = np.asarray(path, dtype=float)
-    seg = np.hypot(*np.diff(P, axis=0).T)
-    s = np.concatenate([[0.0], np.cumsum(seg)])
-    if s[-1] == 0:
-        return np.repeat(P[:1], n, axis=0)
-    t = np.linspace(0.0, s[-1], n)
-    return np.stack([np.interp(t, s, P[:, 0]), np.interp(t, s, P[:, 1])], axis=1)
+    return resample_path(path, n)
 
 
 def default_points(path: np.ndarray, spacing: float) -> int:
