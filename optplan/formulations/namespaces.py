@@ -32,7 +32,7 @@ class Batch:
     __array_priority__ = 1000  # numpy defers to our operators
 
     def __init__(self, a) -> None:
-        self.a = np.asarray(a)
+        self.a = a if isinstance(a, np.ndarray) else np.asarray(a)
 
     @property
     def shape(self) -> tuple:
@@ -58,6 +58,10 @@ class Batch:
 
     # arithmetic -----------------------------------------------------------
     def _bin(self, other, op, reverse=False):
+        # fast paths: a plain number, or a Batch of the same per-path rank (the common cases)
+        if isinstance(other, (int, float)) or (isinstance(other, Batch) and other.a.ndim == self.a.ndim):
+            o = other.a if isinstance(other, Batch) else other
+            return Batch(op(o, self.a) if reverse else op(self.a, o))
         x, y = _aligned(self, other)
         return Batch(op(y, x) if reverse else op(x, y))
 
