@@ -134,7 +134,9 @@ def clearance_rows(P: Sym, ctx, clearance: float, per_segment: int, sym, shapes:
         at[name] = p[off:off + size]
         off += size
     border, need = at["border"], at["need"]
-    rows = [qx - xmin - border, xmax - qx - border, qy - ymin - border, ymax - qy - border] if M else []
+    # the map is convex: vertices inside the border keep every segment inside it
+    vx, vy = m[1:-1, 0], m[1:-1, 1]
+    rows = [vx - xmin - border, xmax - vx - border, vy - ymin - border, ymax - vy - border] if S > 1 else []
     eps = SMOOTHING * ctx.cell
     if ctx.is_grid:
         if "boxes" in at:

@@ -24,8 +24,9 @@ from ...formulations.expressions import Clearance
 from ...formulations.program import Option, ProgramSolver
 from .common import INIT_OPTION, result_of, start_vector, straight_start
 
-IPOPT_DEFAULTS = {"print_level": 0, "sb": "yes", "mu_strategy": "adaptive"}
+IPOPT_DEFAULTS = {"print_level": 0, "sb": "yes", "mu_strategy": "adaptive", "max_wall_time": 60.0}
 SEGMENT_GROWTH = 2.0     # grids: a segment may grow to this multiple of the start's longest one
+MAX_SAMPLES = 8          # grids: samples per segment at most (longer pieces rely on corner rows and retries)
 
 
 class GradientSolver(ProgramSolver):
@@ -60,13 +61,13 @@ class GradientSolver(ProgramSolver):
             seg = np.hypot(*np.diff(P0, axis=0).T)
             longest = max(float(seg.max()) * SEGMENT_GROWTH, 1e-3)
             if ctx.is_grid:   # samples closer than half a cell catch every wall between two corners
-                k = o["per_segment"] or int(np.clip(math.ceil(longest / (0.5 * ctx.cell)), 1, 100))
+                k = o["per_segment"] or int(np.clip(math.ceil(longest / (0.5 * ctx.cell)), 1, MAX_SAMPLES))
                 margin = 1e-6 * ctx.cell if attempt == 0 else 0.02 * ctx.cell * 2 ** (attempt - 1)
             else:             # circles are kept off segment by segment, exactly
                 k = o["per_segment"] or 1
                 margin = 1e-6 * 10 ** attempt
             active = active_sets(ctx, P0, k) if has_clearance else None
-            cap = longest if ctx.is_grid and has_clearance else None
+            cap = min(longest, MAX_SAMPLES * 0.5 * ctx.cell) if ctx.is_grid and has_clearance else None
             relax = program.judge(P0)[2]   # a feasible start is never asked for more margin than it has
             try:
                 x, calls, status = self._solve_nlp(program, variables, x, k, margin, active, cap, o, relax)
