@@ -235,3 +235,13 @@ def test_the_kind_is_read_from_program_and_plan_specs_keep_their_keys():
     c = load_spec({**BASE, "init": "astar"}).expand()[0]
     assert len({a.key, b.key, c.key}) == 3
 
+
+def test_the_shipped_example_program_spec_expands_as_documented():
+    spec = load_spec("programs_example")
+    assert spec.kind == "program" and spec.program["program"] == "chen2025"
+    recs = spec.expand()
+    assert {r.target for r in recs} == {"chen2025_20", "li2023_11"}
+    assert sorted({r.algorithm for r in recs}) == ["msiar-gwo", "msiar-gwo>ipopt", "pso"]
+    assert len(recs) == 2 * 3 * 2   # every solver here takes a seed
+    quick = load_spec("programs_example", quick=True).expand()
+    assert {r.target for r in quick} == {"li2023_11"} and quick[0].params == {"max_evals": 600}
