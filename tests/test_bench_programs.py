@@ -245,3 +245,21 @@ def test_the_shipped_example_program_spec_expands_as_documented():
     assert len(recs) == 2 * 3 * 2   # every solver here takes a seed
     quick = load_spec("programs_example", quick=True).expand()
     assert {r.target for r in quick} == {"li2023_11"} and quick[0].params == {"max_evals": 600}
+
+
+def test_compare_keys_its_stored_runs_by_map_and_start_too():
+    # the key used to be the program's text, solver, seed and scalar options: the same program on
+    # two maps, or from two init paths, overwrote one stored run
+    import optplan as op
+
+    store = ResultStore()
+    rows = np.zeros((8, 8), int)
+    walled = rows.copy()
+    walled[4, :6] = 1
+    for grid in (op.GridMap.from_rows(rows), op.GridMap.from_rows(walled)):
+        prog = op.smoothing_program(grid, (0.5, 0.5), (0.5, 7.5), n=10)
+        seed = op.plan(grid, (0.5, 0.5), (0.5, 7.5), algorithm="astar").path
+        op.compare(prog, ["pso"], seeds=[0], db=store, max_evals=40, init=seed)
+        op.compare(prog, ["pso"], seeds=[0], db=store, max_evals=40, init=seed.copy())   # the same start
+        op.compare(prog, ["pso"], seeds=[0], db=store, max_evals=40)                              # none
+    assert store.count() == 4
