@@ -247,6 +247,33 @@ def test_the_shipped_example_program_spec_expands_as_documented():
     assert {r.target for r in quick} == {"li2023_11"} and quick[0].params == {"max_evals": 600}
 
 
+def test_refine_solvers_benchmark_compares_the_solvers_on_paper_maps_and_map_files(tmp_path):
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    repo = Path(__file__).resolve().parents[1]
+    script = repo / "benchmarks" / "refine_solvers.py"
+    # the script imports this checkout's optplan, not whichever one is installed
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(filter(None, [str(repo), os.environ.get("PYTHONPATH")]))}
+    (tmp_path / "room.txt").write_text(ROOM)
+    run = subprocess.run([sys.executable, str(script), "li2023_11", str(tmp_path / "room.txt"), "--start", "0.5",
+                          "0.5", "--goal", "0.5", "7.5", "--n", "15", "--solvers", "ipopt", "osqp", "pso>osqp",
+                          "--db", str(tmp_path / "r.sqlite")], capture_output=True, text=True, timeout=300, env=env)
+    assert run.returncode == 0, run.stderr[-2000:]
+    out = run.stdout
+    assert "## li2023_11: start from the astar path" in out and "room.txt: start from the astar path" in out
+    assert "smoothing(n=15, w=0.5)" in out
+    rows = [ln.split() for ln in out.splitlines() if ln.split()[:1] in (["ipopt"], ["osqp"], ["pso>osqp"])]
+    assert [r[0] for r in rows] == ["ipopt", "osqp", "pso>osqp"] * 2 and all(r[2] == "1" for r in rows)
+    with ResultStore(tmp_path / "r.sqlite") as store:
+        assert store.count() == 6
+    bad = subprocess.run([sys.executable, str(script), str(tmp_path / "room.txt")], capture_output=True, text=True,
+                         timeout=120, env=env)
+    assert bad.returncode == 2 and "needs --start X Y and --goal X Y" in bad.stderr
+
+
 def test_compare_keys_its_stored_runs_by_map_and_start_too():
     # the key used to be the program's text, solver, seed and scalar options: the same program on
     # two maps, or from two init paths, overwrote one stored run
