@@ -290,3 +290,20 @@ def test_compare_keys_its_stored_runs_by_map_and_start_too():
         op.compare(prog, ["pso"], seeds=[0], db=store, max_evals=40, init=seed.copy())   # the same start
         op.compare(prog, ["pso"], seeds=[0], db=store, max_evals=40)                              # none
     assert store.count() == 4
+
+
+def test_each_seed_reaches_the_swarm_and_a_paper_program_is_the_one_op_paper_program_builds():
+    import optplan as op
+    from optplan.world.papermaps import paper_map
+
+    spec = load_spec({"kind": "program", "program": "li2023", "maps": ["li2023_11"], "algorithms": ["gwo"],
+                      "params": {"pop": 12, "max_evals": 120}, "seeds": [3, 4]})
+    store = ResultStore()
+    run_records(spec.expand(), store, workers=1, progress=False)
+    prog = op.paper_program("li2023", *paper_map("li2023_11"))
+    rows, traces = store.rows(), store.traces(list(store.rows()))
+    for rec in spec.expand():
+        direct = prog.solve("gwo", seed=rec.seed, pop=12, max_evals=120)
+        assert rows[rec.key]["cost"] == direct.cost and traces[rec.key]["x"] == direct.x.tolist()
+        assert traces[rec.key]["history"] == direct.history.tolist()
+    assert len({json.dumps(t["x"]) for t in traces.values()}) == 2   # two seeds, two different runs
