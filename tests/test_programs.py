@@ -175,6 +175,15 @@ def test_qp_solvers_take_quadratic_programs_and_refuse_others_by_name(name):
         prog.solve(name)
 
 
+def test_an_option_named_solver_reaches_the_solver_through_prog_solve():
+    # cvxpy's own option 'solver' used to collide with PathProgram.solve's first parameter
+    world = block_grid()
+    seed = op.plan(world, (0.5, 0.5), (11.5, 11.5), algorithm="astar")
+    prog = op.smoothing_program(world, (0.5, 0.5), (11.5, 11.5), n=20)
+    r = prog.solve("cvxpy", init=seed.path, solver="CLARABEL")
+    assert r.feasible and r.solver == "cvxpy"
+
+
 def test_unknown_solver_and_wrong_types_are_optplan_errors():
     prog = turn_program(circles_world())
     with pytest.raises(UnknownAlgorithmError, match="unknown program solver"):

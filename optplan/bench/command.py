@@ -17,6 +17,7 @@ BENCH_EPILOG = """examples:
   optplan bench chen2025_paths --quick --db results.sqlite          # a shipped spec, reduced
   optplan bench my_spec.yaml --workers 8 --csv runs.csv --plots figs/
   optplan bench my_spec.yaml --executor dask://10.0.0.5:8786 --db results.sqlite
+  optplan bench programs_example --db programs.sqlite                # kind program: one program, many solvers
 Rerunning the same command skips the runs already in --db (resume after an interruption).
 Spec format: optplan/data/specs/README.md"""
 

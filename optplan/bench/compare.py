@@ -108,9 +108,37 @@ def compare(program, solvers, seeds=(0,), db=None, progress: bool = False, **opt
     return out
 
 
+def world_digest(world) -> str:
+    """A hash of what a world is (occupancy, resolution and origin of a grid; bounds, circles
+    and safety distance of a circle world), not of its caches or name."""
+    import numpy as np
+
+    h = hashlib.sha256(type(world).__name__.encode())
+    for attr in ("occ", "resolution", "origin", "bounds", "circles", "safety"):
+        value = getattr(world, attr, None)
+        if value is not None:
+            a = np.ascontiguousarray(np.asarray(value, dtype=float))
+            h.update(f"{attr}{a.shape}".encode())
+            h.update(a.tobytes())
+    return h.hexdigest()[:20]
+
+
+def _option_value(v):
+    """An option as plain data for the key: a start result by its path, arrays as lists."""
+    from ..results import jsonable
+
+    return jsonable(getattr(v, "path", v))
+
+
 def _store(store, program, row: dict, r, options: dict) -> None:
     params = {k: v for k, v in options.items() if isinstance(v, (int, float, str, bool)) or v is None}
-    ident = json.dumps({"program": repr(program), "solver": row["solver"], "seed": row["seed"], "params": params},
+    others = {k: _option_value(v) for k, v in options.items() if k not in params}
+    # the program's text does not say on which map, between which points, or from which start
+    # (init=): all of them enter the key, or runs of one program on two maps overwrite each other
+    ident = json.dumps({"program": repr(program), "world": world_digest(program.world),
+                        "start": [float(c) for c in program.start], "goal": [float(c) for c in program.goal],
+                        "solver": row["solver"], "seed": row["seed"], "params": params,
+                        "others": hashlib.sha256(json.dumps(others, sort_keys=True, default=str).encode()).hexdigest()},
                        sort_keys=True)
     key = hashlib.sha256(ident.encode()).hexdigest()[:32]
     record = {"key": key, "experiment": "compare", "kind": "program", "target": program.name,

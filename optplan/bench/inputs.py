@@ -10,7 +10,10 @@ file the run will read:
 * ``plan`` on a paper map: its catalogue entry (file, start, goal) and its map file;
 * ``simulate``: the scenario file and the map it names (relative to the scenario, a
   shipped map name, or inline rows, which are part of the scenario file already);
-* ``optimize``: nothing (benchmark functions are code).
+* ``optimize``: nothing (benchmark functions are code);
+* ``program``: the map files as for ``plan``, and for a ``module:function`` program the
+  source file of that module (not of the modules it imports; the built-in programs are
+  optplan's code, like every solver).
 
 The files are resolved by the same rules as the loaders (``load_map``, ``load_scenario``).
 A file that cannot be found or read is hashed as missing, so the run itself reports the
@@ -82,33 +85,40 @@ def _scenario_files(spec: str) -> list[tuple[str, Path | None]]:
     return out
 
 
-def input_files(kind: str, target_spec: Mapping[str, Any]) -> list[tuple[str, Path | None]]:
-    """``(role, path)`` of every file a run of ``kind`` on ``target_spec`` reads, in reading
-    order; ``path`` is ``None`` for a file that cannot be found."""
+def input_files(kind: str, target_spec: Mapping[str, Any],
+                program: Mapping[str, Any] | None = None) -> list[tuple[str, Path | None]]:
+    """``(role, path)`` of every file a run of ``kind`` on ``target_spec`` (and, for kind
+    ``program``, with the program identity ``program``) reads, in reading order; ``path`` is
+    ``None`` for a file that cannot be found."""
+    out: list[tuple[str, Path | None]] = []
     if kind == "simulate" and "scenario" in target_spec:
-        return _scenario_files(str(target_spec["scenario"]))
-    if kind == "plan" and "map" in target_spec:
-        return _map_files(str(target_spec["map"]))
-    if kind == "plan" and "paper_map" in target_spec:
+        out = _scenario_files(str(target_spec["scenario"]))
+    elif kind in ("plan", "program") and "map" in target_spec:
+        out = _map_files(str(target_spec["map"]))
+    elif kind in ("plan", "program") and "paper_map" in target_spec:
         from ..world.papermaps import MAPS_DIR, catalogue
 
         entry = catalogue().get(str(target_spec["paper_map"]))
-        return [] if entry is None else _map_files(str(MAPS_DIR / entry.file))
-    return []
+        out = [] if entry is None else _map_files(str(MAPS_DIR / entry.file))
+    if kind == "program" and program and ":" in str(program.get("program", "")):
+        from .programs import program_module_file
+
+        out.append(("program module", program_module_file(str(program["program"]))))
+    return out
 
 
-def inputs_digest(kind: str, target_spec: Mapping[str, Any]) -> str:
+def inputs_digest(kind: str, target_spec: Mapping[str, Any], program: Mapping[str, Any] | None = None) -> str:
     """One SHA-256 over the content of every file the run reads ("" when it reads none).
 
     Paths are left out: moving an unchanged file keeps the key, editing one changes it.
     """
     parts = []
-    for role, path in input_files(kind, target_spec):
+    for role, path in input_files(kind, target_spec, program):
         try:
             parts.append([role, _file_hash(path) if path is not None else "missing"])
         except OSError:
             parts.append([role, "unreadable"])
-    if kind == "plan" and "paper_map" in target_spec:
+    if kind in ("plan", "program") and "paper_map" in target_spec:
         from ..world.papermaps import catalogue
 
         entry = catalogue().get(str(target_spec["paper_map"]))

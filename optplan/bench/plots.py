@@ -49,7 +49,7 @@ def box_plot(groups: Mapping[str, Sequence[float]], filename: str | Path | None 
 
 def experiment_plots(res: ExperimentResults, out_dir: str | Path, metric: str | None = None) -> list[Path]:
     """Per target: a box plot of ``metric`` (successful runs), convergence curves (when runs have a
-    history) and an overlay of each group's best path (plan) or last trajectory (simulate)."""
+    history) and an overlay of each group's best path (plan, program) or last trajectory (simulate)."""
     from ..viz.convergence import plot_convergence
 
     out_dir = Path(out_dir)
@@ -78,10 +78,10 @@ def experiment_plots(res: ExperimentResults, out_dir: str | Path, metric: str | 
             hs = [h for h in hs if np.isfinite(h).all()]
             if hs:
                 histories[names[g]] = hs
-            if ok and spec.kind in ("plan", "simulate"):
+            if ok and spec.kind in ("plan", "simulate", "program"):
                 best = min(ok, key=lambda r: float(res.rows[r.key].get(metric) or np.inf))
                 trace = tr.get(best.key, {})
-                if spec.kind == "plan" and trace.get("path"):
+                if spec.kind in ("plan", "program") and trace.get("path"):
                     paths[names[g]] = np.asarray(trace["path"], float)
                 elif trace.get("trajectory"):
                     paths[names[g]] = np.asarray(trace["trajectory"], float)[:, 1:3]
@@ -100,7 +100,7 @@ def experiment_plots(res: ExperimentResults, out_dir: str | Path, metric: str | 
 
 
 def _world_of(kind: str, target_spec: Mapping):
-    if kind == "plan":
+    if kind in ("plan", "program"):
         from .runner import plan_target
 
         return plan_target(json.dumps(dict(target_spec), sort_keys=True))[0]

@@ -83,6 +83,50 @@ def _run_optimize(rec) -> tuple[Any, dict]:
     return res, {"f_error": float(res.f - F.f_opt), "f_opt": float(F.f_opt)}
 
 
+@functools.lru_cache(maxsize=32)
+def _init_path(target_json: str, inputs: str, planner: str, clearance: float):
+    """The path of graph planner ``planner`` on a plan target with this content, at this
+    clearance: the start every solver of a ``program`` run with ``init:`` gets; planned once
+    per worker process (graph search is deterministic)."""
+    from ..planning import plan
+
+    world, start, goal = plan_target(target_json)
+    res = plan(world, start, goal, algorithm=planner, clearance=clearance)
+    if not res.feasible:
+        from ..errors import InfeasibleQueryError
+
+        raise InfeasibleQueryError(f"the {planner} path that should start the solvers is infeasible "
+                                   f"({res.message})")
+    return res.path
+
+
+def _run_program(rec) -> tuple[Any, dict]:
+    """Build the run's program on its map and solve it; the seed goes to solvers that take
+    one, the ``init`` path to solvers that take a start."""
+    from .inputs import inputs_digest
+    from .programs import build_program, solver_instance
+
+    target_json = json.dumps(rec.target_spec, sort_keys=True)
+    world, start, goal = plan_target(target_json)
+    prog = build_program(rec.program, world, start, goal)
+    solver = solver_instance(rec.algorithm)
+    known = solver.all_options()
+    options = dict(rec.params)
+    if "seed" in known:
+        options["seed"] = rec.seed
+    planner = rec.program.get("init")
+    if planner and "init" in known:
+        options["init"] = _init_path(target_json, inputs_digest("plan", rec.target_spec), planner,
+                                     prog.clearance).copy()
+    res = prog.solve(solver, **options)
+    extra: dict[str, Any] = {"violation": float(sum(res.violations.values())), "program_name": prog.name}
+    if res.stages:
+        from ..results import jsonable
+
+        extra["stages"] = json.dumps(jsonable(res.stages))
+    return res, extra
+
+
 def _scenario_inputs(target_json: str) -> str:
     from .inputs import inputs_digest
 
@@ -137,20 +181,34 @@ def _run_simulate(rec) -> tuple[Any, dict]:
     return res, extra
 
 
-def warm_up() -> None:
+def warm_up(extra: tuple[str, ...] = ()) -> None:
     """Import what the solvers import lazily, so that no run's ``runtime_s`` includes one-time
-    module loading (scipy.spatial alone takes ~0.5 s); called once per worker process."""
+    module loading (scipy.spatial alone takes ~0.5 s, cvxpy 1.5 s); called once per worker
+    process. ``extra`` names further modules the runs need (:func:`warm_modules`)."""
     import importlib
 
     for mod in ("scipy.spatial", "scipy.interpolate", "scipy.stats", "optplan.planning", "optplan.solvers.paths",
-                "optplan.solvers.metaheuristics", "optplan.formulations.functions", "optplan.world.papermaps"):
+                "optplan.solvers.metaheuristics", "optplan.formulations.functions", "optplan.world.papermaps",
+                *extra):
         try:
             importlib.import_module(mod)
         except ImportError:  # a layer missing in this version: its runs report it themselves
             pass
 
 
-_RUNNERS: dict[str, Callable] = {"plan": _run_plan, "optimize": _run_optimize, "simulate": _run_simulate}
+def warm_modules(records: Iterable[Mapping[str, Any]]) -> tuple[str, ...]:
+    """The modules beyond :func:`warm_up`'s own list that these runs (record dicts) need:
+    for ``program`` runs, the program layer and the packages of their solvers."""
+    programs = [r["algorithm"] for r in records if r.get("kind") == "program"]
+    if not programs:
+        return ()
+    from .programs import solver_modules
+
+    return ("optplan.programs", *solver_modules(dict.fromkeys(programs)))
+
+
+_RUNNERS: dict[str, Callable] = {"plan": _run_plan, "optimize": _run_optimize, "simulate": _run_simulate,
+                                 "program": _run_program}
 
 
 def execute_run(record: Mapping[str, Any]) -> dict[str, Any]:
@@ -319,7 +377,7 @@ def run_records(records: Iterable, store, executor: Any = "local", workers: int 
         if kind == "local":
             n = workers or os.cpu_count() or 1
             if n == 1 or len(todo) == 1:
-                warm_up()
+                warm_up(warm_modules(todo))
                 for rec in todo:
                     record(rec, execute_run(rec))
             else:
@@ -359,7 +417,8 @@ def _run_process_pool(todo: list[dict], workers: int, record: Callable) -> None:
     queue = list(reversed(todo))
     suspects: list[dict] = []
     while queue or suspects:
-        pool = ProcessPoolExecutor(max_workers=workers, mp_context=_pool_context(), initializer=warm_up)
+        pool = ProcessPoolExecutor(max_workers=workers, mp_context=_pool_context(), initializer=warm_up,
+                                   initargs=(warm_modules(todo),))
         in_flight: dict = {}
         broken = alone = False
         try:
@@ -416,7 +475,7 @@ def _run_dask(todo: list[dict], kind: str, target: Any, workers: int | None, rec
                                  f"'dask scheduler' and 'dask worker {target}', or use --executor local") from None
     try:
         try:
-            client.run(warm_up)
+            client.run(warm_up, warm_modules(todo))
         except Exception as exc:  # typically: optplan is not installed where the workers run
             raise ParameterError(f"the Dask workers cannot run optplan ({type(exc).__name__}: {exc}); install the "
                                  f"same optplan version on every worker (pip install optplan[dask])") from None

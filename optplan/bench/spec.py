@@ -5,12 +5,14 @@ A spec describes one experiment; :func:`load_spec` checks it and
 fully described (what to load, which solver with which parameters, which seed)
 so that any process on any machine can execute it, and each with a stable
 ``key`` (a hash of everything that determines its result) under which the
-results database stores it. Three kinds of run exist:
+results database stores it. Four kinds of run exist:
 
 * ``plan``: ``op.plan`` on a map (a paper map name, or ``{map, start, goal}``);
 * ``simulate``: ``op.simulate`` on a scenario (closed loop: global planner,
   optional refinement, local planner);
-* ``optimize``: ``op.optimize`` on a benchmark function F1-F18 (chen2025 §4.1).
+* ``optimize``: ``op.optimize`` on a benchmark function F1-F18 (chen2025 §4.1);
+* ``program``: a path program (``program:``, see :mod:`optplan.bench.programs`) built on
+  each map and solved by program solvers and chains (``prog.solve``).
 
 Example (the keys are described in ``optplan/data/specs/README.md``)::
 
@@ -22,6 +24,15 @@ Example (the keys are described in ``optplan/data/specs/README.md``)::
     runs: 20                             # seeds 0..19 (or  seeds: [3, 5, 8])
     reference: msiar-gwo                 # the statistics compare everything against it
     quick: {runs: 3, params: {iters: 60}, maps: [chen2025_20]}
+
+A ``program`` spec names its program and lists program solvers and chains::
+
+    kind: program
+    program: smoothing                   # or a paper program, or module:function
+    args: {n: 40}
+    init: astar                          # start of every solver that takes init=
+    maps: [chen2025_20]
+    algorithms: [ipopt, osqp, [msiar-gwo, ipopt]]
 """
 from __future__ import annotations
 
@@ -36,16 +47,17 @@ from ..errors import ParameterError, ScenarioError, UnknownAlgorithmError
 
 SPECS_DIR = Path(__file__).resolve().parent.parent / "data" / "specs"
 
-KINDS = ("plan", "simulate", "optimize")
-TARGET_KEY = {"plan": "maps", "simulate": "scenarios", "optimize": "functions"}
-DEFAULT_METRIC = {"plan": "length", "simulate": "time_s", "optimize": "f"}
+KINDS = ("plan", "simulate", "optimize", "program")
+TARGET_KEY = {"plan": "maps", "simulate": "scenarios", "optimize": "functions", "program": "maps"}
+DEFAULT_METRIC = {"plan": "length", "simulate": "time_s", "optimize": "f", "program": "cost"}
+PROGRAM_KEYS = ("program", "args", "init")   # kind program only
 REFINE_NAMES = ("none", "casadi", "qp")
 
 TOP_KEYS = {"name", "title", "paper", "part", "report", "kind", "maps", "scenarios", "functions", "shifted", "dim",
             "algorithms", "params", "refine", "local_planners", "runs", "seed", "seeds", "reference", "metric",
-            "alpha", "quick", "notes", "order"}
+            "alpha", "quick", "notes", "order", *PROGRAM_KEYS}
 QUICK_KEYS = {"runs", "params", "maps", "scenarios", "functions", "algorithms", "refine", "local_planners", "seeds",
-              "title", "reference"}
+              "title", "reference", "args"}
 ALGO_KEYS = {"name", "label", "params", "runs"}
 MAP_KEYS = {"name", "map", "start", "goal"}
 
@@ -57,10 +69,11 @@ class RunRecord:
 
     Attributes:
         experiment: name of the spec it came from (informational, not part of ``key``).
-        kind: ``"plan"``, ``"simulate"`` or ``"optimize"``.
+        kind: ``"plan"``, ``"simulate"``, ``"optimize"`` or ``"program"``.
         target: short name of the map, scenario or function (table rows use it).
         target_spec: everything needed to load the target, e.g. ``{"paper_map": "chen2025_20"}``.
-        algorithm: registry name of the (global) solver.
+        algorithm: registry name of the (global) solver; for ``program`` runs a program solver
+            or a chain written ``"pso>ipopt"``.
         label: the name the tables show (several labels may share one algorithm).
         refine: ``None``, ``"casadi"`` or ``"qp"``.
         local_planner: local planner name (``simulate`` runs), else ``None``.
@@ -68,7 +81,10 @@ class RunRecord:
         params: keyword arguments for the solver (``pop``, ``iters``, ``max_evals``, ...).
         inputs: content hash of every file the run reads (map, scenario, what the scenario
             references; :func:`optplan.bench.inputs.inputs_digest`), so that editing one of
-            them gives the run a new key; ``""`` when it reads none.
+            them gives the run a new key; ``""`` when it reads none. For a ``module:function``
+            program, the module's source file is one of them.
+        program: ``program`` runs: ``{"program": name or "module:function", "args": {...},
+            "init": graph planner or None}``; empty for the other kinds.
     """
 
     experiment: str
@@ -82,6 +98,7 @@ class RunRecord:
     seed: int
     params: Mapping[str, Any] = field(default_factory=dict)
     inputs: str = ""
+    program: Mapping[str, Any] = field(default_factory=dict)
 
     @property
     def key(self) -> str:
@@ -96,6 +113,8 @@ class RunRecord:
                  "params": dict(self.params)}
         if self.inputs:
             ident["inputs"] = self.inputs
+        if self.program:
+            ident["program"] = dict(self.program)
         blob = json.dumps(ident, sort_keys=True, separators=(",", ":"), default=str)
         return hashlib.sha256(blob.encode()).hexdigest()[:20]
 
@@ -103,12 +122,13 @@ class RunRecord:
         return {"experiment": self.experiment, "kind": self.kind, "target": self.target,
                 "target_spec": dict(self.target_spec), "algorithm": self.algorithm, "label": self.label,
                 "refine": self.refine, "local_planner": self.local_planner, "seed": self.seed,
-                "params": dict(self.params), "inputs": self.inputs, "key": self.key}
+                "params": dict(self.params), "inputs": self.inputs, "program": dict(self.program), "key": self.key}
 
     @classmethod
     def from_dict(cls, d: Mapping[str, Any]) -> "RunRecord":
         return cls(d["experiment"], d["kind"], d["target"], dict(d["target_spec"]), d["algorithm"], d["label"],
-                   d["refine"], d["local_planner"], int(d["seed"]), dict(d["params"]), str(d.get("inputs") or ""))
+                   d["refine"], d["local_planner"], int(d["seed"]), dict(d["params"]), str(d.get("inputs") or ""),
+                   dict(d.get("program") or {}))
 
 
 @dataclass(frozen=True)
@@ -151,6 +171,7 @@ class ExperimentSpec:
     params: Mapping[str, Any] = field(default_factory=dict)
     source: Path | None = None
     order: int = 0
+    program: Mapping[str, Any] = field(default_factory=dict)
 
     @property
     def runs(self) -> int:
@@ -175,14 +196,15 @@ class ExperimentSpec:
 
         out = []
         for t in self.targets:
-            inputs = inputs_digest(self.kind, t.spec)   # read now: the files as this expansion sees them
+            # read now: the files as this expansion sees them
+            inputs = inputs_digest(self.kind, t.spec, self.program or None)
             for a in self.algorithms:
                 seeds = self.seeds if a.runs is None else [self.seeds[0] + k for k in range(a.runs)]
                 for r in self.refine:
                     for s in seeds:
                         for lp in self.local_planners:
                             out.append(RunRecord(self.name, self.kind, t.name, dict(t.spec), a.name, a.label, r, lp,
-                                                 int(s), dict(a.params), inputs))
+                                                 int(s), dict(a.params), inputs, dict(self.program)))
         return out
 
 
@@ -243,8 +265,8 @@ def load_spec(source: str | Path | Mapping[str, Any], quick: bool = False, runs:
             raise ScenarioError(f"{where}: 'quick' must be a mapping of overrides")
         _check_keys(q, QUICK_KEYS, f"{where} quick:")
         for k, v in q.items():
-            if k == "params":
-                raw["params"] = {**(raw.get("params") or {}), **(v or {})}
+            if k in ("params", "args"):
+                raw[k] = {**(raw.get(k) or {}), **(v or {})}
             else:
                 raw[k] = v
             if k == "seeds":
@@ -278,16 +300,22 @@ def _parse(raw: dict, path: Path | None, where: str) -> ExperimentSpec:
     name = str(raw.get("name") or (path.stem if path else "experiment"))
     kind = raw.get("kind")
     if kind is None:
-        present = [k for k, key in TARGET_KEY.items() if raw.get(key)]
+        present = ["program"] if raw.get("program") else \
+            [k for k, key in TARGET_KEY.items() if k != "program" and raw.get(key)]
         if len(present) != 1:
-            raise ScenarioError(f"{where}: say what to run with 'kind: plan|simulate|optimize' and give its targets "
-                                f"('maps', 'scenarios' or 'functions')")
+            raise ScenarioError(f"{where}: say what to run with 'kind: plan|simulate|optimize|program' and give its "
+                                f"targets ('maps', 'scenarios' or 'functions')")
         kind = present[0]
     if kind not in KINDS:
         raise ScenarioError(f"{where}: kind must be one of {', '.join(KINDS)}, got {kind!r}")
     for other_kind, key in TARGET_KEY.items():
-        if other_kind != kind and raw.get(key):
+        if key != TARGET_KEY[kind] and raw.get(key):
             raise ScenarioError(f"{where}: '{key}' belongs to kind {other_kind!r}, but this spec is kind {kind!r}")
+    if kind != "program":
+        given = [k for k in PROGRAM_KEYS if raw.get(k) is not None]
+        if given:
+            raise ScenarioError(f"{where}: {', '.join(map(repr, given))} "
+                                f"{'applies' if len(given) == 1 else 'apply'} only to kind program")
     base_dir = path.parent if path else Path.cwd()
     targets = _parse_targets(kind, raw, base_dir, where)
 
@@ -295,11 +323,22 @@ def _parse(raw: dict, path: Path | None, where: str) -> ExperimentSpec:
     if not isinstance(shared, dict):
         raise ScenarioError(f"{where}: 'params' must be a mapping of keyword arguments, e.g. {{pop: 30, iters: 500}}")
     _check_params(shared, where)
-    algos = _parse_algorithms(kind, raw.get("algorithms"), shared, where)
+    program: dict[str, Any] = {}
+    if kind == "program":
+        from .programs import check_program
+
+        if not raw.get("program"):
+            raise ScenarioError(f"{where}: a program spec names its program: 'program: smoothing', a paper "
+                                f"program (li2023, chen2025, ...) or 'program: module:function'")
+        program = check_program(raw["program"], raw.get("args"), raw.get("init"), where)
+        algos = _parse_solvers(raw.get("algorithms"), shared, where)
+    else:
+        algos = _parse_algorithms(kind, raw.get("algorithms"), shared, where)
 
     refine = [_refine_name(r, where) for r in _as_list(raw.get("refine", [None]), "refine", where)] or [None]
-    if kind == "optimize" and refine != [None]:
-        raise ScenarioError(f"{where}: 'refine' applies to paths; an optimize spec cannot refine")
+    if kind in ("optimize", "program") and refine != [None]:
+        raise ScenarioError(f"{where}: 'refine' applies to op.plan's paths; a{'n' if kind == 'optimize' else ''} "
+                            f"{kind} spec cannot refine (a program chains solvers instead: [msiar-gwo, ipopt])")
     local = _as_list(raw.get("local_planners"), "local_planners", where)
     if kind == "simulate":
         if not local:
@@ -329,7 +368,8 @@ def _parse(raw: dict, path: Path | None, where: str) -> ExperimentSpec:
         name=name, kind=kind, targets=targets, algorithms=algos, refine=refine, local_planners=local, seeds=seeds,
         reference=reference, metric=metric, alpha=float(alpha), title=str(raw.get("title") or ""),
         paper=raw.get("paper"), part=raw.get("part"), report=str(raw.get("report") or "summary"),
-        notes=str(raw.get("notes") or ""), params=dict(shared), source=path, order=_order(raw.get("order", 0), where))
+        notes=str(raw.get("notes") or ""), params=dict(shared), source=path, order=_order(raw.get("order", 0), where),
+        program=program)
 
 
 def _parse_targets(kind: str, raw: dict, base_dir: Path, where: str) -> list[TargetSpec]:
@@ -338,7 +378,7 @@ def _parse_targets(kind: str, raw: dict, base_dir: Path, where: str) -> list[Tar
     if not items:
         raise ScenarioError(f"{where}: no '{key}' given; list at least one")
     out = []
-    if kind == "plan":
+    if kind in ("plan", "program"):
         from ..world.papermaps import catalogue
 
         cat = catalogue()
@@ -452,6 +492,56 @@ def _parse_algorithms(kind: str, items, shared: Mapping, where: str) -> list[Alg
     labels = [a.label for a in out]
     if len(set(labels)) != len(labels):
         raise ScenarioError(f"{where}: algorithm labels repeat ({', '.join(labels)}); give repeated algorithms "
+                            f"distinct 'label's")
+    return out
+
+
+def _parse_solvers(items, shared: Mapping, where: str) -> list[AlgorithmSpec]:
+    """The solver entries of a program spec: a name, a list of names (a chain), or
+    ``{name: name-or-list, label:, params:, runs:}``. Each solver gets the shared options it
+    takes (as ``op.compare`` does) and its own, all checked by the solver now; a shared
+    option that no solver takes is an error. Deterministic solvers (no seed) run once per
+    map unless the entry gives ``runs``."""
+    from .programs import check_solver_params, is_stochastic, solver_name, solver_options, solver_stages
+
+    items = _as_list(items, "algorithms", where)
+    if not items:
+        raise ScenarioError(f"{where}: no 'algorithms' given; list program solvers or chains, e.g. "
+                            f"[msiar-gwo, ipopt, [msiar-gwo, ipopt]] (op.PathProgram's solvers)")
+    if "init" in shared:
+        raise ScenarioError(f"{where}: 'init' is set by the spec's 'init:' key (a graph planner), not by 'params'")
+    out, used = [], set()
+    for it in items:
+        if isinstance(it, (str, list)):
+            it = {"name": it}
+        if not isinstance(it, dict) or "name" not in it:
+            raise ScenarioError(f"{where}: a solver is a name, a list of names (a chain) or "
+                                f"{{name:, label:, params:, runs:}}, got {it!r}")
+        _check_keys(it, ALGO_KEYS, f"{where} solver {it.get('name')!r}")
+        nm = solver_name(solver_stages(it["name"], where))
+        own = it.get("params") or {}
+        if not isinstance(own, dict):
+            raise ScenarioError(f"{where}: params of {nm!r} must be a mapping")
+        if "init" in own:
+            raise ScenarioError(f"{where}: 'init' is set by the spec's 'init:' key (a graph planner), not by "
+                                f"the params of {nm!r}")
+        _check_params(own, where)
+        known = solver_options(nm)
+        used |= known
+        params = check_solver_params(nm, {**{k: v for k, v in shared.items() if k in known}, **own}, where)
+        runs = it.get("runs")
+        if runs is not None and (not isinstance(runs, int) or isinstance(runs, bool) or runs < 1):
+            raise ParameterError(f"{where}: runs of {nm!r} must be a positive integer, got {runs!r}")
+        if runs is None and not is_stochastic(nm):
+            runs = 1   # no seed: every seed would give the same run
+        out.append(AlgorithmSpec(nm, str(it.get("label") or nm), params, runs))
+    unused = sorted(set(shared) - used)
+    if unused:
+        raise ParameterError(f"{where}: no solver of this spec has option {', '.join(map(repr, unused))} "
+                             f"(op.show_options(name) lists a solver's options)")
+    labels = [a.label for a in out]
+    if len(set(labels)) != len(labels):
+        raise ScenarioError(f"{where}: solver labels repeat ({', '.join(labels)}); give repeated solvers "
                             f"distinct 'label's")
     return out
 

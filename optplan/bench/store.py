@@ -1,7 +1,8 @@
 """Results database: one SQLite row per run, written by the parent process as runs finish.
 
 Table ``runs`` has the run's identity (``key``, experiment, kind, target,
-algorithm, label, refine, local planner, seed), its status (``ok`` or ``failed``
+algorithm, label, refine, local planner, seed, and for ``program`` runs the program
+as JSON: name or ``module:function``, args, init), its status (``ok`` or ``failed``
 with the error message), each solver parameter as a ``param_<name>`` column and
 each scalar metric of the result (``length``, ``feasible``, ``f``, ``reached``,
 ``time_s``, ...) as a column of its own; columns are added when a new parameter
@@ -29,7 +30,7 @@ IDENTITY_COLUMNS = (
     ("key", "TEXT PRIMARY KEY"), ("experiment", "TEXT"), ("kind", "TEXT"), ("target", "TEXT"),
     ("algorithm", "TEXT"), ("label", "TEXT"), ("refine", "TEXT"), ("local_planner", "TEXT"), ("seed", "INTEGER"),
     ("status", "TEXT"), ("error", "TEXT"), ("wall_s", "REAL"), ("worker", "TEXT"), ("finished_at", "TEXT"),
-    ("optplan_version", "TEXT"), ("params", "TEXT"), ("target_spec", "TEXT"),
+    ("optplan_version", "TEXT"), ("params", "TEXT"), ("target_spec", "TEXT"), ("program", "TEXT"),
 )
 IDENTITY = tuple(c for c, _ in IDENTITY_COLUMNS)
 TRACE_COLUMNS = ("history", "history_nfev", "path", "global_path", "trajectory", "x")
@@ -105,6 +106,7 @@ class ResultStore:
             "worker": outcome.get("worker"), "finished_at": time.strftime("%Y-%m-%dT%H:%M:%S"),
             "optplan_version": __version__, "params": json.dumps(record["params"], sort_keys=True),
             "target_spec": json.dumps(record["target_spec"], sort_keys=True),
+            "program": json.dumps(record["program"], sort_keys=True) if record.get("program") else None,
         }
         for k, v in record["params"].items():
             row[column_name(k, "param_")] = _sql_value(v)

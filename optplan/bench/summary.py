@@ -6,8 +6,9 @@ interrupted run, gives each spec exactly its own runs.
 
 A group is one (target, algorithm label, refine mode, local planner). Only
 *successful* runs enter the statistics: a feasible path (``plan``), a goal
-reached without collision (``simulate``), any finished run (``optimize``).
-Failed and infeasible runs are counted in the tables, never averaged in.
+reached without collision (``simulate``), any finished run (``optimize``), a
+feasible solution under the program (``program``). Failed and infeasible runs
+are counted in the tables, never averaged in.
 """
 from __future__ import annotations
 
@@ -70,7 +71,7 @@ class ExperimentResults:
         row = self.rows.get(rec.key)
         if row is None or row["status"] != "ok":
             return False
-        if self.spec.kind == "plan":
+        if self.spec.kind in ("plan", "program"):
             return bool(row.get("feasible"))
         if self.spec.kind == "simulate":
             return bool(row.get("reached")) and not row.get("collisions")
@@ -171,6 +172,8 @@ def summary_tables(res: ExperimentResults, metric: str | None = None) -> list[Ta
     rank-sum p-value and ``+/=/-`` sign against the reference; plus a tally table."""
     spec = res.spec
     metric = metric or spec.metric
+    if spec.kind == "program":
+        return program_tables(res, metric)
     with_gap = spec.kind == "plan" and metric == "length"
     tally: dict[str, dict[str, int]] = {}
     tables = []
@@ -224,13 +227,72 @@ def summary_tables(res: ExperimentResults, metric: str | None = None) -> list[Ta
             table.notes.append(too_few_note(spec.alpha))
         tables.append(table)
     if tally:
-        t = Table(["algorithm vs reference", "+", "=", "-"],
-                  caption=f"{spec.name}: Wilcoxon rank-sum tally against the reference at alpha {spec.alpha}")
-        for name, c in tally.items():
-            t.rows.append([name, str(c["+"]), str(c["="]), str(c["-"])])
-        t.notes.append(f"+: the reference ({_ref_text(res)}) is significantly better at alpha {spec.alpha}; "
-                       f"-: significantly worse; =: no significant difference (targets counted; {metric}, minimised)")
-        tables.append(t)
+        tables.append(_tally_table(res, tally, metric))
+    return tables
+
+
+def _tally_table(res: ExperimentResults, tally: dict[str, dict[str, int]], metric: str) -> Table:
+    spec = res.spec
+    t = Table(["algorithm vs reference", "+", "=", "-"],
+              caption=f"{spec.name}: Wilcoxon rank-sum tally against the reference at alpha {spec.alpha}")
+    for name, c in tally.items():
+        t.rows.append([name, str(c["+"]), str(c["="]), str(c["-"])])
+    t.notes.append(f"+: the reference ({_ref_text(res)}) is significantly better at alpha {spec.alpha}; "
+                   f"-: significantly worse; =: no significant difference (targets counted; {metric}, minimised)")
+    return t
+
+
+def program_tables(res: ExperimentResults, metric: str | None = None) -> list[Table]:
+    """``program`` specs: one table per map with a row per solver (or chain): stored runs,
+    failures, the feasible share, best and median ``metric`` (default ``cost``) over the feasible
+    runs, median time and median evaluations over the finished runs, and the rank-sum p-value
+    and sign of the feasible runs' ``metric`` against the reference solver; plus the tally."""
+    spec = res.spec
+    metric = metric or spec.metric
+    tally: dict[str, dict[str, int]] = {}
+    tables = []
+    for target in spec.targets:
+        groups = res.groups(target.name)
+        head = ["solver", "runs", "failed", "feasible", f"best {metric}", f"median {metric}", "median time [s]",
+                "median nfev"]
+        if spec.reference is not None:
+            head += ["p vs reference", "sign"]
+        table = Table(head, caption=f"{spec.name}: {target.name}")
+        too_few = False
+        for g, recs in groups.items():
+            name = res.group_name(*g)
+            stored, failed, ok = res.counts(recs)
+            vals = res.values(recs, metric)
+            times = res.values(recs, "runtime_s", successful_only=False)
+            nfev = res.values(recs, "nfev", successful_only=False)
+            cells = [name, f"{stored}/{len(recs)}", str(failed), f"{ok}/{stored}",
+                     _fmt(float(vals.min())) if len(vals) else "-", _fmt(float(np.median(vals))) if len(vals) else "-",
+                     f"{np.median(times):.3f}" if len(times) else "-", f"{np.median(nfev):.0f}" if len(nfev) else "-"]
+            ref = res.reference_group(g)
+            if ref is not None:
+                if ref == g or ref not in groups:
+                    cells += ["-", "ref" if ref == g else "-"]
+                else:
+                    p, sign = compare(res.values(groups[ref], metric), vals, spec.alpha)
+                    cells += ["-" if not np.isfinite(p) else f"{p:.3g}", sign]
+                    counts = tally.setdefault(name, {"+": 0, "=": 0, "-": 0})
+                    if sign == TOO_FEW:
+                        too_few = True
+                    else:
+                        counts[sign] += 1
+            table.rows.append(cells)
+        program = spec.program.get("program", "?")
+        args = spec.program.get("args") or {}
+        table.notes.append(f"program {program}" + (f" with {json.dumps(args, sort_keys=True)}" if args else "")
+                           + (f", every solver that takes a start starts from the {spec.program['init']} path"
+                              if spec.program.get("init") else "")
+                           + f"; feasible: feasible runs / stored runs; {metric} over the feasible runs, time and nfev over "
+                             f"the finished ones")
+        if too_few:
+            table.notes.append(too_few_note(spec.alpha))
+        tables.append(table)
+    if tally:
+        tables.append(_tally_table(res, tally, metric))
     return tables
 
 

@@ -257,11 +257,12 @@ class PathProgram:
         return notes
 
     # solving ---------------------------------------------------------------
-    def solve(self, solver="msiar-gwo", **options):
+    def solve(self, solver="msiar-gwo", /, **options):
         """Solve with a registered solver name, a chain ``["msiar-gwo", "ipopt"]`` or a
         solver instance; returns a :class:`optplan.results.ProgramResult`. Options are
         checked by the solver (``op.show_options(name)``); an unknown one is a
-        ParameterError."""
+        ParameterError. ``solver`` is positional, so a solver's own option of that name
+        (cvxpy's ``solver="CLARABEL"``) passes through."""
         self._need_objective()
         return get_solver(solver).solve(self, **options)
 
