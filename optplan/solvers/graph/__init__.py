@@ -14,6 +14,7 @@ from ...errors import ParameterError, UnknownAlgorithmError
 from ...results import PlanResult
 from ...world.queries import check_start_goal
 from ..result import make_plan_result
+from ..tangent_graph import plan_tangent
 from .astar import grid_search, octile
 from .visibility import convex_corners, visibility_path
 
@@ -48,8 +49,6 @@ def shortest_path(world, start, goal, method: str = "astar", *, corner_cutting: 
     if not hasattr(world, "occ"):
         if method != "visibility":
             raise ParameterError(f"method {method!r} needs a grid map; use 'visibility' on circle worlds")
-        from ..tangent_graph import plan_tangent
-
         return plan_tangent(world, start, goal, clearance)
     s, g = check_start_goal(world, start, goal, clearance)
     if method == "visibility":
