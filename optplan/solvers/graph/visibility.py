@@ -11,17 +11,30 @@ exact rule, int64-exact for corners and cell centres — says it is free. A* wit
 the Euclidean heuristic over this graph, generating edges lazily as nodes are
 expanded, gives the exact optimum.
 
-Modes: ``points="centres"`` puts start and goal at the centres of their cells
-(what the metaheuristics produce); ``points="corners"`` takes them as lattice
-vertices (the Anya / GPPC benchmark convention).
+Start and goal are used exactly as given: they are nodes 0 and 1 of the
+graph, joined to any corner they see (a taut path may leave them in any
+direction), so the length is the exact any-angle optimum between the requested
+points. ``points="centres"`` / ``"corners"`` only check that the points follow
+that convention (cell centres, as the metaheuristics produce; lattice vertices,
+as the Anya / GPPC benchmarks use); nothing is moved.
+
+Memory: every ``segments_free`` call gets a batch of segments whose total
+length is bounded (:data:`SPAN_BUDGET` cells), so no allocation grows with the
+product of the number of corners and the map size.
 """
 from __future__ import annotations
 
+import heapq
+
 import numpy as np
-from ...errors import InfeasibleQueryError
+
+from ...errors import InfeasibleQueryError, ParameterError
 from ...world.geometry import segments_free
 
-_CHUNK = 200_000  # candidate pairs checked per call, to bound memory
+# cells of segment length (|dx| + |dy| + 2 per segment) checked per segments_free call: the
+# rule's work arrays hold about that many entries, so this bounds them (~10 int64 arrays)
+SPAN_BUDGET = 1_000_000
+POINT_MODES = ("exact", "centres", "corners")
 
 
 def convex_corners(grid) -> tuple[np.ndarray, np.ndarray]:
@@ -48,15 +61,90 @@ def _tangent(d: np.ndarray, quadrant: np.ndarray) -> np.ndarray:
     return axis | ~(same | opposite)
 
 
-def _visible_pairs(grid, P: np.ndarray, I: np.ndarray, J: np.ndarray) -> np.ndarray:
-    ok = np.zeros(len(I), dtype=bool)
-    for a in range(0, len(I), _CHUNK):
-        b = a + _CHUNK
-        ok[a:b] = segments_free(grid, grid.to_world(P[I[a:b]]), grid.to_world(P[J[a:b]]))
+def segments_free_chunked(grid, A: np.ndarray, B: np.ndarray, clearance: float = 0.0) -> np.ndarray:
+    """``segments_free(grid, A, B, clearance)`` (metres) in batches of at most
+    :data:`SPAN_BUDGET` cells of total segment length, so memory stays bounded."""
+    n = len(A)
+    ok = np.zeros(n, dtype=bool)
+    if n == 0:
+        return ok
+    span = np.abs(grid.to_grid(B) - grid.to_grid(A)).sum(axis=1) + 2.0
+    if clearance > 0:
+        span += 4.0 * clearance / grid.resolution * (1.0 + np.abs(grid.to_grid(B) - grid.to_grid(A)).max(axis=1))
+    edges = np.searchsorted(np.cumsum(span), np.arange(1, int(span.sum() // SPAN_BUDGET) + 1) * SPAN_BUDGET)
+    for lo, hi in zip(np.concatenate([[0], edges]), np.concatenate([edges, [n]])):
+        if hi > lo:
+            ok[lo:hi] = segments_free(grid, A[lo:hi], B[lo:hi], clearance)
     return ok
 
 
-def _astar_over_corners(grid, P: np.ndarray, Q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+class _EdgeRule:
+    """The segment rule for the graph's edges, nodes 0 and 1 being start and goal.
+
+    Without clearance, edges between corners are integer-exact; edges at an end point
+    are checked by :meth:`end_segments_free`. With a clearance every edge is checked by
+    the exact rule with that clearance (no node then lies on a cell boundary).
+    """
+
+    def __init__(self, grid, clearance: float = 0.0):
+        self.grid, self.clearance = grid, float(clearance)
+
+    def check(self, P: np.ndarray, u: int, J: np.ndarray) -> np.ndarray:
+        """Visibility from node ``u`` to nodes ``J`` (grid units)."""
+        ok = np.zeros(len(J), dtype=bool)
+        at_end = (J < 2) | (u < 2)
+        if self.clearance > 0:
+            at_end[:] = False
+        if (~at_end).any():
+            A = self.grid.to_world(np.broadcast_to(P[u], (int((~at_end).sum()), 2)))
+            ok[~at_end] = segments_free_chunked(self.grid, A, self.grid.to_world(P[J[~at_end]]), self.clearance)
+        if at_end.any():
+            sel = np.nonzero(at_end)[0]
+            end = np.where(J[sel] < 2, J[sel], u)
+            other = np.where(J[sel] < 2, u, J[sel])
+            ok[sel] = self.end_segments_free(P[end], P[other])
+        return ok
+
+    def end_segments_free(self, E: np.ndarray, V: np.ndarray) -> np.ndarray:
+        """The rule (no clearance) for segments from end points ``E`` to nodes ``V`` (grid units).
+
+        A segment from a point off the half-cell lattice to a cell corner ends at the
+        corner of a blocked cell, and the rule's float arithmetic may put the last
+        1e-16 of it inside that cell. So a segment that reaches a lattice vertex ``v``
+        off an axis is split where it is surely inside the cell next to ``v``: the piece
+        from ``v`` lies in that open cell (it must be free), the rest is checked by the
+        rule away from any cell boundary.
+        """
+        A, B = self.grid.to_world(E), self.grid.to_world(V)
+        d = E - V
+        split = np.all(V == np.round(V), axis=1) & np.all(d != 0, axis=1) & ~np.all(2 * E == np.round(2 * E), axis=1)
+        ok = np.zeros(len(E), dtype=bool)
+        if (~split).any():
+            ok[~split] = segments_free_chunked(self.grid, A[~split], B[~split])
+        if split.any():
+            k = np.nonzero(split)[0]
+            dk, vk = d[k], V[k]
+            t = 0.5 * np.minimum(1.0, 1.0 / np.abs(dk).max(axis=1))   # half way to the first lattice line
+            cell = (vk + np.where(dk > 0, 0, -1)).astype(np.int64)     # the cell next to v towards the end
+            mid = self.grid.to_world(vk + t[:, None] * dk)
+            ok[k] = ~self.grid.blocked_cells(cell) & segments_free_chunked(self.grid, A[k], mid)
+        return ok
+
+
+def corner_nodes(grid, clearance: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+    """Graph nodes (grid units) and their blocked quadrants: the convex corners, or with a
+    clearance ``c`` the corners of the blocked cells grown by ``c`` as squares (each convex
+    corner moved ``c`` away from its blocked cell along both axes), kept where they keep
+    ``c`` from every obstacle and the border."""
+    corners, quad = convex_corners(grid)
+    if clearance <= 0 or len(corners) == 0:
+        return corners, quad
+    nodes = corners - quad * (clearance / grid.resolution)
+    keep = grid.is_free(grid.to_world(nodes), clearance)
+    return nodes[keep], quad[keep]
+
+
+def _astar_over_corners(rule: _EdgeRule, P: np.ndarray, Q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """A* from node 0 to node 1 over the corner visibility graph with lazy edges.
 
     Edges out of a node are generated only when it is expanded: every open node
@@ -65,8 +153,6 @@ def _astar_over_corners(grid, P: np.ndarray, Q: np.ndarray) -> tuple[np.ndarray,
     ``segments_free`` call. The Euclidean heuristic is consistent, so the first
     time the goal is expanded its distance is optimal.
     """
-    import heapq
-
     n = len(P)
     dist = np.full(n, np.inf)
     pred = np.full(n, -1, dtype=np.int64)
@@ -91,8 +177,7 @@ def _astar_over_corners(grid, P: np.ndarray, Q: np.ndarray) -> tuple[np.ndarray,
         J = np.nonzero(cand)[0]
         if J.size == 0:
             continue
-        vis = _visible_pairs(grid, P, np.full(J.size, u), J)
-        J = J[vis]
+        J = J[rule.check(P, u, J)]
         nd = dist[u] + step[J]
         better = nd < dist[J]
         J, nd = J[better], nd[better]
@@ -103,36 +188,56 @@ def _astar_over_corners(grid, P: np.ndarray, Q: np.ndarray) -> tuple[np.ndarray,
     return dist, pred
 
 
-def visibility_path(grid, start, goal, points: str = "centres"):
-    """Exact any-angle shortest path between two points given in world metres.
+def _check_mode(grid, points: str, ends) -> None:
+    if points not in POINT_MODES:
+        raise ParameterError(f"points must be one of {', '.join(POINT_MODES)}, got {points!r}")
+    if points == "exact":
+        return
+    for p, what in zip(ends, ("start", "goal")):
+        q = grid.to_grid(p)
+        snapped = np.floor(q) + 0.5 if points == "centres" else np.round(q)
+        if not np.allclose(q, snapped, rtol=0.0, atol=1e-9):
+            where = "the centre of a cell" if points == "centres" else "a lattice vertex (a cell corner)"
+            raise ParameterError(
+                f"points={points!r}: the {what} ({p[0]:g}, {p[1]:g}) is not {where}; start and goal are never "
+                f"moved, so pass {tuple(float(v) for v in grid.to_world(snapped))} or points='exact'")
 
-    In centre mode the points are moved to the centres of their cells; in corner
-    mode they must be lattice vertices (rounded to the nearest one). Returns
-    ``(path_in_metres, length_in_metres)``; raises InfeasibleQueryError if the goal
-    cannot be reached.
+
+def visibility_path(grid, start, goal, points: str = "exact", *, clearance: float = 0.0):
+    """Shortest any-angle path between two points given in world metres.
+
+    The path starts at ``start`` and ends at ``goal`` exactly. ``points`` ("exact",
+    "centres" or "corners") only checks that the points follow that convention.
+
+    Without clearance the length is the exact any-angle optimum. With ``clearance``
+    (metres) the nodes are the corners of the blocked cells grown by it as squares
+    (:func:`corner_nodes`) and every edge is checked by the exact rule with that
+    clearance: the path keeps the clearance, and it is longer than the true optimum
+    around discs of that radius by at most the corners' cut (and it can miss a
+    passage that only a diagonal gap just wider than twice the clearance leaves).
+
+    Returns ``(path_in_metres, length_in_metres)``; raises InfeasibleQueryError if the goal
+    cannot be reached, ParameterError for a point off the requested convention.
     """
-    gs, gg = grid.to_grid(start), grid.to_grid(goal)
-    if points == "centres":
-        gs, gg = np.floor(gs) + 0.5, np.floor(gg) + 0.5
-    elif points == "corners":
-        gs, gg = np.round(gs), np.round(gg)
-    else:
-        from ...errors import ParameterError
-
-        raise ParameterError(f"points must be 'centres' or 'corners', got {points!r}")
-    corners, quad = convex_corners(grid)
-    if segments_free(grid, grid.to_world(gs), grid.to_world(gg)):
-        path = grid.to_world(np.stack([gs, gg]))
-        return path, float(np.hypot(*(gg - gs))) * grid.resolution
-    # node 0 = start, 1 = goal, 2.. = convex corners; the end points take any direction
-    P = np.vstack([gs, gg, corners])
+    s, g = np.asarray(start, float), np.asarray(goal, float)
+    _check_mode(grid, points, (s, g))
+    rule = _EdgeRule(grid, clearance)
+    if bool(segments_free(grid, s, g, rule.clearance)):
+        return np.stack([s, g]), float(np.hypot(*(g - s)))
+    nodes, quad = corner_nodes(grid, rule.clearance)
+    # node 0 = start, 1 = goal, 2.. = corners; the end points take any direction
+    P = np.vstack([grid.to_grid(s), grid.to_grid(g), nodes])
     Q = np.vstack([[0, 0], [0, 0], quad])
-    dist, pred = _astar_over_corners(grid, P, Q)
+    dist, pred = _astar_over_corners(rule, P, Q)
     if not np.isfinite(dist[1]):
-        raise InfeasibleQueryError("the goal is unreachable from the start (no free any-angle path); "
-                                   "check the map or choose another goal")
+        raise InfeasibleQueryError(
+            "the goal is unreachable from the start (no free any-angle path"
+            + (f" over the corners of the obstacles grown by the clearance {clearance:g} m as squares; "
+               "A* over cell centres may still find one" if rule.clearance > 0 else "")
+            + "); check the map or choose another goal")
     chain = [1]
     while chain[-1] != 0:
         chain.append(int(pred[chain[-1]]))
     path = grid.to_world(P[chain[::-1]])
+    path[0], path[-1] = s, g  # the very input values, not a round trip through grid units
     return path, float(dist[1]) * grid.resolution
