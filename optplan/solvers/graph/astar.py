@@ -48,68 +48,65 @@ def _unreachable(corner_cutting: bool) -> InfeasibleQueryError:
         + "; check the map or choose another goal")
 
 
-def astar_cells(table, sources, targets, heuristic: bool = True):
-    """Shortest move sequence from any of ``sources`` to any of ``targets`` (flat cell indices).
+def astar_cells(table, sources, targets):
+    """A*: shortest move sequence from any of ``sources`` to any of ``targets`` (flat cell indices).
 
     Every source starts at distance 0; the first target expanded is the nearest one.
     The heuristic is the octile distance to the first target less the largest octile
-    distance between targets (clipped at 0): consistent, and 0 at every target.
+    distance between targets (clipped at 0): consistent, and 0 at every target. Heap
+    entries are ``(f, g, cell)`` (ties: the shallower, then the lower index, first) and
+    a move must improve a distance by more than 1e-12: with one source and one target
+    this is the cell sequence the search has always returned.
 
-    Returns ``(flat_cells, length_in_cells, expanded)``; raises InfeasibleQueryError
-    (through the caller's message) as ``None`` when no target is reached.
+    Returns ``(flat_cells, length_in_cells, expanded)``, or ``None`` when no target is
+    reached.
     """
     W = table.width
     masks, moves = table.masks, table.moves_by_mask
-    n = W * table.height
     ay, ax = divmod(int(targets[0]), W)
     slack = max(octile(t % W - ax, t // W - ay) for t in targets)
     c2 = SQRT2 - 2.0
+    n = W * table.height
+    # dist[c] is -1 once c is expanded (closed): no move improves it, no heap entry matches it
     dist = [math.inf] * n
     parent = [-1] * n
-    closed = bytearray(n)
     goal = set(int(t) for t in targets)
     heap = []
     for s in sources:
         s = int(s)
         dist[s] = 0.0
         y, x = divmod(s, W)
-        heap.append((max(octile(x - ax, y - ay) - slack, 0.0) if heuristic else 0.0, s))
+        heap.append((max(octile(x - ax, y - ay) - slack, 0.0), 0.0, s))
     heapq.heapify(heap)
     pop, push = heapq.heappop, heapq.heappush
-    expanded, reached = 0, -1
+    expanded, reached, length = 0, -1, math.inf
     while heap:
-        _, c = pop(heap)
-        if closed[c]:
-            continue
-        closed[c] = 1
+        _, d, c = pop(heap)
+        if d != dist[c]:
+            continue  # closed, or a stale entry
+        dist[c] = -1.0
         expanded += 1
         if c in goal:
-            reached = c
+            reached, length = c, d
             break
-        d = dist[c]
         for off, w in moves[masks[c]]:
             t = c + off
-            if closed[t]:
-                continue
             nd = d + w
-            if nd < dist[t]:
+            if nd < dist[t] - 1e-12:
                 dist[t] = nd
                 parent[t] = c
-                if heuristic:
-                    y, x = divmod(t, W)
-                    dx = x - ax if x >= ax else ax - x
-                    dy = y - ay if y >= ay else ay - y
-                    h = dx + dy + c2 * (dx if dx < dy else dy) - slack
-                    push(heap, (nd + h if h > 0.0 else nd, t))
-                else:
-                    push(heap, (nd, t))
+                y, x = divmod(t, W)
+                dx = x - ax if x >= ax else ax - x
+                dy = y - ay if y >= ay else ay - y
+                h = dx + dy + c2 * (dx if dx < dy else dy) - slack
+                push(heap, (nd + h if h > 0.0 else nd, nd, t))
     if reached < 0:
         return None
     cells = [reached]
-    while parent[cells[-1]] >= 0:
-        cells.append(parent[cells[-1]])
+    while (c := parent[cells[-1]]) >= 0:
+        cells.append(c)
     cells.reverse()
-    return np.asarray(cells, dtype=np.int64), dist[reached], expanded
+    return np.asarray(cells, dtype=np.int64), length, expanded
 
 
 def dijkstra_cells(table, sources, targets):
@@ -141,7 +138,7 @@ def grid_search(grid, start_cell, goal_cell, *, heuristic: bool = True, corner_c
     W = grid.width
     s = int(start_cell[1]) * W + int(start_cell[0])
     g = int(goal_cell[1]) * W + int(goal_cell[0])
-    out = astar_cells(table, [s], [g], heuristic)
+    out = astar_cells(table, [s], [g]) if heuristic else dijkstra_cells(table, [s], [g])
     if out is None:
         raise _unreachable(corner_cutting)
     flat, length, expanded = out
@@ -161,16 +158,15 @@ def _end_cells(grid, p: np.ndarray, clearance: float):
     """Flat indices of the cells the point ``p`` is joined to, and the join length (cells).
 
     A cell qualifies when it is free, its centre keeps the clearance and the segment
-    from ``p`` to its centre is free under the exact rule."""
+    from ``p`` to its centre is free under the exact rule. Without clearance that
+    segment lies in the closed free cell and ends inside it, so the rule holds and is
+    not evaluated."""
     cells = _closure_cells(grid, p)
     cells = cells[~grid.occ[cells[:, 1], cells[:, 0]]]
-    if len(cells) == 0:
-        return cells, 0.0
-    centres = grid.cell_center(cells)
-    ok = grid.segments_free(np.broadcast_to(p, centres.shape), centres, clearance)
-    if clearance > 0:
-        ok &= grid.is_free(centres, clearance)
-    cells = cells[ok]
+    if len(cells) and clearance > 0:
+        centres = grid.cell_center(cells)
+        ok = grid.segments_free(np.broadcast_to(p, centres.shape), centres, clearance)
+        cells = cells[ok & grid.is_free(centres, clearance)]
     join = float(np.hypot(*(grid.to_grid(p) - (cells[0] + 0.5)))) if len(cells) else 0.0
     return _flat(grid, cells), join
 
@@ -215,10 +211,11 @@ def cell_path(grid, start, goal, *, method: str = "astar", corner_cutting: bool 
                 + "; A*/Dijkstra run over cell centres: move the point or use method='visibility'")
         ends.append((cells, join))
     (sc, sj), (gc, gj) = ends
-    shared = np.intersect1d(_flat(grid, _closure_cells(grid, s)), _flat(grid, _closure_cells(grid, g)))
-    if len(shared) and not grid.occ.ravel()[shared].all() and bool(grid.segments_free(s, g, clearance)):
+    shared = set(_flat(grid, _closure_cells(grid, s)).tolist()) & set(_flat(grid, _closure_cells(grid, g)).tolist())
+    # in one closed free cell the straight segment is free without clearance (the cell is convex)
+    if any(not grid.occ.flat[c] for c in shared) and (clearance == 0 or bool(grid.segments_free(s, g, clearance))):
         return CellPath(np.stack([s, g]), float(np.hypot(*(g - s))), 0, True)
-    found = (astar_cells(table, sc, gc, True) if method == "astar" else dijkstra_cells(table, sc, gc))
+    found = astar_cells(table, sc, gc) if method == "astar" else dijkstra_cells(table, sc, gc)
     if found is None:
         raise _unreachable(corner_cutting)
     flat, moves, expanded = found
