@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import heapq
 import math
+from array import array
 from dataclasses import dataclass
 
 import numpy as np
@@ -58,25 +59,31 @@ def astar_cells(table, sources, targets):
     a move must improve a distance by more than 1e-12: with one source and one target
     this is the cell sequence the search has always returned.
 
-    Returns ``(flat_cells, length_in_cells, expanded)``, or ``None`` when no target is
-    reached.
+    Returns ``(flat_cells, length_in_cells, expanded)`` (a list of flat indices), or
+    ``None`` when no target is reached.
     """
-    W = table.width
+    W, n = table.width, table.width * table.height
     masks, moves = table.masks, table.moves_by_mask
     ay, ax = divmod(int(targets[0]), W)
     slack = max(octile(t % W - ax, t // W - ay) for t in targets)
-    c2 = SQRT2 - 2.0
-    n = W * table.height
+    # the heuristic of every cell: a slice of the table's octile window (the same float
+    # operations as the scalar formula), copied into an array('d'), not n Python floats
+    Ht = table.height
+    h = table.octile_window[Ht - 1 - ay:2 * Ht - 1 - ay, W - 1 - ax:2 * W - 1 - ax]
+    if slack > 0:
+        h = np.maximum(h - slack, 0.0)
+    H = array("d", h.tobytes())
     # dist[c] is -1 once c is expanded (closed): no move improves it, no heap entry matches it
     dist = [math.inf] * n
     parent = [-1] * n
-    goal = set(int(t) for t in targets)
+    goal = bytearray(n)
+    for t in targets:
+        goal[int(t)] = 1
     heap = []
     for s in sources:
         s = int(s)
         dist[s] = 0.0
-        y, x = divmod(s, W)
-        heap.append((max(octile(x - ax, y - ay) - slack, 0.0), 0.0, s))
+        heap.append((H[s], 0.0, s))
     heapq.heapify(heap)
     pop, push = heapq.heappop, heapq.heappush
     expanded, reached, length = 0, -1, math.inf
@@ -86,7 +93,7 @@ def astar_cells(table, sources, targets):
             continue  # closed, or a stale entry
         dist[c] = -1.0
         expanded += 1
-        if c in goal:
+        if goal[c]:
             reached, length = c, d
             break
         for off, w in moves[masks[c]]:
@@ -95,18 +102,14 @@ def astar_cells(table, sources, targets):
             if nd < dist[t] - 1e-12:
                 dist[t] = nd
                 parent[t] = c
-                y, x = divmod(t, W)
-                dx = x - ax if x >= ax else ax - x
-                dy = y - ay if y >= ay else ay - y
-                h = dx + dy + c2 * (dx if dx < dy else dy) - slack
-                push(heap, (nd + h if h > 0.0 else nd, nd, t))
+                push(heap, (nd + H[t], nd, t))
     if reached < 0:
         return None
     cells = [reached]
     while (c := parent[cells[-1]]) >= 0:
         cells.append(c)
     cells.reverse()
-    return np.asarray(cells, dtype=np.int64), length, expanded
+    return cells, length, expanded
 
 
 def dijkstra_cells(table, sources, targets):
@@ -142,33 +145,50 @@ def grid_search(grid, start_cell, goal_cell, *, heuristic: bool = True, corner_c
     if out is None:
         raise _unreachable(corner_cutting)
     flat, length, expanded = out
-    return table.xy(flat), float(length), expanded
+    return table.xy(np.asarray(flat, dtype=np.int64)), float(length), expanded
 
 
-def _closure_cells(grid, p: np.ndarray) -> np.ndarray:
-    """Integer cells ``(ix, iy)`` inside the map whose closed square holds ``p`` (1, 2 or 4)."""
-    q = grid.to_grid(p)
-    xs = {math.floor(q[0])} | ({int(q[0]) - 1} if q[0] == math.floor(q[0]) else set())
-    ys = {math.floor(q[1])} | ({int(q[1]) - 1} if q[1] == math.floor(q[1]) else set())
-    cells = np.array([(x, y) for y in sorted(ys) for x in sorted(xs)], dtype=np.int64)
-    return cells[grid.in_map(cells)]
+def _closure_cells(grid, q) -> list[int]:
+    """Flat indices of the map's cells whose closed square holds the point ``q`` (grid
+    units): 1, or 2 on a cell edge, or up to 4 on a corner; free or not."""
+    x, y = float(q[0]), float(q[1])
+    fx, fy = math.floor(x), math.floor(y)
+    W, H = grid.width, grid.height
+    return [iy * W + ix for iy in ((fy - 1, fy) if y == fy else (fy,)) if 0 <= iy < H
+            for ix in ((fx - 1, fx) if x == fx else (fx,)) if 0 <= ix < W]
 
 
-def _end_cells(grid, p: np.ndarray, clearance: float):
-    """Flat indices of the cells the point ``p`` is joined to, and the join length (cells).
+def _end_cells(grid, q: tuple[float, float], clearance: float) -> tuple[list[int], float]:
+    """Flat indices of the cells the point ``q`` (grid units) is joined to, and the join
+    length (cells).
 
     A cell qualifies when it is free, its centre keeps the clearance and the segment
-    from ``p`` to its centre is free under the exact rule. Without clearance that
+    from the point to its centre is free under the exact rule. Without clearance that
     segment lies in the closed free cell and ends inside it, so the rule holds and is
     not evaluated."""
-    cells = _closure_cells(grid, p)
-    cells = cells[~grid.occ[cells[:, 1], cells[:, 0]]]
-    if len(cells) and clearance > 0:
-        centres = grid.cell_center(cells)
+    occ = grid.occ.ravel()
+    cells = [c for c in _closure_cells(grid, q) if not occ[c]]
+    W = grid.width
+    if cells and clearance > 0:
+        centres = grid.cell_center(np.array([(c % W, c // W) for c in cells]))
+        p = grid.to_world(np.asarray(q, float))
         ok = grid.segments_free(np.broadcast_to(p, centres.shape), centres, clearance)
-        cells = cells[ok & grid.is_free(centres, clearance)]
-    join = float(np.hypot(*(grid.to_grid(p) - (cells[0] + 0.5)))) if len(cells) else 0.0
-    return _flat(grid, cells), join
+        ok &= grid.is_free(centres, clearance)
+        cells = [c for c, k in zip(cells, ok.tolist()) if k]
+    if not cells:
+        return cells, 0.0
+    return cells, math.hypot(q[0] - (cells[0] % W + 0.5), q[1] - (cells[0] // W + 0.5))
+
+
+def cell_centres(grid) -> np.ndarray:
+    """``(width * height, 2)`` centres of the cells in metres, by flat index (cached on the map)."""
+    C = grid._cache.get("cell_centres")
+    if C is None:
+        iy, ix = np.divmod(np.arange(grid.width * grid.height), grid.width)
+        C = grid.cell_center(np.stack([ix, iy], axis=1))
+        C.setflags(write=False)
+        grid._cache["cell_centres"] = C
+    return C
 
 
 @dataclass
@@ -201,30 +221,33 @@ def cell_path(grid, start, goal, *, method: str = "astar", corner_cutting: bool 
     """
     table = move_table(grid, corner_cutting, clearance)
     s, g = np.asarray(start, float), np.asarray(goal, float)
+    res, (ox, oy) = grid.resolution, grid.origin
+    qs, qg = (((float(p[0]) - ox) / res, (float(p[1]) - oy) / res) for p in (s, g))  # grid units, as to_grid
     ends = []
-    for p, what in ((s, "start"), (g, "goal")):
-        cells, join = _end_cells(grid, p, clearance)
-        if len(cells) == 0:
+    for p, q, what in ((s, qs, "start"), (g, qg, "goal")):
+        cells, join = _end_cells(grid, q, clearance)
+        if not cells:
             raise InfeasibleQueryError(
                 f"the {what} ({p[0]:g}, {p[1]:g}) joins no free cell centre by a free segment"
                 + (f" whose centre keeps the clearance {clearance:g} m" if clearance else "")
                 + "; A*/Dijkstra run over cell centres: move the point or use method='visibility'")
         ends.append((cells, join))
     (sc, sj), (gc, gj) = ends
-    shared = set(_flat(grid, _closure_cells(grid, s)).tolist()) & set(_flat(grid, _closure_cells(grid, g)).tolist())
+    if clearance > 0:  # the cells a point shares with the other, whether or not its centre keeps the clearance
+        occ = grid.occ.ravel()
+        shared = {c for c in _closure_cells(grid, qs) if not occ[c]} & {c for c in _closure_cells(grid, qg) if not occ[c]}
+    else:
+        shared = set(sc) & set(gc)
     # in one closed free cell the straight segment is free without clearance (the cell is convex)
-    if any(not grid.occ.flat[c] for c in shared) and (clearance == 0 or bool(grid.segments_free(s, g, clearance))):
-        return CellPath(np.stack([s, g]), float(np.hypot(*(g - s))), 0, True)
+    if shared and (clearance == 0 or bool(grid.segments_free(s, g, clearance))):
+        return CellPath(np.stack([s, g]), math.hypot(*(g - s)), 0, True)
     found = astar_cells(table, sc, gc) if method == "astar" else dijkstra_cells(table, sc, gc)
     if found is None:
         raise _unreachable(corner_cutting)
     flat, moves, expanded = found
-    centres = grid.cell_center(table.xy(flat))
-    P = np.vstack([s, centres, g])
-    keep = np.ones(len(P), dtype=bool)
-    keep[1:] = np.any(P[1:] != P[:-1], axis=1)  # an end at a cell centre is that centre
-    return CellPath(P[keep], (sj + moves + gj) * grid.resolution, expanded)
-
-
-def _flat(grid, cells: np.ndarray) -> np.ndarray:
-    return cells[:, 1] * grid.width + cells[:, 0]
+    P = np.empty((len(flat) + 2, 2))
+    cell_centres(grid).take(np.fromiter(flat, np.intp, len(flat)), axis=0, out=P[1:-1])
+    P[0], P[-1] = s, g
+    # an end at a cell centre is that centre: no repeated point
+    P = P[1 if sj == 0 else 0:len(P) - 1 if gj == 0 else len(P)]
+    return CellPath(P, (sj + moves + gj) * res, expanded)

@@ -51,6 +51,16 @@ class MoveTable:
         return tuple(tuple(moves[k] for k in range(8) if m >> k & 1) for m in range(256))
 
     @cached_property
+    def octile_window(self) -> np.ndarray:
+        """``(2 height - 1, 2 width - 1)`` octile distances (li2023 eq 12) from the middle
+        entry, in cells: the heuristic towards goal cell ``(ax, ay)`` of every cell is the
+        window ``[height - 1 - ay :][: height, width - 1 - ax :][:, : width]``, one slice
+        per query. Written ``(dx + dy) + (sqrt 2 - 2) min(dx, dy)``, as the A* loop wrote it."""
+        dx = np.abs(np.arange(-(self.width - 1), self.width))[None, :]
+        dy = np.abs(np.arange(-(self.height - 1), self.height))[:, None]
+        return (dx + dy) + (np.sqrt(2.0) - 2.0) * np.minimum(dx, dy)
+
+    @cached_property
     def csr(self):
         """``(n_cells, n_cells)`` scipy CSR matrix of the allowed moves, weights in cells."""
         from scipy.sparse import csr_matrix
