@@ -239,29 +239,39 @@ def visibility_cases(quick: bool):
         yield f"{len(c)} circles", op.CircleWorld((0, 0, side, side), c), (0.2, 0.2), (side - 0.2, side - 0.2)
 
 
-def visibility_table(quick: bool, repeats: int) -> None:
-    print("\n## Exact any-angle search (method=\"visibility\"), cold: caches cleared before each call\n")
+def _visibility_run(world, s, g, conn) -> None:
+    """In a child process: one cold visibility query, its time and traced peak memory."""
+    world._cache.clear()
+    tracemalloc.start()
+    t0 = time.perf_counter()
+    try:
+        r = shortest_path(world, s, g, method="visibility")
+        out = (f"{r.length:.4f}", str(r.feasible))
+    except op.OptplanError as exc:
+        out = (f"{type(exc).__name__}: {exc}", "-")
+    conn.send((time.perf_counter() - t0, tracemalloc.get_traced_memory()[1]) + out)
+
+
+def visibility_table(quick: bool, timeout: float) -> None:
+    import multiprocessing as mp
+
+    print("\n## Exact any-angle search (method=\"visibility\"), cold, one query per map\n")
+    print(f"each query in its own process, stopped after {timeout:g} s; memory = peak traced by tracemalloc\n")
     print("| map | size | time [s] | peak traced memory [MB] | length [m] | feasible |")
     print("|---|---|---|---|---|---|")
+    ctx = mp.get_context("fork")
     for name, world, s, g in visibility_cases(quick):
-        times = []
-        for _ in range(repeats):
-            world._cache.clear()
-            tracemalloc.start()
-            t0 = time.perf_counter()
-            try:
-                r = shortest_path(world, s, g, method="visibility")
-            except op.OptplanError as exc:
-                r = exc
-            times.append(time.perf_counter() - t0)
-            peak = tracemalloc.get_traced_memory()[1]
-            tracemalloc.stop()
-        size = f"{world.width}x{world.height}" if hasattr(world, "occ") else f"{world.bounds[2]:g} m"
-        if isinstance(r, Exception):
-            print(f"| {name} | {size} | {np.median(times):.3f} | {peak / 2**20:.0f} | {type(r).__name__}: {r} | - |")
+        size = f"{world.width}x{world.height}" if hasattr(world, "occ") else f"{world.bounds[2]:g} m square"
+        here, there = ctx.Pipe(duplex=False)
+        proc = ctx.Process(target=_visibility_run, args=(world, s, g, there))
+        proc.start()
+        if here.poll(timeout):
+            t, peak, length, feasible = here.recv()
+            print(f"| {name} | {size} | {t:.3f} | {peak / 2**20:.0f} | {length} | {feasible} |", flush=True)
         else:
-            print(f"| {name} | {size} | {np.median(times):.3f} | {peak / 2**20:.0f} | {r.length:.4f} | {r.feasible} |",
-                  flush=True)
+            print(f"| {name} | {size} | > {timeout:g} (stopped) | - | - | - |", flush=True)
+        proc.kill()
+        proc.join()
 
 
 def main() -> None:
@@ -269,12 +279,13 @@ def main() -> None:
     ap.add_argument("--quick", action="store_true", help="maps up to 128x128, fewer repeats")
     ap.add_argument("--skip-visibility", action="store_true")
     ap.add_argument("--skip-astar", action="store_true")
+    ap.add_argument("--timeout", type=float, default=120.0, help="seconds per visibility query (default 120)")
     a = ap.parse_args()
     sizes = (32, 64, 128) if a.quick else (32, 64, 128, 256, 512)
     if not a.skip_astar:
         astar_table(sizes, 3 if a.quick else 5)
     if not a.skip_visibility:
-        visibility_table(a.quick, 1)
+        visibility_table(a.quick, a.timeout)
 
 
 if __name__ == "__main__":

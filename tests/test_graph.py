@@ -345,3 +345,24 @@ def test_points_convention_is_checked_never_applied():
         shortest_path(grid, (0.5, 0.5), (3.0, 3.0), method="visibility", points="corners")
     with pytest.raises(op.ParameterError, match="points must be"):
         shortest_path(grid, (0.5, 0.5), (3.0, 3.0), method="visibility", points="snap")
+
+
+def test_visibility_blocks_and_prunings_keep_the_optimum(monkeypatch):
+    """Tiny segment batches and no sampled rejection give the same any-angle optimum."""
+    from optplan.solvers.graph import visibility as V
+
+    rng = np.random.default_rng(11)
+    grid = random_grid(rng, 24, 24, 0.25)
+    free = np.argwhere(~grid.occ)
+    (sy, sx), (gy, gx) = free[0], free[-1]
+    s, g = (sx + 0.31, sy + 0.62), (gx + 0.77, gy + 0.14)
+    try:
+        ref = shortest_path(grid, s, g, method="visibility")
+    except op.InfeasibleQueryError:
+        pytest.skip("this seed's corners are not connected")
+    monkeypatch.setattr(V, "SPAN_BUDGET", 10)
+    monkeypatch.setattr(V, "SAMPLE_BUDGET", 40)
+    assert shortest_path(grid, s, g, method="visibility").length == pytest.approx(ref.length, abs=1e-12)
+    monkeypatch.setattr(V, "SAMPLE_STEPS", np.zeros(0))
+    assert shortest_path(grid, s, g, method="visibility").length == pytest.approx(ref.length, abs=1e-12)
+    assert ref.length == pytest.approx(brute_force_any_angle(grid, np.array(s), np.array(g)), abs=1e-9)

@@ -19,8 +19,15 @@ that convention (cell centres, as the metaheuristics produce; lattice vertices,
 as the Anya / GPPC benchmarks use); nothing is moved.
 
 Memory: every ``segments_free`` call gets a batch of segments whose total
-length is bounded (:data:`SPAN_BUDGET` cells), so no allocation grows with the
-product of the number of corners and the map size.
+length is bounded (:data:`SPAN_BUDGET` cells), and the samples of the cheap
+rejection come in blocks (:data:`SAMPLE_BUDGET`), so memory is linear in the
+number of corners; no allocation grows with the product of the number of
+corners and the map size.
+
+Speed: at an expanded corner only taut continuations are candidates (the
+blocked cell inside the turn, :func:`_taut`), and candidates that a sample
+shows to cross a blocked cell are dropped before the exact rule runs
+(:func:`_surely_blocked`); both prunings keep the search exact.
 """
 from __future__ import annotations
 
@@ -144,14 +151,68 @@ def corner_nodes(grid, clearance: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     return nodes[keep], quad[keep]
 
 
+def _taut(a: np.ndarray, b: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """Whether the path ``p -> u -> v`` can be locally shortest at corner ``u``: the blocked
+    cell (diagonal direction ``w`` from ``u``) lies inside the turn, between the rays back
+    to ``p`` (``a = p - u``) and on to ``v`` (rows of ``b = v - u``); a straight pass is kept.
+
+    Pruning the other edges at expansion is exact: if ``p -> u -> v`` bends the wrong
+    way, cutting the corner is shorter, so ``v`` is reached more cheaply without ``u``,
+    whichever of ``u``'s shortest predecessors is recorded (they all arrive at the same
+    cost)."""
+    cab = a[0] * b[:, 1] - a[1] * b[:, 0]
+    caw = a[0] * w[1] - a[1] * w[0]
+    cwb = w[0] * b[:, 1] - w[1] * b[:, 0]
+    inside = (np.sign(caw) == np.sign(cab)) & (np.sign(cwb) == np.sign(cab)) & (cab != 0)
+    straight = (cab == 0) & (a[0] * b[:, 0] + a[1] * b[:, 1] < 0)
+    return inside | straight
+
+
+# distances (cells) from the expanded node at which candidate segments are sampled: every
+# half cell up to 8 cells, then sparser (clutter blocks most candidates near the node)
+SAMPLE_STEPS = np.r_[np.arange(0.5, 8.01, 0.5), np.arange(9.0, 16.01, 1.0), 2.0 ** np.arange(4.5, 11.01, 0.5)]
+SAMPLE_BUDGET = 1_000_000  # sample points per block
+
+
+def _surely_blocked(grid, origin: np.ndarray, D: np.ndarray, length: np.ndarray) -> np.ndarray:
+    """A cheap, safe rejection: a point of the segment ``origin + t D`` (``0 < t < 1``),
+    at one of :data:`SAMPLE_STEPS` cells from ``origin``, lies inside a blocked cell at
+    least 1e-6 cells from its border, so the segment enters a blocked interior whatever
+    the rounding. Segments it does not reject still get the exact rule. One vectorised
+    lookup for all candidates and steps."""
+    if len(D) == 0 or len(SAMPLE_STEPS) == 0:
+        return np.zeros(len(D), dtype=bool)
+    step = max(1, SAMPLE_BUDGET // len(SAMPLE_STEPS))
+    if len(D) > step:  # bounded memory: blocks of candidates
+        return np.concatenate([_surely_blocked(grid, origin, D[a:a + step], length[a:a + step])
+                               for a in range(0, len(D), step)])
+    S = SAMPLE_STEPS[SAMPLE_STEPS < length.max() - 1e-6]
+    if len(S) == 0:
+        return np.zeros(len(D), dtype=bool)
+    positive = length > 0
+    t = S[None, :] / np.where(positive, length, 1.0)[:, None]     # (m, s)
+    on = (t < 1.0 - 1e-9) & positive[:, None]
+    qx = origin[0] + t * D[:, 0:1]
+    qy = origin[1] + t * D[:, 1:2]
+    cx, cy = np.floor(qx), np.floor(qy)
+    fx, fy = qx - cx, qy - cy
+    deep = on & (fx > 1e-6) & (fx < 1 - 1e-6) & (fy > 1e-6) & (fy < 1 - 1e-6)
+    pad = grid.padded  # padded[iy + 1, ix + 1]; samples lie in the map, clipping only guards rounding
+    ix = np.clip(cx.astype(np.int64) + 1, 0, grid.width + 1)
+    iy = np.clip(cy.astype(np.int64) + 1, 0, grid.height + 1)
+    return np.any(deep & pad[iy, ix], axis=1)
+
+
 def _astar_over_corners(rule: _EdgeRule, P: np.ndarray, Q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """A* from node 0 to node 1 over the corner visibility graph with lazy edges.
 
     Edges out of a node are generated only when it is expanded: every open node
-    whose line from it is tangent at both ends (quadrant ``(0, 0)`` = any direction)
-    and whose tentative cost can still improve is checked in one vectorised
-    ``segments_free`` call. The Euclidean heuristic is consistent, so the first
-    time the goal is expanded its distance is optimal.
+    whose line from it is tangent at both ends (quadrant ``(0, 0)`` = any direction),
+    that makes a taut turn at the expanded corner (:func:`_taut`) and whose tentative
+    cost can still improve is a candidate; candidates that a few samples show to cut
+    a blocked cell are dropped (:func:`_surely_blocked`) and the rest are checked in
+    one vectorised ``segments_free`` call. The Euclidean heuristic is consistent, so
+    the first time the goal is expanded its distance is optimal.
     """
     n = len(P)
     dist = np.full(n, np.inf)
@@ -171,10 +232,15 @@ def _astar_over_corners(rule: _EdgeRule, P: np.ndarray, Q: np.ndarray) -> tuple[
         d = P - P[u]
         step = np.hypot(d[:, 0], d[:, 1])
         cand = ~closed & (dist[u] + step < dist)
-        if not anydir[u]:
-            cand &= _tangent(d, np.broadcast_to(Q[u], d.shape))
-        cand &= anydir | _tangent(d, Q)
         J = np.nonzero(cand)[0]
+        if not anydir[u]:
+            J = J[_tangent(d[J], np.broadcast_to(Q[u], (len(J), 2)))]
+            if pred[u] >= 0:
+                J = J[_taut(P[pred[u]] - P[u], d[J], Q[u])]
+        J = J[anydir[J] | _tangent(d[J], Q[J])]
+        if J.size == 0:
+            continue
+        J = J[~_surely_blocked(rule.grid, P[u], d[J], step[J])]
         if J.size == 0:
             continue
         J = J[rule.check(P, u, J)]
