@@ -366,3 +366,14 @@ def test_visibility_blocks_and_prunings_keep_the_optimum(monkeypatch):
     monkeypatch.setattr(V, "SAMPLE_STEPS", np.zeros(0))
     assert shortest_path(grid, s, g, method="visibility").length == pytest.approx(ref.length, abs=1e-12)
     assert ref.length == pytest.approx(brute_force_any_angle(grid, np.array(s), np.array(g)), abs=1e-9)
+
+
+def test_ties_between_end_cells_go_to_the_cell_the_point_belongs_to():
+    """A start on the edge between rows 3 and 4 joins both cells at the same cost; the path
+    goes through row 4, the cell that holds (0.5, 4.0) under the half-open convention (the
+    cell the search used to snap to), for A* and at the goal end for Dijkstra too."""
+    grid = op.GridMap(np.zeros((8, 12), bool))
+    a = shortest_path(grid, (0.5, 4.0), (11.5, 4.0), method="astar")
+    assert a.path[:, 1].tolist() == [4.0] + [4.5] * 12 + [4.0]
+    d = shortest_path(grid, (0.5, 4.0), (11.5, 4.0), method="dijkstra")
+    assert d.length == pytest.approx(a.length) and d.path[-2, 1] == 4.5

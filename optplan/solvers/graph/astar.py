@@ -14,7 +14,10 @@ exact rule (``segments_free``, with the clearance) accepts. All those centres
 are equally far from the point (a shared edge is the perpendicular bisector of
 the two centres), so the search is a multi-source, multi-target search with one
 offset at each end. Two points in the closure of one free cell are also joined
-directly when that segment is free; it is then the shortest path.
+directly when that segment is free; it is then the shortest path. Between
+equally short paths through different end cells, the one through the cell the
+point belongs to (``cell_of``, the half-open convention that the search used to
+snap to) is taken.
 
 The neighbour structure comes from the map's cached move table
 (:func:`optplan.solvers.gridpath.moves.move_table`): one byte of allowed
@@ -49,22 +52,30 @@ def _unreachable(corner_cutting: bool) -> InfeasibleQueryError:
         + "; check the map or choose another goal")
 
 
-def astar_cells(table, sources, targets):
+# cost (cells) added to the joins of the end cells other than the one the point belongs to
+# (its cell_of, the half-open convention): it only breaks exact ties, as distinct path
+# lengths on this grid differ by far more
+TIE = 1e-9
+
+
+def astar_cells(table, sources, targets, source_bias=None, target_bias=None):
     """A*: shortest move sequence from any of ``sources`` to any of ``targets`` (flat cell indices).
 
-    Every source starts at distance 0; the first target expanded is the nearest one.
-    The heuristic is the octile distance to the first target less the largest octile
-    distance between targets (clipped at 0): consistent, and 0 at every target. Heap
-    entries are ``(f, g, cell)`` (ties: the shallower, then the lower index, first) and
-    a move must improve a distance by more than 1e-12: with one source and one target
-    this is the cell sequence the search has always returned.
+    Source ``k`` starts at distance ``source_bias[k]`` (default 0) and reaching target ``k``
+    costs ``target_bias[k]`` more (a virtual goal behind the targets; with one target the
+    search stops when it is expanded). The heuristic is the octile distance to the first
+    target less the largest octile distance between targets (clipped at 0): consistent,
+    and 0 at every target. Heap entries are ``(f, g, cell)`` (ties: the shallower, then
+    the lower index, first) and a move must improve a distance by more than 1e-12: with
+    one source and one target this is the cell sequence the search has always returned.
 
-    Returns ``(flat_cells, length_in_cells, expanded)`` (a list of flat indices), or
-    ``None`` when no target is reached.
+    Returns ``(flat_cells, cost_in_cells, expanded)`` (a list of flat indices; the cost
+    includes the biases), or ``None`` when no target is reached.
     """
     W, n = table.width, table.width * table.height
     masks, moves = table.masks, table.moves_by_mask
-    ay, ax = divmod(int(targets[0]), W)
+    targets = [int(t) for t in targets]
+    ay, ax = divmod(targets[0], W)
     slack = max(octile(t % W - ax, t // W - ay) for t in targets)
     # the heuristic of every cell: a slice of the table's octile window (the same float
     # operations as the scalar formula), copied into an array('d'), not n Python floats
@@ -73,29 +84,41 @@ def astar_cells(table, sources, targets):
     if slack > 0:
         h = np.maximum(h - slack, 0.0)
     H = array("d", h.tobytes())
+    H.append(0.0)  # the virtual goal, flat index n
     # dist[c] is -1 once c is expanded (closed): no move improves it, no heap entry matches it
-    dist = [math.inf] * n
-    parent = [-1] * n
-    goal = bytearray(n)
+    dist = [math.inf] * (n + 1)
+    parent = [-1] * (n + 1)
+    goal = bytearray(n + 1)
+    extra = dict(zip(targets, target_bias if target_bias is not None else [0.0] * len(targets)))
     for t in targets:
-        goal[int(t)] = 1
+        goal[t] = 1
+    single = len(targets) == 1
     heap = []
-    for s in sources:
+    for s, b in zip(sources, source_bias if source_bias is not None else [0.0] * len(sources)):
         s = int(s)
-        dist[s] = 0.0
-        heap.append((H[s], 0.0, s))
+        dist[s] = float(b)
+        heap.append((H[s] + dist[s], dist[s], s))
     heapq.heapify(heap)
     pop, push = heapq.heappop, heapq.heappush
-    expanded, reached, length = 0, -1, math.inf
+    expanded, reached, cost = 0, -1, math.inf
     while heap:
         _, d, c = pop(heap)
         if d != dist[c]:
             continue  # closed, or a stale entry
+        if c == n:  # the virtual goal: its parent is the best target
+            reached, cost = parent[n], d
+            break
         dist[c] = -1.0
         expanded += 1
         if goal[c]:
-            reached, length = c, d
-            break
+            if single:
+                reached, cost = c, d + extra[c]
+                break
+            nd = d + extra[c]  # a path on through one target to another is longer than stopping
+            if nd < dist[n]:
+                dist[n], parent[n] = nd, c
+                push(heap, (nd, nd, n))
+            continue
         for off, w in moves[masks[c]]:
             t = c + off
             nd = d + w
@@ -109,18 +132,20 @@ def astar_cells(table, sources, targets):
     while (c := parent[cells[-1]]) >= 0:
         cells.append(c)
     cells.reverse()
-    return cells, length, expanded
+    return cells, cost, expanded
 
 
-def dijkstra_cells(table, sources, targets):
+def dijkstra_cells(table, sources, targets, source_bias=None, target_bias=None):
     """As :func:`astar_cells`, with scipy's compiled Dijkstra (a whole shortest-path tree
-    from the sources, ``min_only``). ``expanded`` is the number of cells reached."""
+    from the sources, ``min_only``, which has no source bias: ties between source cells go
+    to scipy). ``expanded`` is the number of cells reached."""
     from scipy.sparse.csgraph import dijkstra
 
     dist, pred, _ = dijkstra(table.csr, directed=True, indices=np.asarray(sources, dtype=np.int64),
                              return_predecessors=True, min_only=True)
     targets = np.asarray(targets, dtype=np.int64)
-    best = targets[np.argmin(dist[targets])]
+    bias = np.zeros(len(targets)) if target_bias is None else np.asarray(target_bias, float)
+    best = targets[np.argmin(dist[targets] + bias)]
     if not np.isfinite(dist[best]):
         return None
     cells = [int(best)]
@@ -241,13 +266,23 @@ def cell_path(grid, start, goal, *, method: str = "astar", corner_cutting: bool 
     # in one closed free cell the straight segment is free without clearance (the cell is convex)
     if shared and (clearance == 0 or bool(grid.segments_free(s, g, clearance))):
         return CellPath(np.stack([s, g]), math.hypot(*(g - s)), 0, True)
-    found = astar_cells(table, sc, gc) if method == "astar" else dijkstra_cells(table, sc, gc)
+    bias = [[0.0 if c == _own_cell(grid, q) else TIE for c in cells] for cells, q in ((sc, qs), (gc, qg))]
+    search = astar_cells if method == "astar" else dijkstra_cells
+    found = search(table, sc, gc, bias[0], bias[1])
     if found is None:
         raise _unreachable(corner_cutting)
-    flat, moves, expanded = found
+    flat, _, expanded = found
     P = np.empty((len(flat) + 2, 2))
     cell_centres(grid).take(np.fromiter(flat, np.intp, len(flat)), axis=0, out=P[1:-1])
     P[0], P[-1] = s, g
     # an end at a cell centre is that centre: no repeated point
     P = P[1 if sj == 0 else 0:len(P) - 1 if gj == 0 else len(P)]
-    return CellPath(P, (sj + moves + gj) * res, expanded)
+    return CellPath(P, float(np.hypot(*np.diff(P, axis=0).T).sum()), expanded)
+
+
+def _own_cell(grid, q) -> int:
+    """Flat index of the cell that holds ``q`` (grid units) under the half-open convention
+    (``cell_of``), the last row or column for a point on the top or right border."""
+    ix = min(max(math.floor(q[0]), 0), grid.width - 1)
+    iy = min(max(math.floor(q[1]), 0), grid.height - 1)
+    return iy * grid.width + ix
