@@ -92,6 +92,7 @@ def astar_cells(table, sources, targets, source_bias=None, target_bias=None):
     extra = dict(zip(targets, target_bias if target_bias is not None else [0.0] * len(targets)))
     for t in targets:
         goal[t] = 1
+    goal[n] = 1
     single = len(targets) == 1
     heap = []
     for s, b in zip(sources, source_bias if source_bias is not None else [0.0] * len(sources)):
@@ -105,20 +106,22 @@ def astar_cells(table, sources, targets, source_bias=None, target_bias=None):
         _, d, c = pop(heap)
         if d != dist[c]:
             continue  # closed, or a stale entry
-        if c == n:  # the virtual goal: its parent is the best target
-            reached, cost = parent[n], d
-            break
-        dist[c] = -1.0
-        expanded += 1
         if goal[c]:
+            if c == n:  # the virtual goal: its parent is the best target
+                reached, cost = parent[n], d
+                break
+            expanded += 1
             if single:
                 reached, cost = c, d + extra[c]
                 break
+            dist[c] = -1.0
             nd = d + extra[c]  # a path on through one target to another is longer than stopping
             if nd < dist[n]:
                 dist[n], parent[n] = nd, c
                 push(heap, (nd, nd, n))
             continue
+        dist[c] = -1.0
+        expanded += 1
         for off, w in moves[masks[c]]:
             t = c + off
             nd = d + w
@@ -266,18 +269,19 @@ def cell_path(grid, start, goal, *, method: str = "astar", corner_cutting: bool 
     # in one closed free cell the straight segment is free without clearance (the cell is convex)
     if shared and (clearance == 0 or bool(grid.segments_free(s, g, clearance))):
         return CellPath(np.stack([s, g]), math.hypot(*(g - s)), 0, True)
-    bias = [[0.0 if c == _own_cell(grid, q) else TIE for c in cells] for cells, q in ((sc, qs), (gc, qg))]
+    bs, bg = ([0.0 if c == own else TIE for c in cells] for cells, own in ((sc, _own_cell(grid, qs)), (gc, _own_cell(grid, qg))))
     search = astar_cells if method == "astar" else dijkstra_cells
-    found = search(table, sc, gc, bias[0], bias[1])
+    found = search(table, sc, gc, bs, bg)
     if found is None:
         raise _unreachable(corner_cutting)
-    flat, _, expanded = found
+    flat, cost, expanded = found
+    cost -= bs[sc.index(flat[0])] + bg[gc.index(flat[-1])]
     P = np.empty((len(flat) + 2, 2))
     cell_centres(grid).take(np.fromiter(flat, np.intp, len(flat)), axis=0, out=P[1:-1])
     P[0], P[-1] = s, g
     # an end at a cell centre is that centre: no repeated point
     P = P[1 if sj == 0 else 0:len(P) - 1 if gj == 0 else len(P)]
-    return CellPath(P, float(np.hypot(*np.diff(P, axis=0).T).sum()), expanded)
+    return CellPath(P, (sj + cost + gj) * res, expanded)
 
 
 def _own_cell(grid, q) -> int:
