@@ -172,26 +172,34 @@ def _taut(a: np.ndarray, b: np.ndarray, w: np.ndarray) -> np.ndarray:
 # half cell up to 8 cells, then sparser (clutter blocks most candidates near the node)
 SAMPLE_STEPS = np.r_[np.arange(0.5, 8.01, 0.5), np.arange(9.0, 16.01, 1.0), 2.0 ** np.arange(4.5, 11.01, 0.5)]
 SAMPLE_BUDGET = 1_000_000  # sample points per block
+SAMPLE_STAGES = ((0.0, 3.0), (3.0, 8.5), (8.5, 32.0), (32.0, np.inf))
 
 
 def _surely_blocked(grid, origin: np.ndarray, D: np.ndarray, length: np.ndarray) -> np.ndarray:
     """A cheap, safe rejection: a point of the segment ``origin + t D`` (``0 < t < 1``),
     at one of :data:`SAMPLE_STEPS` cells from ``origin``, lies inside a blocked cell at
     least 1e-6 cells from its border, so the segment enters a blocked interior whatever
-    the rounding. Segments it does not reject still get the exact rule. One vectorised
-    lookup for all candidates and steps."""
-    if len(D) == 0 or len(SAMPLE_STEPS) == 0:
-        return np.zeros(len(D), dtype=bool)
-    step = max(1, SAMPLE_BUDGET // len(SAMPLE_STEPS))
-    if len(D) > step:  # bounded memory: blocks of candidates
-        return np.concatenate([_surely_blocked(grid, origin, D[a:a + step], length[a:a + step])
-                               for a in range(0, len(D), step)])
-    S = SAMPLE_STEPS[SAMPLE_STEPS < length.max() - 1e-6]
-    if len(S) == 0:
-        return np.zeros(len(D), dtype=bool)
-    positive = length > 0
-    t = S[None, :] / np.where(positive, length, 1.0)[:, None]     # (m, s)
-    on = (t < 1.0 - 1e-9) & positive[:, None]
+    the rounding. Segments it does not reject still get the exact rule. The steps are
+    tried in stages (near ones first, on every candidate; farther ones on the survivors),
+    each stage one vectorised lookup, in blocks of :data:`SAMPLE_BUDGET` samples."""
+    out = np.zeros(len(D), dtype=bool)
+    live = np.arange(len(D))
+    for lo, hi in SAMPLE_STAGES:
+        S = SAMPLE_STEPS[(SAMPLE_STEPS >= lo) & (SAMPLE_STEPS < hi)]
+        live = live[length[live] > lo + 1e-6] if len(live) else live
+        if len(S) == 0 or len(live) == 0:
+            continue
+        step = max(1, SAMPLE_BUDGET // len(S))
+        for a in range(0, len(live), step):
+            k = live[a:a + step]
+            out[k] = _sample_hits(grid, origin, D[k], length[k], S)
+        live = live[~out[live]]
+    return out
+
+
+def _sample_hits(grid, origin, D, length, S) -> np.ndarray:
+    t = S[None, :] / length[:, None]                      # (m, s); length > 0 here
+    on = t < 1.0 - 1e-9
     qx = origin[0] + t * D[:, 0:1]
     qy = origin[1] + t * D[:, 1:2]
     cx, cy = np.floor(qx), np.floor(qy)
@@ -203,7 +211,8 @@ def _surely_blocked(grid, origin: np.ndarray, D: np.ndarray, length: np.ndarray)
     return np.any(deep & pad[iy, ix], axis=1)
 
 
-def _astar_over_corners(rule: _EdgeRule, P: np.ndarray, Q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _astar_over_corners(rule: _EdgeRule, P: np.ndarray, Q: np.ndarray,
+                        bound: float = np.inf) -> tuple[np.ndarray, np.ndarray]:
     """A* from node 0 to node 1 over the corner visibility graph with lazy edges.
 
     Edges out of a node are generated only when it is expanded: every open node
@@ -213,6 +222,9 @@ def _astar_over_corners(rule: _EdgeRule, P: np.ndarray, Q: np.ndarray) -> tuple[
     a blocked cell are dropped (:func:`_surely_blocked`) and the rest are checked in
     one vectorised ``segments_free`` call. The Euclidean heuristic is consistent, so
     the first time the goal is expanded its distance is optimal.
+
+    ``bound`` (grid units): the length of a known path from start to goal; a node whose
+    ``f = g + h`` exceeds it cannot be on a shortest path, so it is not made a candidate.
     """
     n = len(P)
     dist = np.full(n, np.inf)
@@ -222,6 +234,11 @@ def _astar_over_corners(rule: _EdgeRule, P: np.ndarray, Q: np.ndarray) -> tuple[
     dist[0] = 0.0
     heap = [(h[0], 0)]
     anydir = np.all(Q == 0, axis=1)
+    # the corners (nodes 2..) are sorted by x: with a bound, the candidates of a node lie in
+    # the ellipse |v - u| + |v - goal| <= bound - dist[u], inside an x-range of the corners
+    xs = P[2:, 0]
+    assert np.all(xs[:-1] <= xs[1:]), "corners must be sorted by x"
+    ends = np.array([0, 1])
     while heap:
         _, u = heapq.heappop(heap)
         if closed[u]:
@@ -229,22 +246,30 @@ def _astar_over_corners(rule: _EdgeRule, P: np.ndarray, Q: np.ndarray) -> tuple[
         closed[u] = True
         if u == 1:
             break
-        d = P - P[u]
+        if np.isfinite(bound):
+            a = 0.5 * (bound - dist[u]) * (1 + 1e-12) + 1e-9
+            cx = 0.5 * (P[u, 0] + P[1, 0])
+            lo, hi = 2 + np.searchsorted(xs, cx - a, "left"), 2 + np.searchsorted(xs, cx + a, "right")
+        else:
+            lo, hi = 2, n
+        idx = np.concatenate([ends, np.arange(lo, hi)])
+        d = P[idx] - P[u]
         step = np.hypot(d[:, 0], d[:, 1])
-        cand = ~closed & (dist[u] + step < dist)
-        J = np.nonzero(cand)[0]
+        reach = dist[u] + step
+        keep = ~closed[idx] & (reach < dist[idx]) & (reach + h[idx] <= bound * (1 + 1e-12) + 1e-9)
+        J, d, step = idx[keep], d[keep], step[keep]
         if not anydir[u]:
-            J = J[_tangent(d[J], np.broadcast_to(Q[u], (len(J), 2)))]
+            k = _tangent(d, np.broadcast_to(Q[u], d.shape))
             if pred[u] >= 0:
-                J = J[_taut(P[pred[u]] - P[u], d[J], Q[u])]
-        J = J[anydir[J] | _tangent(d[J], Q[J])]
+                k[k] = _taut(P[pred[u]] - P[u], d[k], Q[u])
+            J, d, step = J[k], d[k], step[k]
+        k = anydir[J] | _tangent(d, Q[J])
+        k[k] = ~_surely_blocked(rule.grid, P[u], d[k], step[k])
+        J, step = J[k], step[k]
         if J.size == 0:
             continue
-        J = J[~_surely_blocked(rule.grid, P[u], d[J], step[J])]
-        if J.size == 0:
-            continue
-        J = J[rule.check(P, u, J)]
-        nd = dist[u] + step[J]
+        k = rule.check(P, u, J)
+        J, nd = J[k], dist[u] + step[k]
         better = nd < dist[J]
         J, nd = J[better], nd[better]
         dist[J] = nd
@@ -269,6 +294,20 @@ def _check_mode(grid, points: str, ends) -> None:
                 f"moved, so pass {tuple(float(v) for v in grid.to_world(snapped))} or points='exact'")
 
 
+def _upper_bound(grid, s, g, clearance: float) -> float:
+    """Length (grid units) of the A* path over cell centres, a free any-angle path, so no
+    longer than the optimum without clearance; ``inf`` with a clearance (the corner graph
+    of the grown cells can be longer than that path) or when A* finds none."""
+    if clearance > 0:
+        return np.inf
+    from .astar import cell_path
+
+    try:
+        return cell_path(grid, s, g).length / grid.resolution
+    except InfeasibleQueryError:
+        return np.inf
+
+
 def visibility_path(grid, start, goal, points: str = "exact", *, clearance: float = 0.0):
     """Shortest any-angle path between two points given in world metres.
 
@@ -291,10 +330,12 @@ def visibility_path(grid, start, goal, points: str = "exact", *, clearance: floa
     if bool(segments_free(grid, s, g, rule.clearance)):
         return np.stack([s, g]), float(np.hypot(*(g - s)))
     nodes, quad = corner_nodes(grid, rule.clearance)
+    order = np.argsort(nodes[:, 0], kind="stable")
+    nodes, quad = nodes[order], quad[order]
     # node 0 = start, 1 = goal, 2.. = corners; the end points take any direction
     P = np.vstack([grid.to_grid(s), grid.to_grid(g), nodes])
     Q = np.vstack([[0, 0], [0, 0], quad])
-    dist, pred = _astar_over_corners(rule, P, Q)
+    dist, pred = _astar_over_corners(rule, P, Q, _upper_bound(grid, s, g, rule.clearance))
     if not np.isfinite(dist[1]):
         raise InfeasibleQueryError(
             "the goal is unreachable from the start (no free any-angle path"
