@@ -176,27 +176,27 @@ def grid_search(grid, start_cell, goal_cell, *, heuristic: bool = True, corner_c
     return table.xy(np.asarray(flat, dtype=np.int64)), float(length), expanded
 
 
-def _closure_cells(grid, q) -> list[int]:
-    """Flat indices of the map's cells whose closed square holds the point ``q`` (grid
-    units): 1, or 2 on a cell edge, or up to 4 on a corner; free or not."""
-    x, y = float(q[0]), float(q[1])
+def _closure_cells(W: int, H: int, q) -> list[int]:
+    """Flat indices of the ``W x H`` map's cells whose closed square holds the point ``q``
+    (grid units): 1, or 2 on a cell edge, or up to 4 on a corner; free or not."""
+    x, y = q
     fx, fy = math.floor(x), math.floor(y)
-    W, H = grid.width, grid.height
     return [iy * W + ix for iy in ((fy - 1, fy) if y == fy else (fy,)) if 0 <= iy < H
             for ix in ((fx - 1, fx) if x == fx else (fx,)) if 0 <= ix < W]
 
 
-def _end_cells(grid, q: tuple[float, float], clearance: float) -> tuple[list[int], float]:
-    """Flat indices of the cells the point ``q`` (grid units) is joined to, and the join
-    length (cells).
+def _end_cells(grid, q: tuple[float, float], clearance: float) -> tuple[list[int], float, list[float]]:
+    """The cells the point ``q`` (grid units) is joined to (flat indices), the join length
+    (cells, the same for all) and each join's tie bias (0 for the cell that holds ``q``
+    under the half-open convention, ``cell_of``; :data:`TIE` for the others).
 
     A cell qualifies when it is free, its centre keeps the clearance and the segment
     from the point to its centre is free under the exact rule. Without clearance that
     segment lies in the closed free cell and ends inside it, so the rule holds and is
     not evaluated."""
-    occ = grid.occ.ravel()
-    cells = [c for c in _closure_cells(grid, q) if not occ[c]]
-    W = grid.width
+    W, H = grid.occ.shape[1], grid.occ.shape[0]
+    occ = grid.occ.reshape(-1)
+    cells = [c for c in _closure_cells(W, H, q) if not occ[c]]
     if cells and clearance > 0:
         centres = grid.cell_center(np.array([(c % W, c // W) for c in cells]))
         p = grid.to_world(np.asarray(q, float))
@@ -204,8 +204,10 @@ def _end_cells(grid, q: tuple[float, float], clearance: float) -> tuple[list[int
         ok &= grid.is_free(centres, clearance)
         cells = [c for c, k in zip(cells, ok.tolist()) if k]
     if not cells:
-        return cells, 0.0
-    return cells, math.hypot(q[0] - (cells[0] % W + 0.5), q[1] - (cells[0] // W + 0.5))
+        return cells, 0.0, []
+    own = min(max(math.floor(q[1]), 0), H - 1) * W + min(max(math.floor(q[0]), 0), W - 1)
+    join = math.hypot(q[0] - (cells[0] % W + 0.5), q[1] - (cells[0] // W + 0.5))
+    return cells, join, [0.0 if c == own else TIE for c in cells]
 
 
 def cell_centres(grid) -> np.ndarray:
@@ -253,23 +255,23 @@ def cell_path(grid, start, goal, *, method: str = "astar", corner_cutting: bool 
     qs, qg = (((float(p[0]) - ox) / res, (float(p[1]) - oy) / res) for p in (s, g))  # grid units, as to_grid
     ends = []
     for p, q, what in ((s, qs, "start"), (g, qg, "goal")):
-        cells, join = _end_cells(grid, q, clearance)
+        cells, join, bias = _end_cells(grid, q, clearance)
         if not cells:
             raise InfeasibleQueryError(
                 f"the {what} ({p[0]:g}, {p[1]:g}) joins no free cell centre by a free segment"
                 + (f" whose centre keeps the clearance {clearance:g} m" if clearance else "")
                 + "; A*/Dijkstra run over cell centres: move the point or use method='visibility'")
-        ends.append((cells, join))
-    (sc, sj), (gc, gj) = ends
+        ends.append((cells, join, bias))
+    (sc, sj, bs), (gc, gj, bg) = ends
     if clearance > 0:  # the cells a point shares with the other, whether or not its centre keeps the clearance
-        occ = grid.occ.ravel()
-        shared = {c for c in _closure_cells(grid, qs) if not occ[c]} & {c for c in _closure_cells(grid, qg) if not occ[c]}
+        occ, W, H = grid.occ.reshape(-1), grid.width, grid.height
+        shared = ({c for c in _closure_cells(W, H, qs) if not occ[c]}
+                  & {c for c in _closure_cells(W, H, qg) if not occ[c]})
     else:
         shared = set(sc) & set(gc)
     # in one closed free cell the straight segment is free without clearance (the cell is convex)
     if shared and (clearance == 0 or bool(grid.segments_free(s, g, clearance))):
         return CellPath(np.stack([s, g]), math.hypot(*(g - s)), 0, True)
-    bs, bg = ([0.0 if c == own else TIE for c in cells] for cells, own in ((sc, _own_cell(grid, qs)), (gc, _own_cell(grid, qg))))
     search = astar_cells if method == "astar" else dijkstra_cells
     found = search(table, sc, gc, bs, bg)
     if found is None:
@@ -278,15 +280,8 @@ def cell_path(grid, start, goal, *, method: str = "astar", corner_cutting: bool 
     cost -= bs[sc.index(flat[0])] + bg[gc.index(flat[-1])]
     P = np.empty((len(flat) + 2, 2))
     cell_centres(grid).take(np.fromiter(flat, np.intp, len(flat)), axis=0, out=P[1:-1])
-    P[0], P[-1] = s, g
+    P[0] = s
+    P[-1] = g
     # an end at a cell centre is that centre: no repeated point
     P = P[1 if sj == 0 else 0:len(P) - 1 if gj == 0 else len(P)]
     return CellPath(P, (sj + cost + gj) * res, expanded)
-
-
-def _own_cell(grid, q) -> int:
-    """Flat index of the cell that holds ``q`` (grid units) under the half-open convention
-    (``cell_of``), the last row or column for a point on the top or right border."""
-    ix = min(max(math.floor(q[0]), 0), grid.width - 1)
-    iy = min(max(math.floor(q[1]), 0), grid.height - 1)
-    return iy * grid.width + ix
