@@ -10,8 +10,7 @@ import optplan as op
 from optplan.cli import main as cli_main
 from optplan.solvers.metaheuristics import optimize
 from optplan.solvers.refine import DEFAULT_STARTS, pick_starts, refine_path, refine_result
-from optplan.solvers.result import Band, population_alternatives
-from optplan.solvers.tube import default_tube_radius
+from optplan.solvers.tube import Band, default_tube_radius, population_alternatives
 from optplan.world.metrics import path_length
 
 

@@ -8,7 +8,7 @@ import optplan as op
 from optplan.cli import main as cli_main
 from optplan.solvers.nlp import smooth_path
 from optplan.solvers.refine import refine_path, refine_result
-from optplan.solvers.tube import (_cells_within, default_tube_radius, distance_to_polyline, obstacle_width,
+from optplan.solvers.tube import (cells_within, default_tube_radius, distance_to_polyline, obstacle_width,
                                   refine_in_tube, tube_path)
 from optplan.world.metrics import path_length
 
@@ -121,7 +121,7 @@ def test_tube_mask_is_the_exact_point_to_polyline_rule():
     seed = np.cumsum(rng.uniform(-1.5, 3.0, size=(12, 2)), axis=0)
     for h, radius in ((1.0, 2.0), (0.25, 1.3), (0.1, 0.45)):
         W = H = int(30 / h)
-        mask = _cells_within(W, H, h, (0.0, 0.0), seed, radius)
+        mask = cells_within(W, H, h, (0.0, 0.0), seed, radius)
         iy, ix = np.mgrid[0:H, 0:W]
         centres = (np.stack([ix.ravel(), iy.ravel()], axis=1) + 0.5) * h
         np.testing.assert_array_equal(mask.ravel(), distance_to_polyline(centres, seed) <= radius)

@@ -76,3 +76,43 @@ def test_blocked_goal_is_reported():
     w = op.CircleWorld((0, 0, 10, 10), [(5, 5, 6.0)])
     with pytest.raises(op.InfeasibleQueryError):
         plan_tangent(w, (0.1, 0.1), (9.9, 9.9))
+
+
+def test_too_many_circles_is_refused_before_anything_is_built(monkeypatch):
+    """The tangent graph of n circles can hold 2 n (n - 1) tangents: a world whose graph could
+    exceed MAX_GRAPH_BYTES raises a ParameterError stating the bound, at once."""
+    from optplan.solvers import tangent_graph as tg
+
+    def never(*args):
+        raise AssertionError("tangents generated before the size check")
+
+    rng = np.random.default_rng(1)
+    n = 5000
+    w = op.CircleWorld((0, 0, 200, 200), np.column_stack([rng.uniform(5, 195, (n, 2)), np.full(n, 0.2)]))
+    monkeypatch.setattr(tg, "_common_tangents", never)
+    monkeypatch.setattr(tg, "_point_tangents", never)
+    with pytest.raises(op.ParameterError, match=r"GiB .*at most [\d,]+ circles"):
+        op.shortest_path(w, (0.1, 0.1), (199.9, 199.9), method="visibility")
+    monkeypatch.undo()
+    monkeypatch.setattr(tg, "MAX_GRAPH_BYTES", tg.tangent_graph_bytes(9))
+    small = op.CircleWorld((0, 0, 10, 10), [(5, 5, 1.0)])
+    assert op.shortest_path(small, (0, 5), (10, 5), method="visibility").feasible
+    ten = op.CircleWorld((0, 0, 10, 10), np.column_stack([np.linspace(1, 9, 10), np.full(10, 5.0), np.full(10, 0.3)]))
+    with pytest.raises(op.ParameterError, match="at most 9 circles"):
+        op.shortest_path(ten, (0, 0), (10, 10), method="visibility")
+
+
+def test_blockwise_checks_give_the_same_optimum(monkeypatch):
+    """Tiny blocks (many chunks of pairs and of segment-circle distances) change nothing."""
+    from optplan.solvers import tangent_graph as tg
+
+    rng = np.random.default_rng(3)
+    circles = np.column_stack([rng.uniform(1, 19, (40, 2)), rng.uniform(0.2, 0.8, 40)])
+    w = op.CircleWorld((0, 0, 20, 20), circles, safety=0.05)
+    s, g = np.array([0.05, 0.05]), np.array([19.95, 19.95])
+    L, _ = tg.tangent_shortest_path(w, s, g)
+    monkeypatch.setattr(tg, "PAIR_CHUNK", 7)
+    monkeypatch.setattr(tg, "PAIR_BLOCK", 50)
+    monkeypatch.setattr(tg, "PREFILTER_T", ())
+    L2, poly = tg.tangent_shortest_path(w, s, g)
+    assert L2 == pytest.approx(L, abs=1e-12) and op.validate_path(w, poly)

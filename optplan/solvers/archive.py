@@ -18,11 +18,10 @@ ARCHIVE_EVERY = 10
 def archive_alternatives(world, X, violation, encoding, finish, best_x, best_path, count: int,
                          separation: float | None, clearance: float = 0.0) -> list[np.ndarray]:
     """Decode a population archive (rows ``X`` best first, their ``violation``) lazily
-    into up to ``count`` distinct valid paths (:func:`~optplan.solvers.result.population_alternatives`):
+    into up to ``count`` distinct valid paths (:func:`~optplan.solvers.tube.population_alternatives`):
     ``encoding.waypoints(row)`` then the planner's post-processing ``finish``.
     ``separation=None`` is the default tube radius of ``refine="casadi"``."""
-    from .result import population_alternatives
-    from .tube import default_tube_radius
+    from .tube import default_tube_radius, population_alternatives
 
     if count <= 0 or X is None or len(X) == 0:
         return []

@@ -141,7 +141,7 @@ def pick_starts(world, result: PlanResult, count: int, radius: float) -> list[np
     """Up to ``count`` of ``result.alternatives`` (in their order) that leave the tube of
     radius ``radius`` around ``result.path`` and around every start picked before them;
     ``radius=0``: any that differ."""
-    from .result import Band
+    from .tube import Band
 
     if count <= 0 or not len(result.alternatives):
         return []

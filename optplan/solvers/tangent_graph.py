@@ -17,11 +17,19 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import dijkstra
 
-from ..errors import InfeasibleQueryError
-from .result import make_plan_result
+from ..errors import InfeasibleQueryError, ParameterError
 from ..world.queries import check_start_goal
+from .result import make_plan_result
 
 _EPS = 1e-9
+# memory bounds: segment-circle distances evaluated per block, and the largest tangent graph
+PAIR_BLOCK = 4_000_000
+PAIR_CHUNK = 100_000  # circle pairs whose tangents are built and checked at once
+MAX_GRAPH_BYTES = 4 * 2**30
+BYTES_PER_TANGENT = 200  # two nodes (x, y, circle, angle), an edge (u, v, w) and its CSR copy, an arc edge
+# the cheap pass of _segments_clear: circles nearest to these points along each segment
+PREFILTER_K = 3
+PREFILTER_T = (0.5, 0.3, 0.7, 0.15, 0.85)
 
 
 def _point_tangents(p: np.ndarray, C: np.ndarray, R: np.ndarray):
@@ -37,10 +45,9 @@ def _point_tangents(p: np.ndarray, C: np.ndarray, R: np.ndarray):
     return pts[ok].reshape(-1, 2), ids[ok].ravel(), angs[ok].ravel()
 
 
-def _common_tangents(C: np.ndarray, R: np.ndarray):
-    """All common tangent segments between circle pairs: (a_pts, b_pts, i, j, ang_i, ang_j)."""
-    n = len(C)
-    I, J = np.triu_indices(n, 1)
+def _common_tangents(C: np.ndarray, R: np.ndarray, I: np.ndarray, J: np.ndarray):
+    """The common tangent segments of the circle pairs ``(I[k], J[k])``:
+    ``(a_pts, b_pts, i, j, ang_i, ang_j)``."""
     out = []
     d = C[J] - C[I]
     dist = np.hypot(d[:, 0], d[:, 1])
@@ -69,84 +76,187 @@ def _covered_intervals(C: np.ndarray, R: np.ndarray, i: int):
     return centre, half
 
 
-def _arc_free(world, i: int, a0: float, a1: float, cov) -> bool:
-    """Counter-clockwise arc from a0 to a1 on circle i avoids other circles and the border."""
-    span = (a1 - a0) % (2 * np.pi)
-    centre, half = cov
-    for c, h in zip(centre, half):
-        # the arc meets the covered interval [c - h, c + h]
-        start = (c - h - a0) % (2 * np.pi)
-        if start < span - _EPS or (start + 2 * h) > 2 * np.pi - _EPS:
-            return False
-    C, R = world.circles[i, :2], world.radii[i]
-    t = a0 + np.linspace(0, span, max(3, int(span * 32)))
-    pts = C + R * np.stack([np.cos(t), np.sin(t)], 1)
-    xmin, ymin, xmax, ymax = world.bounds
-    return bool(np.all((pts[:, 0] >= xmin) & (pts[:, 0] <= xmax) & (pts[:, 1] >= ymin) & (pts[:, 1] <= ymax)))
-
-
 def _segments_clear(world, A: np.ndarray, B: np.ndarray) -> np.ndarray:
-    """Tangent segments touch their own circles exactly; allow a tiny tolerance."""
-    if len(A) == 0:
+    """Tangent segments touch their own circles exactly; allow a tiny tolerance.
+
+    Exact, in bounded memory: a cheap pass first tests each segment against the
+    ``PREFILTER_K`` circles nearest to each of a few points along it (a segment any
+    of them cuts is blocked), then the segments left are tested against every
+    circle in blocks of at most ``PAIR_BLOCK`` segment-circle pairs."""
+    n = len(A)
+    if n == 0:
         return np.zeros(0, bool)
-    dist = world.segment_distances(A, B)
-    ok = np.all(dist >= world.radii - 1e-7, axis=1)
     xmin, ymin, xmax, ymax = world.bounds
+    ok = np.ones(n, dtype=bool)
     for P in (A, B):
         ok &= (P[:, 0] >= xmin - 1e-12) & (P[:, 0] <= xmax + 1e-12) & (P[:, 1] >= ymin - 1e-12) & (P[:, 1] <= ymax + 1e-12)
+    C, R = world.circles[:, :2], world.radii
+    m = len(C)
+    if m == 0:
+        return ok
+    if m > PREFILTER_K:
+        tree = _circle_tree(world)
+        k = PREFILTER_K
+        for t in PREFILTER_T:
+            idx = np.nonzero(ok)[0]
+            if len(idx) == 0:
+                break
+            _, near = tree.query(A[idx] + t * (B[idx] - A[idx]), k=k)
+            d = _segment_point_distances(A[idx], B[idx], C[near])
+            ok[idx[np.any(d < R[near] - 1e-7, axis=1)]] = False
+    idx = np.nonzero(ok)[0]
+    step = max(1, PAIR_BLOCK // m)
+    for lo in range(0, len(idx), step):
+        sel = idx[lo:lo + step]
+        ok[sel] = np.all(world.segment_distances(A[sel], B[sel]) >= R - 1e-7, axis=1)
     return ok
+
+
+def _segment_point_distances(A: np.ndarray, B: np.ndarray, Q: np.ndarray) -> np.ndarray:
+    """Distance from segment ``A[i] -> B[i]`` to each point ``Q[i, j]``, shape ``(n, k)``."""
+    D = (B - A)[:, None, :]
+    q = Q - A[:, None, :]
+    L2 = np.maximum(np.einsum("nkj,nkj->nk", D, D), 1e-300)
+    t = np.clip(np.einsum("nkj,nkj->nk", q, D) / L2, 0.0, 1.0)
+    e = q - t[..., None] * D
+    return np.sqrt(np.einsum("nkj,nkj->nk", e, e))
+
+
+def _circle_tree(world):
+    from scipy.spatial import cKDTree
+
+    tree = world._cache.get("circle_tree")
+    if tree is None:
+        tree = world._cache["circle_tree"] = cKDTree(world.circles[:, :2])
+    return tree
+
+
+def tangent_graph_bytes(n_circles: int) -> int:
+    """Bytes the tangent graph of ``n_circles`` circles can need when every tangent is free:
+    ``2 n (n - 1)`` common tangents and ``4 n`` from start and goal, each two nodes and an
+    edge, plus an arc edge per node (:data:`BYTES_PER_TANGENT` each)."""
+    n = int(n_circles)
+    return (2 * n * (n - 1) + 4 * n + 1) * BYTES_PER_TANGENT
+
+
+def check_tangent_graph_size(n_circles: int) -> None:
+    """ParameterError when :func:`tangent_graph_bytes` exceeds :data:`MAX_GRAPH_BYTES`."""
+    need = tangent_graph_bytes(n_circles)
+    if need > MAX_GRAPH_BYTES:
+        n_max = int(np.sqrt(MAX_GRAPH_BYTES / (2 * BYTES_PER_TANGENT))) + 2
+        while tangent_graph_bytes(n_max) > MAX_GRAPH_BYTES:
+            n_max -= 1
+        raise ParameterError(
+            f"the exact tangent graph of {n_circles:,} circles can hold {2 * n_circles * (n_circles - 1):,} "
+            f"common tangents ({need / 2**30:.3g} GiB when all are free), above the bound of "
+            f"{MAX_GRAPH_BYTES / 2**30:.3g} GiB (MAX_GRAPH_BYTES), i.e. at most {n_max:,} circles; "
+            "plan on a raster of the world (a GridMap) or with a metaheuristic instead")
+
+
+def _pair_chunks(n: int, budget: int):
+    """Circle pairs ``(I, J)``, ``I < J``, in blocks of about ``budget`` pairs (rows of the
+    upper triangle), so the pairs are never all in memory at once."""
+    i = 0
+    while i < n - 1:
+        rows, count = [], 0
+        while i < n - 1 and (not rows or count + (n - 1 - i) <= budget):
+            rows.append(i)
+            count += n - 1 - i
+            i += 1
+        I = np.concatenate([np.full(n - 1 - r, r) for r in rows])
+        J = np.concatenate([np.arange(r + 1, n) for r in rows])
+        yield I, J
+
+
+def _arcs(world, circle_of: np.ndarray, angle_of: np.ndarray):
+    """Free arcs between consecutive tangent points on each circle: ``(u, v, length)``
+    arrays, counter-clockwise from ``u`` to ``v``."""
+    C, R = world.circles[:, :2], world.radii
+    xmin, ymin, xmax, ymax = world.bounds
+    on_disc = circle_of >= 0
+    order = np.lexsort((angle_of[on_disc], circle_of[on_disc]))
+    nodes = np.nonzero(on_disc)[0][order]
+    circ = circle_of[nodes]
+    U, V, L = [], [], []
+    starts = np.r_[0, np.nonzero(np.diff(circ))[0] + 1, len(nodes)]
+    for a, b in zip(starts[:-1], starts[1:]):
+        if b - a < 2:
+            continue
+        i = int(circ[a])
+        u = nodes[a:b]
+        v = np.roll(u, -1)
+        a0, a1 = angle_of[u], angle_of[v]
+        span = (a1 - a0) % (2 * np.pi)
+        ok = np.ones(len(u), dtype=bool)
+        centre, half = _covered_intervals(C, R, i)
+        if len(centre):  # the arc meets a covered interval [c - h, c + h]
+            st = (centre[None, :] - half[None, :] - a0[:, None]) % (2 * np.pi)
+            ok &= ~np.any((st < span[:, None] - _EPS) | (st + 2 * half[None, :] > 2 * np.pi - _EPS), axis=1)
+        cx, cy = C[i]
+        if not (cx - R[i] >= xmin and cx + R[i] <= xmax and cy - R[i] >= ymin and cy + R[i] <= ymax):
+            for k in np.nonzero(ok)[0]:  # a disc across the border: sample its arcs
+                t = a0[k] + np.linspace(0, span[k], max(3, int(span[k] * 32)))
+                px, py = cx + R[i] * np.cos(t), cy + R[i] * np.sin(t)
+                ok[k] = bool(np.all((px >= xmin) & (px <= xmax) & (py >= ymin) & (py <= ymax)))
+        U.append(u[ok])
+        V.append(v[ok])
+        L.append(R[i] * span[ok])
+    if not U:
+        return np.zeros(0, np.int64), np.zeros(0, np.int64), np.zeros(0)
+    return np.concatenate(U), np.concatenate(V), np.concatenate(L)
 
 
 def tangent_shortest_path(world, start, goal, arc_step_deg: float = 2.0):
     """Exact optimum length and a validating polyline for a CircleWorld.
 
-    Returns ``(length, polyline)``; raises InfeasibleQueryError when the goal is unreachable.
+    Only free tangent segments make nodes (a tangent point no free segment reaches is
+    passed along its arc anyway), so the graph holds what can be on a path.
+    Memory: tangents are generated and checked in blocks of :data:`PAIR_BLOCK` circle
+    pairs, and a world whose graph could exceed :data:`MAX_GRAPH_BYTES` is refused
+    before anything is built (:func:`check_tangent_graph_size`).
+
+    Returns ``(length, polyline)``; raises InfeasibleQueryError when the goal is unreachable,
+    ParameterError when the world has too many circles for the bound.
     """
     s, g = np.asarray(start, float), np.asarray(goal, float)
     C, R = world.circles[:, :2], world.radii
-    nodes = [s, g]
-    circle_of = [-1, -1]
-    angle_of = [0.0, 0.0]
-    edges = []  # (u, v, w)
+    n = len(C)
+    check_tangent_graph_size(n)
+    xy, circ, ang = [np.stack([s, g])], [np.array([-1, -1])], [np.zeros(2)]
+    EU, EV, EW = [], [], []
+    count = 2
 
-    def add_nodes(P, ids, angs):
-        base = len(nodes)
-        nodes.extend(P)
-        circle_of.extend(ids)
-        angle_of.extend(angs)
-        return base + np.arange(len(P))
+    def add(P, ids, angs):
+        nonlocal count
+        xy.append(P)
+        circ.append(np.asarray(ids, np.int64))
+        ang.append(np.asarray(angs, float))
+        idx = count + np.arange(len(P))
+        count += len(P)
+        return idx
 
     if _segments_clear(world, s[None], g[None])[0]:
-        edges.append((0, 1, float(np.hypot(*(g - s)))))
+        EU.append([0]), EV.append([1]), EW.append([float(np.hypot(*(g - s)))])
     for k, p in enumerate((s, g)):
         P, ids, angs = _point_tangents(p, C, R)
-        idx = add_nodes(P, ids, angs)
-        ok = _segments_clear(world, np.repeat(p[None], len(P), 0), P)
-        for u, q in zip(idx[ok], P[ok]):
-            edges.append((k, int(u), float(np.hypot(*(q - p)))))
-    if len(C) > 1:
-        pa, pb, I, J, ai, aj = _common_tangents(C, R)
-        ok = _segments_clear(world, pa, pb)
-        ia = add_nodes(pa, I, ai)
-        ib = add_nodes(pb, J, aj)
-        L = np.hypot(*(pb - pa).T)
-        for u, v, w in zip(ia[ok], ib[ok], L[ok]):
-            edges.append((int(u), int(v), float(w)))
-    circle_of = np.asarray(circle_of)
-    angle_of = np.asarray(angle_of) % (2 * np.pi)
-    for i in range(len(C)):
-        on = np.nonzero(circle_of == i)[0]
-        if len(on) < 2:
-            continue
-        order = on[np.argsort(angle_of[on])]
-        cov = _covered_intervals(C, R, i)
-        for u, v in zip(order, np.roll(order, -1)):
-            if _arc_free(world, i, angle_of[u], angle_of[v], cov):
-                span = (angle_of[v] - angle_of[u]) % (2 * np.pi)
-                edges.append((int(u), int(v), float(R[i] * span)))
-    e = np.array(edges, dtype=float).reshape(-1, 3)
-    n = len(nodes)
-    graph = coo_matrix((e[:, 2], (e[:, 0].astype(int), e[:, 1].astype(int))), shape=(n, n)).tocsr()
+        ok = _segments_clear(world, np.broadcast_to(p, P.shape), P)
+        idx = add(P[ok], ids[ok], angs[ok])
+        EU.append(np.full(len(idx), k)), EV.append(idx), EW.append(np.hypot(*(P[ok] - p).T))
+    if n > 1:
+        for I, J in _pair_chunks(n, PAIR_CHUNK):
+            pa, pb, i, j, ai, aj = _common_tangents(C, R, I, J)
+            ok = _segments_clear(world, pa, pb)
+            ia = add(pa[ok], i[ok], ai[ok])
+            ib = add(pb[ok], j[ok], aj[ok])
+            EU.append(ia), EV.append(ib), EW.append(np.hypot(*(pb[ok] - pa[ok]).T))
+    nodes = np.concatenate(xy)
+    circle_of = np.concatenate(circ)
+    angle_of = np.concatenate(ang) % (2 * np.pi)
+    au, av, al = _arcs(world, circle_of, angle_of)
+    u = np.concatenate([np.concatenate(EU).astype(np.int64), au])
+    v = np.concatenate([np.concatenate(EV).astype(np.int64), av])
+    w = np.concatenate([np.concatenate(EW).astype(float), al])
+    graph = coo_matrix((w, (u, v)), shape=(count, count)).tocsr()
     dist, pred = dijkstra(graph, directed=False, indices=0, return_predecessors=True)
     if not np.isfinite(dist[1]):
         raise InfeasibleQueryError("the goal is unreachable: circles (grown by the safety distance) separate it from the start")
@@ -155,31 +265,34 @@ def tangent_shortest_path(world, start, goal, arc_step_deg: float = 2.0):
         chain.append(int(pred[chain[-1]]))
     chain = chain[::-1]
     pts = [nodes[chain[0]]]
-    for u, v in zip(chain[:-1], chain[1:]):
-        if circle_of[u] >= 0 and circle_of[u] == circle_of[v]:
-            i = circle_of[u]
-            a0, a1 = angle_of[u], angle_of[v]
+    for a, b in zip(chain[:-1], chain[1:]):
+        if circle_of[a] >= 0 and circle_of[a] == circle_of[b]:  # tangents join two circles: this is an arc
+            i = circle_of[a]
+            a0, a1 = angle_of[a], angle_of[b]
             # arc edges were stored counter-clockwise from the earlier-sorted node;
             # walking the chain backwards means going clockwise
             span = (a1 - a0) % (2 * np.pi)
-            if abs(R[i] * span - max(graph[u, v], graph[v, u])) > 1e-9:
+            if abs(R[i] * span - abs(dist[b] - dist[a])) > 1e-9:
                 span = -((a0 - a1) % (2 * np.pi))
             steps = max(1, int(np.ceil(abs(np.degrees(span)) / arc_step_deg)))
             delta = span / steps
             rout = R[i] / np.cos(delta / 2) + 1e-9  # circumscribed polygon stays outside the disc
             mids = a0 + delta * (np.arange(steps) + 0.5)
             pts.extend(C[i] + rout * np.stack([np.cos(mids), np.sin(mids)], 1))
-        pts.append(nodes[v])
+        pts.append(nodes[b])
     poly = np.array(pts, dtype=float)
     # tangent points lie exactly on their circle: nudge them outwards so rounding
     # cannot put them a hair inside. Only ever outwards: the circumscribed-polygon
     # vertices of a short arc sit less than 1e-7 outside, and pulling them in to
     # R + 1e-9 would let the chord between their neighbours cut the disc.
-    d = poly[:, None, :] - C[None, :, :]
-    dist_c = np.hypot(d[..., 0], d[..., 1])
-    near = (dist_c > R - 1e-7) & (dist_c < R + 1e-9)
-    for k, i in zip(*np.nonzero(near)):
-        poly[k] = C[i] + d[k, i] / dist_c[k, i] * (R[i] + 1e-9)
+    if n:
+        near_idx = _circle_tree(world).query_ball_point(poly, r=float(R.max()) + 1e-9)
+        for k, cands in enumerate(near_idx):
+            for i in cands:
+                d = poly[k] - C[i]
+                dc = float(np.hypot(*d))
+                if R[i] - 1e-7 < dc < R[i] + 1e-9:
+                    poly[k] = C[i] + d / dc * (R[i] + 1e-9)
     return float(dist[1]), poly
 
 

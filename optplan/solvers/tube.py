@@ -39,8 +39,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import InfeasibleQueryError, ParameterError
+from ..world.geometry import validate_path
 from ..world.grid import GridMap
 from ..world.metrics import path_length
+from .graph import visibility_path
 
 # default tube radius in widths of the widest obstacle (see default_tube_radius)
 DEFAULT_WIDTHS = 2.0
@@ -146,7 +148,7 @@ def distance_to_polyline(points, polyline) -> np.ndarray:
     return out
 
 
-def _densify(polyline: np.ndarray, step: float) -> np.ndarray:
+def densify(polyline: np.ndarray, step: float) -> np.ndarray:
     """Points along a polyline no more than ``step`` apart (its vertices included)."""
     P = np.asarray(polyline, float)
     seg = np.hypot(*np.diff(P, axis=0).T)
@@ -156,7 +158,7 @@ def _densify(polyline: np.ndarray, step: float) -> np.ndarray:
     return np.vstack([P[owner] + frac[:, None] * (P[owner + 1] - P[owner]), P[-1:]])
 
 
-def _cells_within(width: int, height: int, resolution: float, origin, seed: np.ndarray, radius: float) -> np.ndarray:
+def cells_within(width: int, height: int, resolution: float, origin, seed: np.ndarray, radius: float) -> np.ndarray:
     """``(height, width)`` mask of the cells whose centres lie within ``radius`` metres of ``seed``.
 
     Exact, but only a thin band of cells is measured against every segment: the
@@ -170,7 +172,7 @@ def _cells_within(width: int, height: int, resolution: float, origin, seed: np.n
 
     h = float(resolution)
     O = np.asarray(origin, float)
-    g = np.floor((_densify(seed, h / 2) - O) / h).astype(np.int64)
+    g = np.floor((densify(seed, h / 2) - O) / h).astype(np.int64)
     g = g[(g[:, 0] >= 0) & (g[:, 0] < width) & (g[:, 1] >= 0) & (g[:, 1] < height)]
     if len(g) == 0:  # a seed outside the map: measure everything
         marked_distance = np.zeros((height, width))
@@ -238,6 +240,95 @@ def rasterise_circles(world, resolution: float, clearance: float = 0.0, within=N
     return GridMap(occ, h, (xmin, ymin), f"{world.name} raster {h:g} m")
 
 
+class Band:
+    """The cells within ``separation`` metres of a path (the refinement's tube around it,
+    :func:`cells_within`) on a grid of ``h``-metre cells over the
+    world: the map's own cells, or a circle world's bounds at its raster step.
+
+    ``separation = 0`` means "this exact path": :meth:`holds` is then equality.
+    """
+
+    def __init__(self, world, path, separation: float, h: float | None = None):
+        self.path = np.asarray(path, float).reshape(-1, 2)
+        self.separation = float(separation)
+        if hasattr(world, "occ"):
+            self.h, self.origin = float(world.resolution), np.asarray(world.origin, float)
+            self.width, self.height = world.width, world.height
+        else:
+            xmin, ymin, xmax, ymax = world.bounds
+            self.h = float(h) if h is not None else raster_step(world)
+            self.origin = np.array([xmin, ymin], float)
+            self.width = int(np.ceil((xmax - xmin) / self.h - 1e-9))
+            self.height = int(np.ceil((ymax - ymin) / self.h - 1e-9))
+        self.mask = (cells_within(self.width, self.height, self.h, self.origin, self.path, self.separation)
+                     if self.separation > 0 else None)
+
+    def holds(self, path: np.ndarray) -> bool:
+        """Whether all of ``path`` (sampled every half cell) lies in the band's cells."""
+        P = np.asarray(path, float).reshape(-1, 2)
+        if self.mask is None:
+            return P.shape == self.path.shape and bool(np.allclose(P, self.path))
+        c = np.floor((densify(P, 0.5 * self.h) - self.origin) / self.h).astype(np.int64)
+        # a point on the top or right edge of the map belongs to the last cell
+        c = np.minimum(np.maximum(c, 0), [self.width - 1, self.height - 1])
+        return bool(self.mask[c[:, 1], c[:, 0]].all())
+
+
+def population_alternatives(world, candidates, best_path, count: int, separation: float, clearance: float = 0.0,
+                            finish=None, best_raw=None) -> list[np.ndarray]:
+    """Up to ``count`` valid, mutually distinct paths from a planner's population.
+
+    Args:
+        world: GridMap or CircleWorld.
+        candidates: iterable of ``(N, 2)`` paths in metres, best first by the planner's
+            own fitness (typically a lazy decoding of ``OptimizeResult.archive``, so
+            rows after the last pick are never decoded).
+        best_path: the planner's result path; alternatives must differ from it.
+        count: how many to return at most.
+        separation: metres; a candidate is kept only when it leaves the
+            ``separation`` band (:class:`Band`) around ``best_path`` and around every
+            path kept before it. With the refinement's tube radius this means "not
+            inside each other's tube", so each start can reach corridors the others
+            cannot. ``0``: any path that differs.
+        clearance: metres, for the exact ``validate_path`` every kept path passes.
+        finish: optional post-processing ``raw path -> path`` (the planner's
+            shortcutting). It can be costly, so a raw candidate inside the band of
+            ``best_raw`` or of a kept candidate's raw path is skipped before it runs;
+            the finished path is then checked against the finished ones.
+        best_raw: the raw (unfinished) form of ``best_path``; default ``best_path``.
+
+    Returns:
+        The kept (finished) paths, best first; never a path that fails ``validate_path``.
+    """
+    if count <= 0:
+        return []
+    kept: list[np.ndarray] = []
+    done, raw_done = [], []
+    if best_path is not None and len(best_path) > 0:
+        done.append(Band(world, best_path, separation))
+        raw_done.append(Band(world, best_raw if best_raw is not None else best_path, separation))
+    for raw in candidates:
+        R = np.asarray(raw, float).reshape(-1, 2)
+        if len(R) < 2:
+            continue
+        if finish is not None:
+            if any(b.holds(R) for b in raw_done):
+                continue  # a near-copy of a path already taken: not worth finishing
+            P = np.asarray(finish(R), float).reshape(-1, 2)
+        else:
+            P = R
+        if len(P) < 2 or any(b.holds(P) for b in done):
+            continue
+        if not validate_path(world, P, clearance):
+            continue
+        kept.append(P)
+        done.append(Band(world, P, separation))
+        raw_done.append(Band(world, R, separation))
+        if len(kept) == count:
+            break
+    return kept
+
+
 def tube_grid(world, seed, radius: float, clearance: float = 0.0, resolution: float | None = None) -> GridMap:
     """The search grid of the tube: cells outside ``radius`` metres of ``seed`` blocked.
 
@@ -247,11 +338,11 @@ def tube_grid(world, seed, radius: float, clearance: float = 0.0, resolution: fl
     P = np.asarray(seed, float)
     if hasattr(world, "occ"):
         base = world.inflate(clearance) if clearance > 0 else world
-        mask = _cells_within(base.width, base.height, base.resolution, base.origin, P, radius)
+        mask = cells_within(base.width, base.height, base.resolution, base.origin, P, radius)
         return GridMap(base.occ | ~mask, base.resolution, base.origin, f"{world.name} tube {radius:g} m")
     h = raster_step(world, resolution)
     raster = rasterise_circles(world, h, clearance, within=(P, radius))
-    mask = _cells_within(raster.width, raster.height, h, raster.origin, P, radius)
+    mask = cells_within(raster.width, raster.height, h, raster.origin, P, radius)
     return GridMap(raster.occ | ~mask, h, raster.origin, f"{world.name} tube {radius:g} m")
 
 
@@ -276,8 +367,6 @@ def tube_path(world, seed, radius: float, clearance: float = 0.0, resolution: fl
         through the centres of the start and goal cells, joined to the real end points.
     """
     t0 = time.perf_counter()
-    from .graph import visibility_path
-
     r = float(radius)
     if not np.isfinite(r) or r <= 0:
         raise ParameterError(f"tube radius must be a positive number of metres, got {radius!r}")

@@ -11,17 +11,37 @@ exact rule, int64-exact for corners and cell centres — says it is free. A* wit
 the Euclidean heuristic over this graph, generating edges lazily as nodes are
 expanded, gives the exact optimum.
 
-Modes: ``points="centres"`` puts start and goal at the centres of their cells
-(what the metaheuristics produce); ``points="corners"`` takes them as lattice
-vertices (the Anya / GPPC benchmark convention).
+Start and goal are used exactly as given: they are nodes 0 and 1 of the
+graph, joined to any corner they see (a taut path may leave them in any
+direction), so the length is the exact any-angle optimum between the requested
+points. ``points="centres"`` / ``"corners"`` only check that the points follow
+that convention (cell centres, as the metaheuristics produce; lattice vertices,
+as the Anya / GPPC benchmarks use); nothing is moved.
+
+Memory: every ``segments_free`` call gets a batch of segments whose total
+length is bounded (:data:`SPAN_BUDGET` cells), and the samples of the cheap
+rejection come in blocks (:data:`SAMPLE_BUDGET`), so memory is linear in the
+number of corners; no allocation grows with the product of the number of
+corners and the map size.
+
+Speed: at an expanded corner only taut continuations are candidates (the
+blocked cell inside the turn, :func:`_taut`), and candidates that a sample
+shows to cross a blocked cell are dropped before the exact rule runs
+(:func:`_surely_blocked`); both prunings keep the search exact.
 """
 from __future__ import annotations
 
+import heapq
+
 import numpy as np
-from ...errors import InfeasibleQueryError
+
+from ...errors import InfeasibleQueryError, ParameterError
 from ...world.geometry import segments_free
 
-_CHUNK = 200_000  # candidate pairs checked per call, to bound memory
+# cells of segment length (|dx| + |dy| + 2 per segment) checked per segments_free call: the
+# rule's work arrays hold about that many entries, so this bounds them (~10 int64 arrays)
+SPAN_BUDGET = 1_000_000
+POINT_MODES = ("exact", "centres", "corners")
 
 
 def convex_corners(grid) -> tuple[np.ndarray, np.ndarray]:
@@ -48,25 +68,164 @@ def _tangent(d: np.ndarray, quadrant: np.ndarray) -> np.ndarray:
     return axis | ~(same | opposite)
 
 
-def _visible_pairs(grid, P: np.ndarray, I: np.ndarray, J: np.ndarray) -> np.ndarray:
-    ok = np.zeros(len(I), dtype=bool)
-    for a in range(0, len(I), _CHUNK):
-        b = a + _CHUNK
-        ok[a:b] = segments_free(grid, grid.to_world(P[I[a:b]]), grid.to_world(P[J[a:b]]))
+def segments_free_chunked(grid, A: np.ndarray, B: np.ndarray, clearance: float = 0.0) -> np.ndarray:
+    """``segments_free(grid, A, B, clearance)`` (metres) in batches of at most
+    :data:`SPAN_BUDGET` cells of total segment length, so memory stays bounded."""
+    n = len(A)
+    ok = np.zeros(n, dtype=bool)
+    if n == 0:
+        return ok
+    span = np.abs(grid.to_grid(B) - grid.to_grid(A)).sum(axis=1) + 2.0
+    if clearance > 0:
+        span += 4.0 * clearance / grid.resolution * (1.0 + np.abs(grid.to_grid(B) - grid.to_grid(A)).max(axis=1))
+    edges = np.searchsorted(np.cumsum(span), np.arange(1, int(span.sum() // SPAN_BUDGET) + 1) * SPAN_BUDGET)
+    for lo, hi in zip(np.concatenate([[0], edges]), np.concatenate([edges, [n]])):
+        if hi > lo:
+            ok[lo:hi] = segments_free(grid, A[lo:hi], B[lo:hi], clearance)
     return ok
 
 
-def _astar_over_corners(grid, P: np.ndarray, Q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+class _EdgeRule:
+    """The segment rule for the graph's edges, nodes 0 and 1 being start and goal.
+
+    Without clearance, edges between corners are integer-exact; edges at an end point
+    are checked by :meth:`end_segments_free`. With a clearance every edge is checked by
+    the exact rule with that clearance (no node then lies on a cell boundary).
+    """
+
+    def __init__(self, grid, clearance: float = 0.0):
+        self.grid, self.clearance = grid, float(clearance)
+
+    def check(self, P: np.ndarray, u: int, J: np.ndarray) -> np.ndarray:
+        """Visibility from node ``u`` to nodes ``J`` (grid units)."""
+        ok = np.zeros(len(J), dtype=bool)
+        at_end = (J < 2) | (u < 2)
+        if self.clearance > 0:
+            at_end[:] = False
+        if (~at_end).any():
+            A = self.grid.to_world(np.broadcast_to(P[u], (int((~at_end).sum()), 2)))
+            ok[~at_end] = segments_free_chunked(self.grid, A, self.grid.to_world(P[J[~at_end]]), self.clearance)
+        if at_end.any():
+            sel = np.nonzero(at_end)[0]
+            end = np.where(J[sel] < 2, J[sel], u)
+            other = np.where(J[sel] < 2, u, J[sel])
+            ok[sel] = self.end_segments_free(P[end], P[other])
+        return ok
+
+    def end_segments_free(self, E: np.ndarray, V: np.ndarray) -> np.ndarray:
+        """The rule (no clearance) for segments from end points ``E`` to nodes ``V`` (grid units).
+
+        A segment from a point off the half-cell lattice to a cell corner ends at the
+        corner of a blocked cell, and the rule's float arithmetic may put the last
+        1e-16 of it inside that cell. So a segment that reaches a lattice vertex ``v``
+        off an axis is split where it is surely inside the cell next to ``v``: the piece
+        from ``v`` lies in that open cell (it must be free), the rest is checked by the
+        rule away from any cell boundary.
+        """
+        A, B = self.grid.to_world(E), self.grid.to_world(V)
+        d = E - V
+        split = np.all(V == np.round(V), axis=1) & np.all(d != 0, axis=1) & ~np.all(2 * E == np.round(2 * E), axis=1)
+        ok = np.zeros(len(E), dtype=bool)
+        if (~split).any():
+            ok[~split] = segments_free_chunked(self.grid, A[~split], B[~split])
+        if split.any():
+            k = np.nonzero(split)[0]
+            dk, vk = d[k], V[k]
+            t = 0.5 * np.minimum(1.0, 1.0 / np.abs(dk).max(axis=1))   # half way to the first lattice line
+            cell = (vk + np.where(dk > 0, 0, -1)).astype(np.int64)     # the cell next to v towards the end
+            mid = self.grid.to_world(vk + t[:, None] * dk)
+            ok[k] = ~self.grid.blocked_cells(cell) & segments_free_chunked(self.grid, A[k], mid)
+        return ok
+
+
+def corner_nodes(grid, clearance: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+    """Graph nodes (grid units) and their blocked quadrants: the convex corners, or with a
+    clearance ``c`` the corners of the blocked cells grown by ``c`` as squares (each convex
+    corner moved ``c`` away from its blocked cell along both axes), kept where they keep
+    ``c`` from every obstacle and the border."""
+    corners, quad = convex_corners(grid)
+    if clearance <= 0 or len(corners) == 0:
+        return corners, quad
+    nodes = corners - quad * (clearance / grid.resolution)
+    keep = grid.is_free(grid.to_world(nodes), clearance)
+    return nodes[keep], quad[keep]
+
+
+def _taut(a: np.ndarray, b: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """Whether the path ``p -> u -> v`` can be locally shortest at corner ``u``: the blocked
+    cell (diagonal direction ``w`` from ``u``) lies inside the turn, between the rays back
+    to ``p`` (``a = p - u``) and on to ``v`` (rows of ``b = v - u``); a straight pass is kept.
+
+    Pruning the other edges at expansion is exact: if ``p -> u -> v`` bends the wrong
+    way, cutting the corner is shorter, so ``v`` is reached more cheaply without ``u``,
+    whichever of ``u``'s shortest predecessors is recorded (they all arrive at the same
+    cost)."""
+    cab = a[0] * b[:, 1] - a[1] * b[:, 0]
+    caw = a[0] * w[1] - a[1] * w[0]
+    cwb = w[0] * b[:, 1] - w[1] * b[:, 0]
+    inside = (np.sign(caw) == np.sign(cab)) & (np.sign(cwb) == np.sign(cab)) & (cab != 0)
+    straight = (cab == 0) & (a[0] * b[:, 0] + a[1] * b[:, 1] < 0)
+    return inside | straight
+
+
+# distances (cells) from the expanded node at which candidate segments are sampled: every
+# half cell up to 8 cells, then sparser (clutter blocks most candidates near the node)
+SAMPLE_STEPS = np.r_[np.arange(0.5, 8.01, 0.5), np.arange(9.0, 16.01, 1.0), 2.0 ** np.arange(4.5, 11.01, 0.5)]
+SAMPLE_BUDGET = 1_000_000  # sample points per block
+SAMPLE_STAGES = ((0.0, 3.0), (3.0, 8.5), (8.5, 32.0), (32.0, np.inf))
+
+
+def _surely_blocked(grid, origin: np.ndarray, D: np.ndarray, length: np.ndarray) -> np.ndarray:
+    """A cheap, safe rejection: a point of the segment ``origin + t D`` (``0 < t < 1``),
+    at one of :data:`SAMPLE_STEPS` cells from ``origin``, lies inside a blocked cell at
+    least 1e-6 cells from its border, so the segment enters a blocked interior whatever
+    the rounding. Segments it does not reject still get the exact rule. The steps are
+    tried in stages (near ones first, on every candidate; farther ones on the survivors),
+    each stage one vectorised lookup, in blocks of :data:`SAMPLE_BUDGET` samples."""
+    out = np.zeros(len(D), dtype=bool)
+    live = np.arange(len(D))
+    for lo, hi in SAMPLE_STAGES:
+        S = SAMPLE_STEPS[(SAMPLE_STEPS >= lo) & (SAMPLE_STEPS < hi)]
+        live = live[length[live] > lo + 1e-6] if len(live) else live
+        if len(S) == 0 or len(live) == 0:
+            continue
+        step = max(1, SAMPLE_BUDGET // len(S))
+        for a in range(0, len(live), step):
+            k = live[a:a + step]
+            out[k] = _sample_hits(grid, origin, D[k], length[k], S)
+        live = live[~out[live]]
+    return out
+
+
+def _sample_hits(grid, origin, D, length, S) -> np.ndarray:
+    t = S[None, :] / length[:, None]                      # (m, s); length > 0 here
+    on = t < 1.0 - 1e-9
+    qx = origin[0] + t * D[:, 0:1]
+    qy = origin[1] + t * D[:, 1:2]
+    cx, cy = np.floor(qx), np.floor(qy)
+    fx, fy = qx - cx, qy - cy
+    deep = on & (fx > 1e-6) & (fx < 1 - 1e-6) & (fy > 1e-6) & (fy < 1 - 1e-6)
+    pad = grid.padded  # padded[iy + 1, ix + 1]; samples lie in the map, clipping only guards rounding
+    ix = np.clip(cx.astype(np.int64) + 1, 0, grid.width + 1)
+    iy = np.clip(cy.astype(np.int64) + 1, 0, grid.height + 1)
+    return np.any(deep & pad[iy, ix], axis=1)
+
+
+def _astar_over_corners(rule: _EdgeRule, P: np.ndarray, Q: np.ndarray,
+                        bound: float = np.inf) -> tuple[np.ndarray, np.ndarray]:
     """A* from node 0 to node 1 over the corner visibility graph with lazy edges.
 
     Edges out of a node are generated only when it is expanded: every open node
-    whose line from it is tangent at both ends (quadrant ``(0, 0)`` = any direction)
-    and whose tentative cost can still improve is checked in one vectorised
-    ``segments_free`` call. The Euclidean heuristic is consistent, so the first
-    time the goal is expanded its distance is optimal.
-    """
-    import heapq
+    whose line from it is tangent at both ends (quadrant ``(0, 0)`` = any direction),
+    that makes a taut turn at the expanded corner (:func:`_taut`) and whose tentative
+    cost can still improve is a candidate; candidates that a few samples show to cut
+    a blocked cell are dropped (:func:`_surely_blocked`) and the rest are checked in
+    one vectorised ``segments_free`` call. The Euclidean heuristic is consistent, so
+    the first time the goal is expanded its distance is optimal.
 
+    ``bound`` (grid units): the length of a known path from start to goal; a node whose
+    ``f = g + h`` exceeds it cannot be on a shortest path, so it is not made a candidate.
+    """
     n = len(P)
     dist = np.full(n, np.inf)
     pred = np.full(n, -1, dtype=np.int64)
@@ -75,6 +234,11 @@ def _astar_over_corners(grid, P: np.ndarray, Q: np.ndarray) -> tuple[np.ndarray,
     dist[0] = 0.0
     heap = [(h[0], 0)]
     anydir = np.all(Q == 0, axis=1)
+    # the corners (nodes 2..) are sorted by x: with a bound, the candidates of a node lie in
+    # the ellipse |v - u| + |v - goal| <= bound - dist[u], inside an x-range of the corners
+    xs = P[2:, 0]
+    assert np.all(xs[:-1] <= xs[1:]), "corners must be sorted by x"
+    ends = np.array([0, 1])
     while heap:
         _, u = heapq.heappop(heap)
         if closed[u]:
@@ -82,18 +246,30 @@ def _astar_over_corners(grid, P: np.ndarray, Q: np.ndarray) -> tuple[np.ndarray,
         closed[u] = True
         if u == 1:
             break
-        d = P - P[u]
+        if np.isfinite(bound):
+            a = 0.5 * (bound - dist[u]) * (1 + 1e-12) + 1e-9
+            cx = 0.5 * (P[u, 0] + P[1, 0])
+            lo, hi = 2 + np.searchsorted(xs, cx - a, "left"), 2 + np.searchsorted(xs, cx + a, "right")
+        else:
+            lo, hi = 2, n
+        idx = np.concatenate([ends, np.arange(lo, hi)])
+        d = P[idx] - P[u]
         step = np.hypot(d[:, 0], d[:, 1])
-        cand = ~closed & (dist[u] + step < dist)
+        reach = dist[u] + step
+        keep = ~closed[idx] & (reach < dist[idx]) & (reach + h[idx] <= bound * (1 + 1e-12) + 1e-9)
+        J, d, step = idx[keep], d[keep], step[keep]
         if not anydir[u]:
-            cand &= _tangent(d, np.broadcast_to(Q[u], d.shape))
-        cand &= anydir | _tangent(d, Q)
-        J = np.nonzero(cand)[0]
+            k = _tangent(d, np.broadcast_to(Q[u], d.shape))
+            if pred[u] >= 0:
+                k[k] = _taut(P[pred[u]] - P[u], d[k], Q[u])
+            J, d, step = J[k], d[k], step[k]
+        k = anydir[J] | _tangent(d, Q[J])
+        k[k] = ~_surely_blocked(rule.grid, P[u], d[k], step[k])
+        J, step = J[k], step[k]
         if J.size == 0:
             continue
-        vis = _visible_pairs(grid, P, np.full(J.size, u), J)
-        J = J[vis]
-        nd = dist[u] + step[J]
+        k = rule.check(P, u, J)
+        J, nd = J[k], dist[u] + step[k]
         better = nd < dist[J]
         J, nd = J[better], nd[better]
         dist[J] = nd
@@ -103,36 +279,72 @@ def _astar_over_corners(grid, P: np.ndarray, Q: np.ndarray) -> tuple[np.ndarray,
     return dist, pred
 
 
-def visibility_path(grid, start, goal, points: str = "centres"):
-    """Exact any-angle shortest path between two points given in world metres.
+def _check_mode(grid, points: str, ends) -> None:
+    if points not in POINT_MODES:
+        raise ParameterError(f"points must be one of {', '.join(POINT_MODES)}, got {points!r}")
+    if points == "exact":
+        return
+    for p, what in zip(ends, ("start", "goal")):
+        q = grid.to_grid(p)
+        snapped = np.floor(q) + 0.5 if points == "centres" else np.round(q)
+        if not np.allclose(q, snapped, rtol=0.0, atol=1e-9):
+            where = "the centre of a cell" if points == "centres" else "a lattice vertex (a cell corner)"
+            raise ParameterError(
+                f"points={points!r}: the {what} ({p[0]:g}, {p[1]:g}) is not {where}; start and goal are never "
+                f"moved, so pass {tuple(float(v) for v in grid.to_world(snapped))} or points='exact'")
 
-    In centre mode the points are moved to the centres of their cells; in corner
-    mode they must be lattice vertices (rounded to the nearest one). Returns
-    ``(path_in_metres, length_in_metres)``; raises InfeasibleQueryError if the goal
-    cannot be reached.
+
+def _upper_bound(grid, s, g, clearance: float) -> float:
+    """Length (grid units) of the A* path over cell centres, a free any-angle path, so no
+    longer than the optimum without clearance; ``inf`` with a clearance (the corner graph
+    of the grown cells can be longer than that path) or when A* finds none."""
+    if clearance > 0:
+        return np.inf
+    from .astar import cell_path
+
+    try:
+        return cell_path(grid, s, g).length / grid.resolution
+    except InfeasibleQueryError:
+        return np.inf
+
+
+def visibility_path(grid, start, goal, points: str = "exact", *, clearance: float = 0.0):
+    """Shortest any-angle path between two points given in world metres.
+
+    The path starts at ``start`` and ends at ``goal`` exactly. ``points`` ("exact",
+    "centres" or "corners") only checks that the points follow that convention.
+
+    Without clearance the length is the exact any-angle optimum. With ``clearance``
+    (metres) the nodes are the corners of the blocked cells grown by it as squares
+    (:func:`corner_nodes`) and every edge is checked by the exact rule with that
+    clearance: the path keeps the clearance, and it is longer than the true optimum
+    around discs of that radius by at most the corners' cut (and it can miss a
+    passage that only a diagonal gap just wider than twice the clearance leaves).
+
+    Returns ``(path_in_metres, length_in_metres)``; raises InfeasibleQueryError if the goal
+    cannot be reached, ParameterError for a point off the requested convention.
     """
-    gs, gg = grid.to_grid(start), grid.to_grid(goal)
-    if points == "centres":
-        gs, gg = np.floor(gs) + 0.5, np.floor(gg) + 0.5
-    elif points == "corners":
-        gs, gg = np.round(gs), np.round(gg)
-    else:
-        from ...errors import ParameterError
-
-        raise ParameterError(f"points must be 'centres' or 'corners', got {points!r}")
-    corners, quad = convex_corners(grid)
-    if segments_free(grid, grid.to_world(gs), grid.to_world(gg)):
-        path = grid.to_world(np.stack([gs, gg]))
-        return path, float(np.hypot(*(gg - gs))) * grid.resolution
-    # node 0 = start, 1 = goal, 2.. = convex corners; the end points take any direction
-    P = np.vstack([gs, gg, corners])
+    s, g = np.asarray(start, float), np.asarray(goal, float)
+    _check_mode(grid, points, (s, g))
+    rule = _EdgeRule(grid, clearance)
+    if bool(segments_free(grid, s, g, rule.clearance)):
+        return np.stack([s, g]), float(np.hypot(*(g - s)))
+    nodes, quad = corner_nodes(grid, rule.clearance)
+    order = np.argsort(nodes[:, 0], kind="stable")
+    nodes, quad = nodes[order], quad[order]
+    # node 0 = start, 1 = goal, 2.. = corners; the end points take any direction
+    P = np.vstack([grid.to_grid(s), grid.to_grid(g), nodes])
     Q = np.vstack([[0, 0], [0, 0], quad])
-    dist, pred = _astar_over_corners(grid, P, Q)
+    dist, pred = _astar_over_corners(rule, P, Q, _upper_bound(grid, s, g, rule.clearance))
     if not np.isfinite(dist[1]):
-        raise InfeasibleQueryError("the goal is unreachable from the start (no free any-angle path); "
-                                   "check the map or choose another goal")
+        raise InfeasibleQueryError(
+            "the goal is unreachable from the start (no free any-angle path"
+            + (f" over the corners of the obstacles grown by the clearance {clearance:g} m as squares; "
+               "A* over cell centres may still find one" if rule.clearance > 0 else "")
+            + "); check the map or choose another goal")
     chain = [1]
     while chain[-1] != 0:
         chain.append(int(pred[chain[-1]]))
     path = grid.to_world(P[chain[::-1]])
+    path[0], path[-1] = s, g  # the very input values, not a round trip through grid units
     return path, float(dist[1]) * grid.resolution

@@ -4,10 +4,18 @@
 (``iy * width + ix``) or ``-1`` when that move is not allowed: the target is
 blocked or outside, or (without corner cutting) the move is diagonal and one
 of the two side cells is blocked. ``step_length[k]`` is 1 or sqrt(2) cells.
+
+The table is built once per map (and per corner-cutting rule and clearance) and
+cached on the map. Graph search reads two forms of it that are derived once per
+table, never per query: :attr:`MoveTable.masks` (one byte of allowed directions
+per cell, with :attr:`MoveTable.moves_by_mask` listing the ``(flat offset,
+step)`` pairs of each of the 256 bytes), for the scalar A* loop, and
+:attr:`MoveTable.csr`, the sparse adjacency matrix for scipy's compiled searches.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -26,6 +34,40 @@ class MoveTable:
         """Flat indices -> integer cells ``(ix, iy)``."""
         flat = np.asarray(flat)
         return np.stack([flat % self.width, flat // self.width], axis=-1)
+
+    @cached_property
+    def masks(self) -> bytes:
+        """Byte ``c``: bit ``k`` set when move ``k`` out of flat cell ``c`` is allowed
+        (one byte per cell; indexing ``bytes`` gives a Python int without conversion)."""
+        bits = (self.neighbours >= 0).astype(np.uint8) << np.arange(8, dtype=np.uint8)
+        return np.bitwise_or.reduce(bits, axis=1).astype(np.uint8).tobytes()
+
+    @cached_property
+    def moves_by_mask(self) -> tuple[tuple[tuple[int, float], ...], ...]:
+        """For each of the 256 masks, the allowed moves as ``(flat offset, step in cells)``.
+
+        Allowed moves never leave the map, so ``c + offset`` is the target cell."""
+        moves = [(int(dx + dy * self.width), float(w)) for (dx, dy), w in zip(OFFSETS.tolist(), self.step_length)]
+        return tuple(tuple(moves[k] for k in range(8) if m >> k & 1) for m in range(256))
+
+    @cached_property
+    def octile_window(self) -> np.ndarray:
+        """``(2 height - 1, 2 width - 1)`` octile distances (li2023 eq 12) from the middle
+        entry, in cells: the heuristic towards goal cell ``(ax, ay)`` of every cell is the
+        window ``[height - 1 - ay :][: height, width - 1 - ax :][:, : width]``, one slice
+        per query. Written ``(dx + dy) + (sqrt 2 - 2) min(dx, dy)``, as the A* loop wrote it."""
+        dx = np.abs(np.arange(-(self.width - 1), self.width))[None, :]
+        dy = np.abs(np.arange(-(self.height - 1), self.height))[:, None]
+        return (dx + dy) + (np.sqrt(2.0) - 2.0) * np.minimum(dx, dy)
+
+    @cached_property
+    def csr(self):
+        """``(n_cells, n_cells)`` scipy CSR matrix of the allowed moves, weights in cells."""
+        from scipy.sparse import csr_matrix
+
+        src, k = np.nonzero(self.neighbours >= 0)
+        n = self.width * self.height
+        return csr_matrix((self.step_length[k], (src, self.neighbours[src, k])), shape=(n, n))
 
 
 def move_table(grid, corner_cutting: bool = False, clearance: float = 0.0) -> MoveTable:
