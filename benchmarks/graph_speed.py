@@ -275,6 +275,10 @@ def visibility_table(quick: bool, timeout: float) -> None:
     print("| map | size | time [s] | peak memory growth [MB] | length [m] | feasible |")
     print("|---|---|---|---|---|---|")
     ctx = mp.get_context("fork")
+    # import what the queries import lazily (scipy.spatial for the clearance metric, ...)
+    # before forking, so that no child's time includes a first import
+    shortest_path(op.GridMap(np.arange(9).reshape(3, 3) == 4), (0.5, 0.5), (2.5, 2.5), method="visibility")
+    shortest_path(op.CircleWorld((0, 0, 4, 4), [(2, 2, 1)]), (0.1, 0.1), (3.9, 3.9), method="visibility")
     for name, world, s, g in visibility_cases(quick):
         size = f"{world.width}x{world.height}" if hasattr(world, "occ") else f"{world.bounds[2]:g} m square"
         here, there = ctx.Pipe(duplex=False)
