@@ -29,7 +29,6 @@ from __future__ import annotations
 import argparse
 import math
 import time
-import tracemalloc
 from pathlib import Path
 
 import numpy as np
@@ -239,27 +238,47 @@ def visibility_cases(quick: bool):
         yield f"{len(c)} circles", op.CircleWorld((0, 0, side, side), c), (0.2, 0.2), (side - 0.2, side - 0.2)
 
 
+def _rss_kib(field: str) -> int | None:
+    """``VmRSS`` / ``VmHWM`` of this process in KiB (Linux), or None."""
+    try:
+        with open("/proc/self/status") as fh:
+            for line in fh:
+                if line.startswith(field + ":"):
+                    return int(line.split()[1])
+    except OSError:
+        return None
+    return None
+
+
 def _visibility_run(world, s, g, conn) -> None:
-    """In a child process: one cold visibility query, its time and traced peak memory."""
+    """In a child process: one cold visibility query, its time and the growth of the peak
+    resident memory over the child's start (tracemalloc would slow numpy-heavy code)."""
     world._cache.clear()
-    tracemalloc.start()
+    start = _rss_kib("VmRSS")
     t0 = time.perf_counter()
     try:
         r = shortest_path(world, s, g, method="visibility")
         out = (f"{r.length:.4f}", str(r.feasible))
     except op.OptplanError as exc:
         out = (f"{type(exc).__name__}: {exc}", "-")
-    conn.send((time.perf_counter() - t0, tracemalloc.get_traced_memory()[1]) + out)
+    t = time.perf_counter() - t0
+    peak = _rss_kib("VmHWM")
+    conn.send((t, None if start is None or peak is None else (peak - start) * 1024) + out)
 
 
 def visibility_table(quick: bool, timeout: float) -> None:
     import multiprocessing as mp
 
     print("\n## Exact any-angle search (method=\"visibility\"), cold, one query per map\n")
-    print(f"each query in its own process, stopped after {timeout:g} s; memory = peak traced by tracemalloc\n")
-    print("| map | size | time [s] | peak traced memory [MB] | length [m] | feasible |")
+    print(f"each query in its own process (forked), stopped after {timeout:g} s; memory = growth of the "
+          "process's peak resident set (VmHWM) over its start\n")
+    print("| map | size | time [s] | peak memory growth [MB] | length [m] | feasible |")
     print("|---|---|---|---|---|---|")
     ctx = mp.get_context("fork")
+    # import what the queries import lazily (scipy.spatial for the clearance metric, ...)
+    # before forking, so that no child's time includes a first import
+    shortest_path(op.GridMap(np.arange(9).reshape(3, 3) == 4), (0.5, 0.5), (2.5, 2.5), method="visibility")
+    shortest_path(op.CircleWorld((0, 0, 4, 4), [(2, 2, 1)]), (0.1, 0.1), (3.9, 3.9), method="visibility")
     for name, world, s, g in visibility_cases(quick):
         size = f"{world.width}x{world.height}" if hasattr(world, "occ") else f"{world.bounds[2]:g} m square"
         here, there = ctx.Pipe(duplex=False)
@@ -267,7 +286,8 @@ def visibility_table(quick: bool, timeout: float) -> None:
         proc.start()
         if here.poll(timeout):
             t, peak, length, feasible = here.recv()
-            print(f"| {name} | {size} | {t:.3f} | {peak / 2**20:.0f} | {length} | {feasible} |", flush=True)
+            mem = "-" if peak is None else f"{peak / 2**20:.0f}"
+            print(f"| {name} | {size} | {t:.3f} | {mem} | {length} | {feasible} |", flush=True)
         else:
             print(f"| {name} | {size} | > {timeout:g} (stopped) | - | - | - |", flush=True)
         proc.kill()
