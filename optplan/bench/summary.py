@@ -202,19 +202,9 @@ def summary_tables(res: ExperimentResults, metric: str | None = None) -> list[Ta
             if with_gap:
                 cells += ([f"{100 * (vals.min() / optimum - 1):.2f}", f"{100 * (vals.mean() / optimum - 1):.2f}"]
                           if len(vals) else ["-", "-"])
-            ref = res.reference_group(g)
-            if ref is not None:
-                if ref == g or ref not in groups:
-                    cells += ["-", "ref" if ref == g else "-"]
-                else:
-                    # chen2025 Table 7 convention: '+' means the reference is significantly better
-                    p, sign = compare(res.values(groups[ref], metric), vals, spec.alpha)
-                    cells += ["-" if not np.isfinite(p) else f"{p:.3g}", sign]
-                    counts = tally.setdefault(name, {"+": 0, "=": 0, "-": 0})
-                    if sign == TOO_FEW:
-                        too_few = True
-                    else:
-                        counts[sign] += 1
+            ref_cells, few = _reference_cells(res, groups, g, name, vals, metric, spec.alpha, tally)
+            cells += ref_cells
+            too_few |= few
             table.rows.append(cells)
         if optimum is not None:
             table.notes.append(f"exact optimum (any-angle, same start/goal): {optimum:.4f} m")
@@ -268,18 +258,9 @@ def program_tables(res: ExperimentResults, metric: str | None = None) -> list[Ta
             cells = [name, f"{stored}/{len(recs)}", str(failed), f"{ok}/{stored}",
                      _fmt(float(vals.min())) if len(vals) else "-", _fmt(float(np.median(vals))) if len(vals) else "-",
                      f"{np.median(times):.3f}" if len(times) else "-", f"{np.median(nfev):.0f}" if len(nfev) else "-"]
-            ref = res.reference_group(g)
-            if ref is not None:
-                if ref == g or ref not in groups:
-                    cells += ["-", "ref" if ref == g else "-"]
-                else:
-                    p, sign = compare(res.values(groups[ref], metric), vals, spec.alpha)
-                    cells += ["-" if not np.isfinite(p) else f"{p:.3g}", sign]
-                    counts = tally.setdefault(name, {"+": 0, "=": 0, "-": 0})
-                    if sign == TOO_FEW:
-                        too_few = True
-                    else:
-                        counts[sign] += 1
+            ref_cells, few = _reference_cells(res, groups, g, name, vals, metric, spec.alpha, tally)
+            cells += ref_cells
+            too_few |= few
             table.rows.append(cells)
         program = spec.program.get("program", "?")
         args = spec.program.get("args") or {}
@@ -315,3 +296,21 @@ def format_summary(res: ExperimentResults, fmt: str = "markdown", metric: str | 
     if res.missing:
         parts.append(f"({res.missing} of {len(res.records)} runs are not in the database yet; rerun to complete)")
     return "\n".join(parts)
+
+
+def _reference_cells(res, groups, g, name, vals, metric, alpha, tally) -> tuple[list[str], bool]:
+    """The p-value and sign cells of group ``g`` against its reference (none when it has no
+    reference), counting the sign in ``tally[name]``; also whether the groups were too small
+    to ever reach ``alpha``. chen2025 Table 7 convention: '+' means the reference is
+    significantly better."""
+    ref = res.reference_group(g)
+    if ref is None:
+        return [], False
+    if ref == g or ref not in groups:
+        return ["-", "ref" if ref == g else "-"], False
+    p, sign = compare(res.values(groups[ref], metric), vals, alpha)
+    counts = tally.setdefault(name, {"+": 0, "=": 0, "-": 0})
+    if sign == TOO_FEW:
+        return ["-" if not np.isfinite(p) else f"{p:.3g}", sign], True
+    counts[sign] += 1
+    return ["-" if not np.isfinite(p) else f"{p:.3g}", sign], False
