@@ -117,7 +117,6 @@ def clearance_rows(P: Sym, ctx, clearance: float, per_segment: int, sym, shapes:
     ax, ay, bx, by = m[:-1, 0], m[:-1, 1], m[1:, 0], m[1:, 1]
     S = P.shape[0] - 1
     qx, qy = sample_points(P, per_segment)
-    M = qx.shape[0]
     xmin, ymin, xmax, ymax = ctx.world.bounds
     blocks = {"border": 1, "need": 1}
     if ctx.is_grid:

@@ -28,6 +28,7 @@ from typing import Callable
 
 import numpy as np
 
+from ..checks import integer
 from ..errors import ParameterError
 from .namespaces import BATCHED, SYMBOLIC, Batch, Sym
 
@@ -274,8 +275,6 @@ class PathTerm(Expr):
             else self.fn(Batch(P), BATCHED, ctx)
         a = out.a if isinstance(out, Batch) else np.broadcast_to(np.asarray(out, float), (len(P),))
         a = np.asarray(a, dtype=float)
-        if a.ndim == 1 and self.is_vector is None:
-            pass
         if a.ndim > 2 or (self.vector and a.ndim != 2) or (not self.vector and a.ndim != 1):
             want = "one vector per path" if self.vector else "one number per path"
             raise ParameterError(f"term {self.name!r} must give {want}; it gave per-path shape {a.shape[1:]} "
@@ -472,10 +471,7 @@ class Clearance(Expr):
 
 def clearance(per_segment: int | None = None) -> Expr:
     """Signed distance to obstacles along the path (see :class:`Clearance`)."""
-    if per_segment is not None and (isinstance(per_segment, bool) or not isinstance(per_segment, (int, np.integer))
-                                    or per_segment < 1):
-        raise ParameterError(f"per_segment must be an integer >= 1, got {per_segment!r}")
-    return Clearance(per_segment)
+    return Clearance(integer(1, optional=True)("per_segment", per_segment))
 
 
 # ------------------------------------------------------------------ constraints

@@ -48,8 +48,6 @@ class Batch:
     def __getitem__(self, idx):
         if not isinstance(idx, tuple):
             idx = (idx,)
-        if any(i is Ellipsis for i in idx):
-            return Batch(self.a[(slice(None),) + idx])
         return Batch(self.a[(slice(None),) + idx])
 
     @property
@@ -143,6 +141,15 @@ def _binary(fn):
     return f
 
 
+def _population_arrays(items):
+    """The items as arrays with the population axis first (constants repeated over it), or
+    ``None`` when no item is a :class:`Batch`."""
+    n = next((i.a.shape[0] for i in items if isinstance(i, Batch)), None)
+    if n is None:
+        return None
+    return [i.a if isinstance(i, Batch) else np.broadcast_to(np.asarray(i), (n,) + np.shape(i)) for i in items]
+
+
 def _reduction(fn):
     """``fn`` (a numpy reduction) over per-path axes of a :class:`Batch`."""
     def reduce(x, axis=None):
@@ -209,24 +216,17 @@ class BatchNamespace:
     @staticmethod
     def stack(items, axis=-1):
         """Stack per-path arrays of equal shape along a new per-path ``axis``."""
-        arrs = [_raw(i) for i in items]
-        if not any(isinstance(i, Batch) for i in items):
-            return np.stack(arrs, axis=axis)
-        n = next(i.a.shape[0] for i in items if isinstance(i, Batch))
-        arrs = [a if isinstance(i, Batch) else np.broadcast_to(np.asarray(a), (n,) + np.shape(a))
-                for a, i in zip(arrs, items)]
-        nd = arrs[0].ndim  # with the population axis
-        ax = axis + 1 if axis >= 0 else nd + 1 + axis
+        arrs = _population_arrays(items)
+        if arrs is None:
+            return np.stack([np.asarray(i) for i in items], axis=axis)
+        ax = axis + 1 if axis >= 0 else arrs[0].ndim + 1 + axis
         return Batch(np.stack(arrs, axis=ax))
 
     @staticmethod
     def concatenate(items, axis=0):
-        arrs = [_raw(i) for i in items]
-        if not any(isinstance(i, Batch) for i in items):
-            return np.concatenate(arrs, axis=axis)
-        n = next(i.a.shape[0] for i in items if isinstance(i, Batch))
-        arrs = [a if isinstance(i, Batch) else np.broadcast_to(np.asarray(a), (n,) + np.shape(a))
-                for a, i in zip(arrs, items)]
+        arrs = _population_arrays(items)
+        if arrs is None:
+            return np.concatenate([np.asarray(i) for i in items], axis=axis)
         ax = axis + 1 if axis >= 0 else arrs[0].ndim + axis
         return Batch(np.concatenate(arrs, axis=ax))
 

@@ -21,14 +21,13 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..checks import integer
 from ..errors import ParameterError
 from .namespaces import Sym
 
 
 def _count(value, what: str, minimum: int = 1) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
-        raise ParameterError(f"{what} must be an integer >= {minimum}, got {value!r}")
-    return int(value)
+    return integer(minimum)(what, value)
 
 
 def resample_path(path: np.ndarray, n: int) -> np.ndarray:
