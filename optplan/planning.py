@@ -1,12 +1,10 @@
 """``op.plan``: one entry point for every global planner (graph search and metaheuristics)."""
 from __future__ import annotations
 
-import importlib
-
 import numpy as np
 
 from .errors import ParameterError, UnknownAlgorithmError
-from .registry import GRAPH_METHODS, algorithms
+from .registry import GRAPH_METHODS
 from .results import PlanResult
 from .world.queries import check_start_goal
 
@@ -14,6 +12,13 @@ REFINE_MODES = (None, "none", "casadi", "qp")
 # planners that exist only on occupancy grids, and why
 GRID_ONLY = {"aco": "ACO walks the grid's cell graph", "iga": "IGA evolves sequences of grid cells",
              "astar": "A* searches the grid's cell graph", "dijkstra": "Dijkstra searches the grid's cell graph"}
+
+
+def global_planner_names() -> list[str]:
+    """Names ``op.plan`` takes as ``algorithm`` (graph search, metaheuristics, ACO, the path GAs)."""
+    from .solvers.paths import algorithm_names
+
+    return sorted(set(GRAPH_METHODS) | set(algorithm_names()))
 
 
 def _checked_clearance(clearance) -> float:
@@ -131,21 +136,24 @@ def plan(world, start, goal, algorithm: str = "astar", refine: str | None = None
         raise ParameterError(f"refine must be one of none, casadi, qp; got {refine!r}")
     refine_options = _checked_refine_options(refine_options)
     start, goal = check_start_goal(world, start, goal, _checked_clearance(clearance))
-    if name in GRID_ONLY and not hasattr(world, "occ"):
+    if name in GRID_ONLY and not world.is_grid:
         raise ParameterError(f"{name!r} needs a grid map ({GRID_ONLY[name]}); on a circle world use "
                              "'visibility' or a metaheuristic such as 'pso', 'ipso' or 'ga'")
+    names = global_planner_names()
+    if name not in names:
+        raise UnknownAlgorithmError(f"unknown path planner {algorithm!r}; known: {', '.join(names)}")
+    from .solvers.catalog import check_plan_options, check_refine_options
+
+    check_plan_options(name, world, params, names)
+    if refine not in (None, "none"):
+        check_refine_options(refine, refine_options)
     if name in GRAPH_METHODS:
         from .solvers.graph import shortest_path
 
         result = shortest_path(world, start, goal, method=name, clearance=clearance, **params)
     else:
-        try:
-            paths = importlib.import_module("optplan.solvers.paths")
-        except ImportError:
-            paths = None
-        if paths is None or name not in paths.algorithm_names():
-            known = ", ".join(algorithms())
-            raise UnknownAlgorithmError(f"unknown path planner {algorithm!r}; known: {known}")
+        from .solvers import paths
+
         if refine not in (None, "none"):
             _request_alternatives(world, refine, refine_options, params)
         result = paths.plan_path(world, start, goal, algorithm=name, seed=seed, pop=pop, iters=iters,

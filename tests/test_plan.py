@@ -78,3 +78,31 @@ def test_column_planners_cannot_beat_the_encodings_exact_optimum():
     for algo in ("ssa", "missa"):
         r = op.plan(world, s, g, algorithm=algo, seed=1, pop=20, iters=30)
         assert r.feasible and r.length >= floor - 1e-9
+
+
+# ---------------------------------------------------------------- option checks (issue 25)
+@pytest.mark.parametrize("kwargs, names", [
+    (dict(algorithm="astar", preset="li2023"), ["'preset'", "astar takes: corner_cutting, points", "gwo"]),
+    (dict(algorithm="iga", lambda1=2.0), ["'lambda1'", "msiar-gwo", "iga takes:"]),
+    (dict(algorithm="aco", encoding="waypoints"), ["'encoding'", "aco takes:"]),
+    (dict(algorithm="missa", max_evals=60, refine="qp", refine_options={"k_nearest": 3}), ["'k_nearest'", "refine='casadi'"]),
+    (dict(algorithm="astar", refine="casadi", refine_options={"k_halfplanes": 3}), ["'k_halfplanes'", "refine='qp'"]),
+    (dict(algorithm="ga", encoding="waypoints", max_evals=60, a_initial=2.0), ["'a_initial'", "gwo"]),
+    (dict(algorithm="astar", n_points=40), ["'n_points'", "refine_options"]),
+])
+def test_plan_options_are_checked_before_any_work(kwargs, names):
+    """Every option a planner or refinement does not take is a ParameterError naming it and
+    where it belongs, raised before planning (no raw TypeError, no silently ignored keyword)."""
+    grid = op.GridMap(np.zeros((8, 8), bool))
+    with pytest.raises(op.ParameterError) as err:
+        op.plan(grid, (0.5, 0.5), (7.5, 7.5), **kwargs)
+    for text in names:
+        assert text in str(err.value)
+
+
+def test_plan_accepts_options_of_every_level():
+    """Options of the entry point, the optimiser, the algorithm and the refinement all pass."""
+    grid = op.GridMap(np.zeros((8, 8), bool))
+    res = op.plan(grid, (0.5, 0.5), (7.5, 7.5), algorithm="gwo", max_evals=120, stagnation=50, a_initial=2.0,
+                  refine="casadi", refine_options={"n_points": 30, "tube_radius": 0})
+    assert res.feasible and res.nfev == 120

@@ -101,7 +101,8 @@ def tube_radius_for(world, method: str, tube_radius=None) -> float:
     return float(DEFAULT_TUBE.get(method, 0.0))
 
 
-def _smoother(method: str):
+def smoother_for(method: str):
+    """The smoothing function behind ``refine=method`` (``casadi``: IPOPT, ``qp``: the corridor QP)."""
     if method == "casadi":
         from .nlp import smooth_path
 
@@ -128,7 +129,7 @@ def refine_path(world, path, method: str = "casadi", clearance: float = 0.0, tub
             the shorter valid result (:func:`optplan.solvers.tube.refine_in_tube`).
         **options: passed to the smoother.
     """
-    smoother = _smoother(method)
+    smoother = smoother_for(method)
     radius = tube_radius_for(world, method, tube_radius)
     if radius == 0:
         return smoother(world, path, clearance, **options)

@@ -8,6 +8,7 @@ allowed, as on grids); the rectangle ``bounds`` is the map border.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import ClassVar
 
 import numpy as np
 
@@ -30,6 +31,7 @@ class CircleWorld:
     safety: float = 0.0
     name: str = ""
     _cache: dict = field(default_factory=dict, repr=False)
+    is_grid: ClassVar[bool] = False   # the World protocol (optplan.world.protocol)
 
     def __post_init__(self) -> None:
         b = np.asarray(self.bounds, dtype=float).reshape(-1)

@@ -8,6 +8,7 @@ outside the map counts as blocked.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import ClassVar
 from functools import cached_property
 
 import numpy as np
@@ -32,6 +33,7 @@ class GridMap:
     origin: tuple[float, float] = (0.0, 0.0)
     name: str = ""
     _cache: dict = field(default_factory=dict, repr=False)
+    is_grid: ClassVar[bool] = True   # the World protocol (optplan.world.protocol)
 
     def __post_init__(self) -> None:
         occ = np.asarray(self.occ)
