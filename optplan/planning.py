@@ -4,6 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from .errors import ParameterError, UnknownAlgorithmError
+from .papers import paper_of_algorithm
 from .registry import GRAPH_METHODS
 from .results import PlanResult
 from .world.queries import check_start_goal
@@ -67,9 +68,7 @@ def _judge_stages(world, start, goal, clearance, name, preset, before, after, re
     from dataclasses import replace
 
     from .formulations.paper_programs import paper_program
-    from .solvers.paths import PAPER_OF
-
-    program_name = preset if isinstance(preset, str) else PAPER_OF.get(name, "length")
+    program_name = preset if isinstance(preset, str) else paper_of_algorithm(name)
     prog = paper_program(program_name, world, start, goal, clearance=clearance)
 
     def record(stage, solver, res):

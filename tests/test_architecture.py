@@ -330,3 +330,22 @@ def test_layer_lookup_takes_the_longest_prefix(module, expected):
 
 if __name__ == "__main__":  # print the offences: python tests/test_architecture.py
     print("\n".join(sorted(offences())))
+
+
+def test_paper_method_table_is_the_one_source():
+    """Every layer's view of a paper's method comes from optplan/papers.py."""
+    from optplan.formulations.paper_programs import PAPER_VARIABLES
+    from optplan.nav.navigator import preset_defaults
+    from optplan.papers import PAPERS, paper_of_algorithm
+    from optplan.solvers.paths import GRID_ENCODING, PAPER_OF, POSTPROCESS, algorithm_names
+
+    for key, p in PAPERS.items():
+        assert POSTPROCESS[key] == p.postprocess
+        assert GRID_ENCODING.get(key, "columns") == p.grid_encoding
+        for a in p.algorithms:
+            assert a in algorithm_names(), f"{key} lists {a}, which is no planner"
+            assert PAPER_OF[a] == key == paper_of_algorithm(a)
+        if p.local_preset:
+            assert preset_defaults(p.local_preset) == (p.subgoals, p.on_blocked)
+    assert PAPER_VARIABLES["yang2023"]().name.startswith("BSpline")
+    assert paper_of_algorithm("no-such-planner") == "length"

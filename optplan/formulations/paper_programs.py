@@ -9,17 +9,16 @@ penalised form).
 from __future__ import annotations
 
 from ..errors import UnknownAlgorithmError
+from ..papers import method_of
 from . import expressions as T
 from .presets import PRESETS, get_preset
 from .program import PathProgram
 from .variables import BSpline, ColumnNodes, Points, Variables
 
-# the variables each paper plans with on grids (circle worlds: always the spline)
-PAPER_VARIABLES = {
-    "hou2024": ColumnNodes, "yuan2021": ColumnNodes, "yuan2021-smooth": ColumnNodes, "li2023": ColumnNodes,
-    "chen2025": ColumnNodes, "length": ColumnNodes,
-    "yang2023": lambda: BSpline(ctrl=3, samples=100),
-}
+# the variables each paper plans with on grids (circle worlds: always the spline), from
+# the table of paper methods (optplan/papers.py)
+GRID_VARIABLES = {"columns": ColumnNodes, "spline": lambda: BSpline(ctrl=3, samples=100)}
+PAPER_VARIABLES = {k: GRID_VARIABLES[method_of(k).grid_encoding] for k in PRESETS}
 
 
 def fitness_expression(preset) -> T.Expr:
@@ -46,7 +45,7 @@ def paper_program(name: str, world, start, goal, variables: Variables | None = N
     if name not in PRESETS:
         raise UnknownAlgorithmError(f"unknown paper program {name!r}; known: {', '.join(sorted(PRESETS))}")
     if variables is None:
-        on_grid = hasattr(world, "occ")
+        on_grid = world.is_grid
         variables = PAPER_VARIABLES.get(name, ColumnNodes)() if on_grid else BSpline(ctrl=3, samples=100)
     prog = program_class(world, start, goal, variables=variables, name=name)
     prog.minimize(fitness_expression(name))

@@ -36,19 +36,15 @@ from collections import deque
 import numpy as np
 
 from ..errors import InfeasibleQueryError, OptplanError, ParameterError
+from ..papers import LOCAL_GUIDANCE, PAPERS, local_guidance
 from ..planning import plan
 from ..results import PlanResult
 from .subgoals import SubgoalStrategy, make_strategy
 
-# each local planner preset's paper default: (subgoal strategy, on_blocked)
-PRESET_DEFAULTS = {
-    "dwa": ("goal", "ignore"),                       # Fox et al. 1997: no global guidance
-    "missa-dwa": ("key_points", "ignore"),           # hou2024 §3.2
-    "idwa": ("navigation_points", "ignore"),         # yang2023 §6
-    "ba-dwa": ("turning_points", "switch"),          # yuan2021 §4.1-4.2
-    "iga-dwa": ("key_points", "ignore"),             # li2023 §4.4, §5.5
-    "qp-dwa": ("key_points", "replan"),              # optplan's own: key points + exact re-plan
-}
+# each local planner preset's default (subgoal strategy, on_blocked), from the table of
+# paper methods (optplan/papers.py)
+PRESET_DEFAULTS = {**{p.local_preset: (p.subgoals, p.on_blocked) for p in PAPERS.values() if p.local_preset},
+                   **LOCAL_GUIDANCE}
 ON_BLOCKED = ("switch", "replan", "ignore")
 
 
@@ -62,7 +58,7 @@ def segment_distance(points: np.ndarray, a, b) -> np.ndarray:
 
 def preset_defaults(local_name: str) -> tuple[str, str]:
     """``(subgoal strategy, on_blocked)`` used for a local planner name."""
-    return PRESET_DEFAULTS.get(local_name, ("key_points", "replan"))
+    return local_guidance(local_name)
 
 
 class Navigator:

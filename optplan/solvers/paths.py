@@ -13,28 +13,20 @@ import time
 import numpy as np
 
 from ..errors import ParameterError, UnknownAlgorithmError
+from ..papers import LENGTH, PAPERS
 from ..formulations.encodings import ColumnNodes, FreeWaypoints, SplinePath
 from ..formulations.problem import PathProblem
 from ..world.postprocess import key_points, prune_direct, remove_collinear
 from .archive import ARCHIVE_EVERY, archive_alternatives
 from .result import check_alternatives, make_plan_result
 
-# which paper's fitness and post-processing each algorithm uses by default
-PAPER_OF = {
-    "ssa": "hou2024", "missa": "hou2024",
-    "pso": "yang2023", "ipso": "yang2023",
-    "ba": "yuan2021", "iba": "yuan2021",
-    "ga": "li2023", "iga": "li2023",
-    "gwo": "chen2025", "msiar-gwo": "chen2025", "woa": "chen2025", "aro": "chen2025",
-    "dbo": "chen2025", "igwo": "chen2025", "random": "chen2025",
-}
-POSTPROCESS = {"hou2024": "collinear", "yang2023": "none", "yuan2021": "collinear", "li2023": "keypoints",
-               "chen2025": "prune", "length": "collinear"}
+# derived from the one table of paper methods (optplan/papers.py)
+PAPER_OF = {a: p.key for p in PAPERS.values() for a in p.algorithms}
+POSTPROCESS = {**{k: p.postprocess for k, p in PAPERS.items()}, LENGTH.key: LENGTH.postprocess}
 GRAPH_PLANNERS = ("aco", "ga", "iga")  # grid-graph / cell-sequence planners of their own
-# the path model a paper's planners use on grid maps when no encoding is given: yang2023
-# always plans a cubic spline through free points (eq 1-4, obstacles as their outer
-# circles, §2.2), also in its 25x25 fusion world (§7.3); the other papers use grid nodes
-GRID_ENCODING = {"yang2023": "spline"}
+# the path model a paper's planners use on grid maps when no encoding is given
+# (yang2023: a cubic spline through free points, eq 1-4, §2.2, also in §7.3)
+GRID_ENCODING = {k: p.grid_encoding for k, p in PAPERS.items() if p.grid_encoding != "columns"}
 
 
 def algorithm_names() -> list[str]:
