@@ -211,3 +211,14 @@ def test_segment_rule_is_symmetric_and_matches_reference(h, w, seed):
     fwd, back = segments_free(g, A, B), segments_free(g, B, A)
     np.testing.assert_array_equal(fwd, back)
     assert list(fwd) == [reference_free(g.occ, a, b) for a, b in zip(A, B)]
+
+
+def test_worlds_follow_the_world_protocol():
+    """Both kinds of world implement the protocol and say which kind they are."""
+    from optplan.world import World
+
+    grid = op.GridMap(np.zeros((4, 4), bool))
+    circles = op.CircleWorld((0, 0, 4, 4), [(2.0, 2.0, 0.5)])
+    assert isinstance(grid, World) and isinstance(circles, World)
+    assert grid.is_grid is True and circles.is_grid is False
+    assert not isinstance(object(), World)

@@ -275,3 +275,23 @@ def test_compare_tabulates_and_stores(tmp_path):
 
     with ResultStore(tmp_path / "c.sqlite") as st:
         assert st.count() == 4
+
+
+def test_ipopt_from_a_feasible_seed_on_a_grid_never_ends_worse():
+    """From a seed the exact test accepts, IPOPT moves within a trust region whose obstacles
+    are read off the current path, takes only improving steps, and ends feasible and no
+    worse than the seed (before the trust region it could jump to another corridor and end
+    far longer)."""
+    occ = np.zeros((12, 12), bool)
+    occ[3:9, 5:7] = True
+    occ[0:3, 9] = True
+    grid = op.GridMap(occ)
+    prog = op.PathProgram(grid, (0.5, 0.5), (11.5, 11.5), variables=op.BSpline(ctrl=5, samples=40))
+    prog.minimize(T.length() + 0.3 * T.turn_angles().sumsq())
+    prog.subject_to(T.clearance() >= 0.1)
+    seed = prog.solve("pso", max_evals=1500, seed=0)
+    assert seed.feasible
+    res = prog.solve("ipopt", init=seed)
+    assert res.feasible and op.validate_path(grid, res.path, 0.1)
+    assert res.cost < seed.cost - 0.05
+    assert abs(prog.evaluate(res.path)[0] - res.cost) < 1e-9

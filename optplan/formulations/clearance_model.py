@@ -10,7 +10,8 @@ passes that rule on the first try.
 * Grid maps: every segment's distance to the convex obstacle corners nearest it
   (where a straight piece can cut in between samples), and the distance from
   samples along each segment (closer than half a cell) to the blocked boundary
-  cells nearest them, for walls between corners; the map border. Maxima are
+  boxes nearest them (maximal rectangles of blocked cells), for walls between
+  corners; the map border. Maxima are
   smoothed (:func:`soft_plus`), which gradient solvers need, and the bound adds
   back what the smoothing overshoots.
 
@@ -253,36 +254,55 @@ def numeric_sample_points(path: np.ndarray, per_segment: int) -> np.ndarray:
 
 
 def boundary_boxes(grid) -> np.ndarray:
-    """``(M, 4)`` boxes ``(xmin, ymin, xmax, ymax)`` of the blocked cells that touch a free
-    cell (the only ones a path can come near), metres; cached on the map."""
-    key = "boundary_boxes"
+    """``(M, 4)`` boxes ``(xmin, ymin, xmax, ymax)``, metres, that together cover exactly the
+    blocked cells: maximal runs of blocked cells in each row, merged with the identical runs
+    of the rows above. A wall is one box, not a row of neighbouring cells, so the boxes
+    nearest a sample are different obstacles and a gradient solver gets no near-duplicate
+    constraint rows (which slow IPOPT down and stall it). Cached on the map."""
+    key = "obstacle_boxes"
     boxes = grid._cache.get(key)
     if boxes is None:
         occ = np.asarray(grid.occ, bool)
-        pad = np.pad(occ, 1, constant_values=True)
-        free_near = np.zeros_like(occ)
-        for dy in (-1, 0, 1):
-            for dx in (-1, 0, 1):
-                free_near |= ~pad[1 + dy:1 + dy + occ.shape[0], 1 + dx:1 + dx + occ.shape[1]]
-        iy, ix = np.nonzero(occ & free_near)
+        edge = np.diff(np.pad(occ.astype(np.int8), ((0, 0), (1, 1))), axis=1)
+        open_runs: dict[tuple[int, int], int] = {}     # (x0, x1) -> first row of the open box
+        out = []
+        for iy in range(occ.shape[0] + 1):
+            if iy < occ.shape[0]:
+                x0s, x1s = np.flatnonzero(edge[iy] == 1), np.flatnonzero(edge[iy] == -1)
+                runs = set(zip(x0s.tolist(), x1s.tolist()))
+            else:
+                runs = set()
+            for run in [r for r in open_runs if r not in runs]:
+                out.append((run[0], open_runs.pop(run), run[1], iy))
+            for run in runs:
+                open_runs.setdefault(run, iy)
         r = float(grid.resolution)
         ox, oy = (float(v) for v in grid.origin)
-        boxes = np.stack([ox + ix * r, oy + iy * r, ox + (ix + 1) * r, oy + (iy + 1) * r], axis=1)
+        b = np.asarray(out, float).reshape(-1, 4)
+        boxes = np.stack([ox + b[:, 0] * r, oy + b[:, 1] * r, ox + b[:, 2] * r, oy + b[:, 3] * r], axis=1)
         grid._cache[key] = boxes
     return boxes
 
 
-def nearest_box_ids(grid, points: np.ndarray, k: int) -> np.ndarray | None:
-    """``(M, k)`` indices of the ``k`` boundary boxes nearest each point (``None`` when the map
-    has no blocked cell)."""
-    from scipy.spatial import cKDTree
+def point_box_distances(points: np.ndarray, boxes: np.ndarray) -> np.ndarray:
+    """``(M, B)`` Euclidean distances from points to axis-aligned boxes (0 inside)."""
+    q = np.asarray(points, float)[:, None, :]
+    lo, hi = boxes[None, :, :2], boxes[None, :, 2:]
+    e = np.maximum(np.maximum(lo - q, q - hi), 0.0)
+    return np.hypot(e[..., 0], e[..., 1])
 
+
+def nearest_box_ids(grid, points: np.ndarray, k: int) -> np.ndarray | None:
+    """``(M, k)`` indices of the ``k`` obstacle boxes nearest each point by exact distance
+    (``None`` when the map has no blocked cell)."""
     boxes = boundary_boxes(grid)
     if not len(boxes):
         return None
     k = min(k, len(boxes))
-    tree = grid._cache.get("boundary_box_tree")
-    if tree is None:
-        tree = grid._cache["boundary_box_tree"] = cKDTree((boxes[:, :2] + boxes[:, 2:]) / 2)
-    _, idx = tree.query(points, k=k)
-    return np.asarray(idx, dtype=np.int64).reshape(len(points), k)
+    pts = np.asarray(points, float)
+    out = np.empty((len(pts), k), dtype=np.int64)
+    step = max(1, 2_000_000 // len(boxes))       # bounded memory on large maps
+    for i in range(0, len(pts), step):
+        d = point_box_distances(pts[i:i + step], boxes)
+        out[i:i + step] = np.argpartition(d, k - 1, axis=1)[:, :k] if k < len(boxes) else np.argsort(d, axis=1)
+    return out

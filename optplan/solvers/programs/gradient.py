@@ -25,6 +25,7 @@ from ...formulations.program import Option, ProgramSolver
 from .common import INIT_OPTION, result_of, start_vector, straight_start
 
 IPOPT_DEFAULTS = {"print_level": 0, "sb": "yes", "mu_strategy": "adaptive", "max_wall_time": 60.0}
+FEASIBLE_START_IPOPT = {"bound_push": 1e-6, "bound_frac": 1e-6, "slack_bound_push": 1e-6, "slack_bound_frac": 1e-6}
 SEGMENT_GROWTH = 2.0     # grids: a segment may grow to this multiple of the start's longest one
 MAX_SAMPLES = 8          # grids: samples per segment at most (longer pieces rely on corner rows and retries)
 
@@ -38,7 +39,16 @@ class GradientSolver(ProgramSolver):
         "per_segment": Option(None, integer(1, 200, optional=True),
                               "clearance samples per segment (default: from the start's segment lengths)"),
         "attempts": Option(3, integer(1, 10), "solves in all when the exact check rejects the answer"),
+        "trust_region": Option(0.1, number(0.0, 1.0), "from a feasible start, each variable moves at most this "
+                               "share of its range per solve (0: no limit)"),
+        "rounds": Option(8, integer(0, 100), "further solves from the last answer while it ends on the trust "
+                         "region's edge and improves"),
     }
+
+    @staticmethod
+    def _judged(program, variables, x) -> tuple[float, bool]:
+        cost, _, ok = program.judge(variables.decode(np.asarray(x, float)[None])[0])
+        return cost, ok
 
     def run(self, program, **o):
         t0 = time.perf_counter()
@@ -54,34 +64,65 @@ class GradientSolver(ProgramSolver):
         ctx = program.ctx
         has_clearance = any(c.is_clearance for c in program.constraints)
         x, nfev, status, message = x0, 0, "not run", ""
-        start = x0
-        for attempt in range(o["attempts"]):
-            x = start
-            P0 = variables.decode(x[None])[0]
+        start, start_cost, start_ok = x0, *self._judged(program, variables, x0)
+        span = np.asarray(variables.upper, float) - np.asarray(variables.lower, float)
+        trust = o["trust_region"] * span if o["trust_region"] else None
+        failures, moves, shrinks = 0, 0, 0
+        k_run = None      # samples per segment: fixed for the run, so later rounds reuse the built solver
+        while failures < o["attempts"] and moves <= o["rounds"]:
+            P0 = variables.decode(start[None])[0]
             seg = np.hypot(*np.diff(P0, axis=0).T)
             longest = max(float(seg.max()) * SEGMENT_GROWTH, 1e-3)
             if ctx.is_grid:   # samples closer than half a cell catch every wall between two corners
-                k = o["per_segment"] or int(np.clip(math.ceil(longest / (0.5 * ctx.cell)), 1, MAX_SAMPLES))
-                margin = 1e-6 * ctx.cell if attempt == 0 else 0.02 * ctx.cell * 2 ** (attempt - 1)
+                k = k_run = k_run or o["per_segment"] or int(np.clip(math.ceil(longest / (0.5 * ctx.cell)), 1,
+                                                                     MAX_SAMPLES))
+                longest = min(longest, k * 0.5 * ctx.cell)
+                margin = 1e-6 * ctx.cell if failures == 0 else 0.02 * ctx.cell * 2 ** (failures - 1)
             else:             # circles are kept off segment by segment, exactly
                 k = o["per_segment"] or 1
-                margin = 1e-6 * 10 ** attempt
+                margin = 1e-6 * 10 ** failures
             active = active_sets(ctx, P0, k) if has_clearance else None
             cap = min(longest, MAX_SAMPLES * 0.5 * ctx.cell) if ctx.is_grid and has_clearance else None
-            relax = program.judge(P0)[2]   # a feasible start is never asked for more margin than it has
+            relax = start_ok   # a feasible start is never asked for more margin than it has
+            # from a feasible start, move at most ``trust`` per variable: the obstacles each piece
+            # is kept off are read off the start, so the model holds only near it
+            lo, hi = np.asarray(variables.lower, float), np.asarray(variables.upper, float)
+            if relax and trust is not None:
+                lo, hi = np.maximum(lo, start - trust), np.minimum(hi, start + trust)
             try:
-                x, calls, status = self._solve_nlp(program, variables, x, k, margin, active, cap, o, relax)
+                x, calls, status = self._solve_nlp(program, variables, start, k, margin, active, cap, o, relax,
+                                                   (lo, hi))
             except RuntimeError as exc:   # CasADi reports solver failures as RuntimeError
                 message = f"{self.name} failed: {str(exc).splitlines()[0][:160]}"
+                x = start
                 break
             nfev += calls
-            path = variables.decode(x[None])[0]
-            if program.judge(path)[2]:
-                message = "" if attempt == 0 else f"feasible on attempt {attempt + 1} (obstacles re-read, margin added)"
+            cost, ok = self._judged(program, variables, x)
+            if not ok:
+                failures += 1
+                if not relax:          # no feasible start to go back to: go on from where it ended
+                    start = x
+                    message = f"attempt {failures} of {o['attempts']} ended infeasible"
+                else:                  # keep the feasible start; retry with a margin
+                    x = start
+                    message = (f"{failures} attempt(s) from the feasible start ended infeasible; "
+                               f"{'the start' if not moves else 'the last feasible answer'} is returned")
+                continue
+            if relax and cost > start_cost:
+                # a trust-region step that made things worse is not taken: shrink and retry
+                x, shrinks = start, shrinks + 1
+                if trust is None or shrinks > 2:
+                    message = f"{self.name} found no better feasible point near the start"
+                    break
+                trust = trust / 4
+                continue
+            message = "" if failures == 0 else f"feasible after {failures} infeasible attempt(s) (obstacles re-read, margin added)"
+            at_edge = trust is not None and relax and bool(np.any(np.abs(x - start) >= 0.999 * trust))
+            improved = cost < start_cost - 1e-9 * max(1.0, abs(start_cost))
+            start, start_cost, start_ok = x, cost, True
+            if not (at_edge and improved):
                 break
-            message = f"attempt {attempt + 1} of {o['attempts']} ended infeasible"
-            if not relax:          # no feasible start to go back to: go on from where it ended
-                start = x
+            moves += 1                 # the step ended on the trust region's edge: go on from there
         return result_of(program, variables, x, self.name, status, message, nfev, t0, notes=notes)
 
     def _built(self, program, variables, k, active, cap):
@@ -141,17 +182,21 @@ class IpoptSolver(GradientSolver):
                "ipopt": Option({}, mapping("IPOPT options (e.g. {'mu_strategy': 'monotone'})"),
                                "IPOPT's own options for this call")}
 
-    def _solve_nlp(self, program, variables, x0, k, margin, active, cap, o, relax):
+    def _solve_nlp(self, program, variables, x0, k, margin, active, cap, o, relax, box):
         import casadi as ca
 
         built, pv, lbg, ubg = self._problem(program, variables, k, margin, active, cap, x0, relax)
-        opts = {**IPOPT_DEFAULTS, "max_iter": o["max_iter"], "tol": o["tol"], **o["ipopt"]}
+        # from a start the exact test accepted, stay near it: IPOPT's default pushes every
+        # variable and slack 1 % into the interior, which leaves the feasible start (the
+        # rows it holds exactly) and often ends in restoration or a worse local minimum
+        warm = FEASIBLE_START_IPOPT if relax else {}
+        opts = {**IPOPT_DEFAULTS, **warm, "max_iter": o["max_iter"], "tol": o["tol"], **o["ipopt"]}
         okey = repr(sorted(opts.items()))
         solver = built["solvers"].get(okey)
         if solver is None:   # IPOPT options are fixed per instance: one instance per option set
             nlp = {"x": built["x"], "p": built["p"], "f": built["f"], "g": built["g"]}
             solver = built["solvers"][okey] = ca.nlpsol("program", "ipopt", nlp, {"print_time": False, "ipopt": opts})
-        sol = solver(x0=x0, p=pv, lbx=variables.lower, ubx=variables.upper, lbg=lbg, ubg=ubg)
+        sol = solver(x0=x0, p=pv, lbx=box[0], ubx=box[1], lbg=lbg, ubg=ubg)
         st = solver.stats()
         xs = np.asarray(sol["x"], float).reshape(-1)
         if not np.all(np.isfinite(xs)):
@@ -165,7 +210,7 @@ class SlsqpSolver(GradientSolver):
     name = "slsqp"
     options = {**GradientSolver.options, "max_iter": Option(200, integer(1), "iteration limit")}
 
-    def _solve_nlp(self, program, variables, x0, k, margin, active, cap, o, relax):
+    def _solve_nlp(self, program, variables, x0, k, margin, active, cap, o, relax, box):
         import casadi as ca
         from scipy.optimize import Bounds, minimize
 
@@ -193,6 +238,6 @@ class SlsqpSolver(GradientSolver):
             return np.vstack([J[lo_rows], -J[hi_rows]])
 
         constraints = [{"type": "ineq", "fun": cons, "jac": cons_jac}] if (lo_rows.any() or hi_rows.any()) else []
-        res = minimize(fun, x0, jac=True, method="SLSQP", bounds=Bounds(variables.lower, variables.upper),
+        res = minimize(fun, x0, jac=True, method="SLSQP", bounds=Bounds(*box),
                        constraints=constraints, options={"maxiter": o["max_iter"], "ftol": o["tol"]})
         return np.asarray(res.x, float), count["f"], str(res.message)
