@@ -5,8 +5,8 @@ import importlib
 
 GRAPH_METHODS = ("astar", "dijkstra", "visibility")
 
-# layer modules that expose ``algorithm_names()``; missing ones are skipped so a
-# partial install (or a layer not built yet) still lists what exists
+# layer modules that expose ``algorithm_names()`` (imported by name so this foundation
+# module imports no layer above it; a failing import is a real error and is raised)
 _PROVIDERS = (
     "optplan.solvers.metaheuristics",
     "optplan.solvers.paths",
@@ -18,11 +18,5 @@ def algorithms() -> list[str]:
     """Sorted names usable as ``algorithm=`` (global planners) or ``local_planner=``."""
     names = set(GRAPH_METHODS)
     for mod in _PROVIDERS:
-        try:
-            m = importlib.import_module(mod)
-        except ImportError:
-            continue
-        fn = getattr(m, "algorithm_names", None)  # a layer under construction may lack it
-        if fn is not None:
-            names.update(fn())
+        names.update(importlib.import_module(mod).algorithm_names())
     return sorted(names)
