@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..world.polyline import segment_point_distances
 from .namespaces import Sym
 
 
@@ -208,16 +209,6 @@ def convex_corners(grid) -> np.ndarray:
         out = np.stack([grid.origin[0] + ix * r, grid.origin[1] + iy * r], axis=1)
         grid._cache[key] = out
     return out
-
-
-def segment_point_distances(path: np.ndarray, points: np.ndarray) -> np.ndarray:
-    """``(S, V)`` distances from the segments of a numeric path to points."""
-    P = np.asarray(path, float)
-    a, u = P[:-1, None, :], (P[1:] - P[:-1])[:, None, :]
-    q = np.asarray(points, float)[None]
-    t = np.clip(((q - a) * u).sum(-1) / np.maximum((u * u).sum(-1), 1e-12), 0, 1)
-    e = q - a - t[..., None] * u
-    return np.hypot(e[..., 0], e[..., 1])
 
 
 def active_sets(ctx, path: np.ndarray, per_segment: int, k: int = 3) -> dict:

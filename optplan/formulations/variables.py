@@ -23,22 +23,12 @@ import numpy as np
 
 from ..checks import integer
 from ..errors import ParameterError
+from ..world.polyline import resample_path
 from .namespaces import Sym
 
 
 def _count(value, what: str, minimum: int = 1) -> int:
     return integer(minimum)(what, value)
-
-
-def resample_path(path: np.ndarray, n: int) -> np.ndarray:
-    """``n`` points equally spaced by arc length along a polyline (ends kept)."""
-    P = np.asarray(path, dtype=float)
-    seg = np.hypot(*np.diff(P, axis=0).T)
-    s = np.concatenate([[0.0], np.cumsum(seg)])
-    if s[-1] == 0:
-        return np.repeat(P[:1], n, axis=0)
-    t = np.linspace(0.0, s[-1], n)
-    return np.stack([np.interp(t, s, P[:, 0]), np.interp(t, s, P[:, 1])], axis=1)
 
 
 class Variables:

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..formulations.variables import resample_path
+from ..world.polyline import resample_path
 
 
 @dataclass
