@@ -105,6 +105,16 @@ class CircleWorld:
         ex, ey = qx - t * dx, qy - t * dy
         return np.sqrt(ex * ex + ey * ey)
 
+    def segments_clearance(self, a, b) -> np.ndarray:
+        """Exact signed distance (metres) from each segment ``a[i] -> b[i]`` to the nearest
+        grown circle or the border (the border is nearest at an end point)."""
+        A, B = np.broadcast_arrays(np.asarray(a, float), np.asarray(b, float))
+        A, B = A.reshape(-1, 2), B.reshape(-1, 2)
+        d = np.minimum(self._border_distance(A), self._border_distance(B))
+        if len(self.circles) and len(A):
+            d = np.minimum(d, (self.segment_distances(A, B) - self.radii).min(axis=1))
+        return d
+
     def segments_free(self, a, b, clearance: float = 0.0) -> np.ndarray:
         """Segments stay inside the bounds (minus ``clearance``) and at least
         ``clearance`` metres outside every grown circle."""

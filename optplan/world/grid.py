@@ -151,6 +151,14 @@ class GridMap:
 
         return segments_free(self, a, b, clearance)
 
+    def segments_clearance(self, a, b) -> np.ndarray:
+        """Exact distance (metres) from each segment ``a[i] -> b[i]`` to blocked cells and
+        the border (<= 0 for a segment that breaks the rule); see
+        :func:`optplan.world.geometry.segments_clearance`."""
+        from .geometry import segments_clearance
+
+        return segments_clearance(self, a, b)
+
     def cells_touched_by_discs(self, discs) -> np.ndarray:
         """``(height, width)`` mask of the cells that any disc ``(x, y, r)`` (rows, metres)
         reaches into (square-to-disc distance below ``r``)."""
