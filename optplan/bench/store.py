@@ -86,6 +86,18 @@ class ResultStore:
             raise ParameterError(f"cannot use {self.path} as a results database ({exc}); pass another --db file") \
                 from None
         self._columns = {r["name"] for r in self.conn.execute("PRAGMA table_info(runs)")}
+        self._check_schema()
+
+    def _check_schema(self) -> None:
+        """Refuse a database whose ``runs``/``traces`` tables were made by something else."""
+        missing = [c for c in IDENTITY if c not in self._columns]
+        tcols = {r["name"] for r in self.conn.execute("PRAGMA table_info(traces)")}
+        missing += [f"traces.{c}" for c in ("key", *TRACE_COLUMNS) if c not in tcols]
+        if missing:
+            self.conn.close()
+            raise ParameterError(f"{self.path} is not an optplan results database (its tables lack "
+                                 f"{', '.join(missing[:5])}{', ...' if len(missing) > 5 else ''}); pass another "
+                                 f"--db file")
 
     # ------------------------------------------------------------------ writing
     def _ensure_column(self, col: str, value: Any) -> None:
@@ -116,6 +128,10 @@ class ResultStore:
         traces = {k: json.dumps(v) for k, v in (outcome.get("traces") or {}).items() if k in TRACE_COLUMNS}
         self.conn.execute("BEGIN IMMEDIATE")
         try:
+            if any(col not in self._columns for col in row):
+                # another process may have added the column since we last looked: re-read the
+                # columns under the write lock this transaction holds, then add what is missing
+                self._columns = {r["name"] for r in self.conn.execute("PRAGMA table_info(runs)")}
             for col, v in row.items():
                 self._ensure_column(col, v)
             names = ", ".join(f'"{c}"' for c in row)
