@@ -39,8 +39,11 @@ def _as_points(points) -> np.ndarray:
 
 
 def _check_clearance(clearance: float) -> float:
-    c = float(clearance)
-    if not np.isfinite(c) or c < 0:
+    try:
+        c = float(clearance)
+    except (TypeError, ValueError):
+        c = float("nan")
+    if isinstance(clearance, bool) or not np.isfinite(c) or c < 0:
         raise ParameterError(f"clearance must be a finite number >= 0 metres, got {clearance!r}")
     return c
 
@@ -469,8 +472,14 @@ def validate_path(world, path, clearance: float = 0.0) -> PathCheck:
     Returns:
         A :class:`PathCheck` (truthy when valid) naming the failing segments.
     """
+    from .queries import check_world
+
+    check_world(world)
     c = _check_clearance(clearance)
-    P = np.asarray(path, dtype=float)
+    try:
+        P = np.asarray(path, dtype=float)
+    except (TypeError, ValueError):
+        return PathCheck(False, reason=f"a path must be an (N, 2) array of numbers, got {type(path).__name__}")
     if P.ndim != 2 or P.shape[1] != 2 or len(P) == 0:
         return PathCheck(False, reason=f"a path must be an (N, 2) array with N >= 1, got shape {P.shape}")
     if not np.all(np.isfinite(P)):

@@ -104,6 +104,10 @@ class PathMetrics:
 
 def path_metrics(world, path) -> PathMetrics:
     """All metrics of one ``(N, 2)`` path (metres, degrees, 1/metres)."""
+    if world is not None:
+        from .queries import check_world
+
+        check_world(world)
     P = np.asarray(path, dtype=float)
     if P.ndim != 2 or len(P) == 0:
         return PathMetrics(float("inf"), float("nan"), 0, float("nan"), float("nan"))
