@@ -138,6 +138,13 @@ def _export_simulation(args, res) -> None:
         export_trajectory(res.trajectory, args.export)
 
 
+def _plot_simulation(args, realized_scenario, scenario, plan, res) -> None:
+    if args.plot:
+        from .viz.animate import plot_run
+
+        plot_run(realized_scenario(scenario, args.seed, plan), res, args.plot)
+
+
 def _add_simulate_arguments(parser) -> None:
     parser.add_argument("scenario", help="scenario YAML file or the name of a shipped scenario")
     parser.add_argument("--global", dest="global_planner", default="astar",
@@ -154,6 +161,7 @@ def _add_simulate_arguments(parser) -> None:
     parser.add_argument("--progress", action="store_true", help="print a status line every 10 simulated seconds")
     parser.add_argument("--export", metavar="FILE",
                         help="write the trajectory as .csv (t,x,y,theta,v,w) or .yaml (nav_msgs/Path-like)")
+    parser.add_argument("--plot", metavar="FILE.png", help="write a static picture of the run")
 
 
 def _cmd_simulate(args) -> int:
@@ -179,6 +187,7 @@ def _cmd_simulate(args) -> int:
         from .viz.animate import animate_run
 
         animate_run(realized_scenario(scenario, args.seed, plan), res, args.gif)
+    _plot_simulation(args, realized_scenario, scenario, plan, res)
     _export_simulation(args, res)
     status = 0 if res.reached and res.collisions == 0 else EXIT_GOAL_MISSED
     if args.json:
@@ -193,10 +202,9 @@ def _cmd_simulate(args) -> int:
     print(f"path length    {res.path_length:.3f} m")
     print(f"min clearance  {res.min_clearance:.3f} m")
     print(f"max |accel|    {res.max_abs_accel:.3f} m/s^2, max |ang accel| {res.max_abs_ang_accel:.3f} rad/s^2")
-    if args.gif:
-        print(f"wrote {args.gif}")
-    if args.export:
-        print(f"wrote {args.export}")
+    for written in (args.gif, args.plot, args.export):
+        if written:
+            print(f"wrote {written}")
     return status
 
 
