@@ -251,3 +251,66 @@ def test_paper_map_names_are_map_names():
     same = op.load_map("chen2025_20")
     np.testing.assert_array_equal(same.occ, world.occ)
     assert isinstance(op.load_map("yang2023_env1"), op.CircleWorld)
+
+
+def _descendants(pid: int) -> set[int]:
+    """Every live process below ``pid`` (from /proc)."""
+    children: dict[int, list[int]] = {}
+    for d in Path("/proc").iterdir():
+        if d.name.isdigit():
+            try:
+                ppid = int(next(ln for ln in (d / "status").read_text().splitlines()
+                                if ln.startswith("PPid:")).split()[1])
+            except (OSError, StopIteration, ValueError):
+                continue
+            children.setdefault(ppid, []).append(int(d.name))
+    out, todo = set(), [pid]
+    while todo:
+        for c in children.get(todo.pop(), []):
+            if c not in out:
+                out.add(c)
+                todo.append(c)
+    return out
+
+
+def _alive(pid: int) -> bool:
+    try:
+        state = next(ln for ln in Path(f"/proc/{pid}/status").read_text().splitlines() if ln.startswith("State:"))
+    except (OSError, StopIteration):
+        return False
+    return " Z " not in state and "zombie" not in state
+
+
+@pytest.mark.skipif(not Path("/proc").is_dir(), reason="needs /proc")
+def test_kill_9_of_a_bench_leaves_no_orphan_workers(tmp_path):
+    import os
+    import signal
+    import time
+
+    script = (f"import sys; sys.path.insert(0, {str(ROOT)!r})\n"
+              "from optplan.bench import run_experiment\n"
+              "run_experiment({'kind': 'plan', 'maps': ['chen2025_30'], 'algorithms': ['gwo'], 'runs': 8,"
+              " 'params': {'pop': 40, 'iters': 100000}}, db='r.sqlite', workers=2, progress=False)\n")
+    (tmp_path / "long.py").write_text(script)
+    proc = subprocess.Popen([sys.executable, "long.py"], cwd=tmp_path)
+    workers: set[int] = set()
+    try:
+        deadline = time.time() + 120
+        while time.time() < deadline and len(workers) < 3:  # forkserver + 2 workers at least
+            time.sleep(0.5)
+            workers = _descendants(proc.pid)
+        assert len(workers) >= 3, "the pool did not start"
+        time.sleep(2)
+        os.kill(proc.pid, signal.SIGKILL)
+        proc.wait(timeout=30)
+        deadline = time.time() + 30
+        while time.time() < deadline and any(_alive(p) for p in workers):
+            time.sleep(0.5)
+        assert not [p for p in workers if _alive(p)], "workers outlived the killed bench"
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+        for p in workers | _descendants(proc.pid):  # never leave a worker of this test behind
+            if _alive(p):
+                with __import__("contextlib").suppress(ProcessLookupError):
+                    os.kill(p, signal.SIGKILL)

@@ -182,11 +182,33 @@ def _run_simulate(rec) -> tuple[Any, dict]:
     return res, extra
 
 
-def warm_up(extra: tuple[str, ...] = ()) -> None:
+def _exit_with_parent(parent_pid: int, period_s: float = 1.0) -> None:
+    """In a worker: end the process once ``parent_pid`` (the bench process) is gone, so a
+    ``kill -9`` of the bench leaves no orphan workers holding memory."""
+    import threading
+
+    def watch():
+        while True:
+            time.sleep(period_s)
+            try:
+                os.kill(parent_pid, 0)
+            except ProcessLookupError:
+                os._exit(1)
+            except PermissionError:  # the pid was reused by another user's process: the parent is gone
+                os._exit(1)
+
+    threading.Thread(target=watch, name="optplan-parent-watch", daemon=True).start()
+
+
+def warm_up(extra: tuple[str, ...] = (), parent_pid: int | None = None) -> None:
     """Import what the solvers import lazily, so that no run's ``runtime_s`` includes one-time
     module loading (scipy.spatial alone takes ~0.5 s, cvxpy 1.5 s); called once per worker
-    process. ``extra`` names further modules the runs need (:func:`warm_modules`)."""
+    process. ``extra`` names further modules the runs need (:func:`warm_modules`);
+    ``parent_pid``, when given, is the bench process this worker must not outlive."""
     import importlib
+
+    if parent_pid is not None:
+        _exit_with_parent(parent_pid)
 
     for mod in ("scipy.spatial", "scipy.interpolate", "scipy.stats", "optplan.planning", "optplan.solvers.paths",
                 "optplan.solvers.metaheuristics", "optplan.formulations.functions", "optplan.world.papermaps",
@@ -456,7 +478,7 @@ def _pool_loop(todo: list[dict], workers: int, record: Callable) -> None:
     suspects: list[dict] = []
     while queue or suspects:
         pool = ProcessPoolExecutor(max_workers=workers, mp_context=_pool_context(), initializer=warm_up,
-                                   initargs=(warm_modules(todo),))
+                                   initargs=(warm_modules(todo), os.getpid()))
         in_flight: dict = {}
         broken = alone = False
         try:
