@@ -43,3 +43,12 @@ def test_the_generator_check_mode_agrees(tmp_path):
     done = subprocess.run([sys.executable, str(ROOT / "docs" / "make_api.py"), "--check"], capture_output=True,
                           text=True, timeout=300)
     assert done.returncode == 0, done.stderr
+
+
+def test_the_type_stub_lists_every_lazy_name():
+    sys.path.insert(0, str(ROOT / "docs"))
+    import make_stub
+
+    assert (ROOT / "optplan" / "__init__.pyi").read_text() == make_stub.render(), \
+        "optplan/__init__.pyi is out of date; run: python docs/make_stub.py"
+    assert (ROOT / "optplan" / "py.typed").is_file()
