@@ -314,3 +314,15 @@ def test_kill_9_of_a_bench_leaves_no_orphan_workers(tmp_path):
             if _alive(p):
                 with __import__("contextlib").suppress(ProcessLookupError):
                     os.kill(p, signal.SIGKILL)
+
+
+def test_a_failing_write_is_one_optplan_error_and_keeps_the_stored_runs(tmp_path):
+    db = tmp_path / "r.sqlite"
+    store = ResultStore(db)
+    store.write(_record("k1"), {"status": "ok", "metrics": {"length": 1.0}})
+    store.conn.execute("PRAGMA query_only = ON")  # every write now fails, as on a full or read-only disk
+    with pytest.raises(op.OptplanError, match="cannot store run k2"):
+        store.write(_record("k2"), {"status": "ok", "metrics": {"length": 2.0, "other": 3}})
+    store.conn.execute("PRAGMA query_only = OFF")
+    assert set(store.rows()) == {"k1"} and not store.conn.in_transaction
+    store.close()

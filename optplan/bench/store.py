@@ -24,7 +24,7 @@ import time
 from pathlib import Path
 from typing import Any, Iterable, Mapping
 
-from ..errors import ParameterError
+from ..errors import OptplanError, ParameterError
 
 IDENTITY_COLUMNS = (
     ("key", "TEXT PRIMARY KEY"), ("experiment", "TEXT"), ("kind", "TEXT"), ("target", "TEXT"),
@@ -126,6 +126,13 @@ class ResultStore:
             if k not in _SKIP_METRICS and k not in IDENTITY:
                 row[column_name(k)] = _sql_value(v)
         traces = {k: json.dumps(v) for k, v in (outcome.get("traces") or {}).items() if k in TRACE_COLUMNS}
+        try:
+            self._write_row(row, traces, record["key"])
+        except sqlite3.Error as exc:  # disk full, read-only file, locked for longer than the timeout
+            raise OptplanError(f"cannot store run {record['key'][:12]} in {self.path}: {exc}; the runs stored so far "
+                               f"are kept (free space or pass another --db, then rerun to finish)") from None
+
+    def _write_row(self, row: dict, traces: dict, key: str) -> None:
         self.conn.execute("BEGIN IMMEDIATE")
         try:
             if any(col not in self._columns for col in row):
@@ -140,10 +147,14 @@ class ResultStore:
             tnames = ", ".join(["key", *traces])
             tmarks = ", ".join("?" for _ in range(len(traces) + 1))
             self.conn.execute(f"INSERT OR REPLACE INTO traces ({tnames}) VALUES ({tmarks})",
-                              [record["key"], *traces.values()])
+                              [key, *traces.values()])
             self.conn.execute("COMMIT")
         except BaseException:
-            self.conn.execute("ROLLBACK")
+            if self.conn.in_transaction:  # SQLite may already have rolled back (disk full): no second error
+                try:
+                    self.conn.execute("ROLLBACK")
+                except sqlite3.Error:
+                    pass
             raise
 
     # ------------------------------------------------------------------ reading
