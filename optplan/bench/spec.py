@@ -526,6 +526,8 @@ def _scen_targets(it: dict, base_dir: Path, from_file: bool, where: str) -> list
     for i in picks:
         try:
             start, goal = scen_query(world, scen, i)
+            world.check_query_point(start, f"query {i} start")
+            world.check_query_point(goal, f"query {i} goal")
         except OptplanError as exc:
             raise ScenarioError(f"{where}: {exc}") from None
         out.append(TargetSpec(f"{stem}_q{i}", {"map": m, "start": list(start), "goal": list(goal)}))
