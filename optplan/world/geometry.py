@@ -326,20 +326,25 @@ def segments_clearance(grid, a, b) -> np.ndarray:
     if n == 0:
         return out
     ga, gb = grid.to_grid(A), grid.to_grid(B)
-    ends = grid_clearance(grid, np.vstack([A, B, 0.5 * (A + B)])).reshape(3, n) / grid.resolution
     free = segments_free(grid, A, B)
-    # an upper bound from the end points and the midpoint; only cells this close can matter
-    bound = ends.min(axis=0)
-    todo = free & (bound > 0)
-    out[free] = np.maximum(bound[free], 0.0)
-    if np.any(todo):
-        idx = np.nonzero(todo)[0]
-        sidx, lo = _blocked_cells_near(grid, ga[idx], gb[idx], bound[idx])
+    # the border is closest at an end point (distance to it is linear along a segment)
+    border = np.minimum.reduce([ga[:, 0], ga[:, 1], grid.width - ga[:, 0], grid.height - ga[:, 1],
+                                gb[:, 0], gb[:, 1], grid.width - gb[:, 0], grid.height - gb[:, 1]])
+    # growing search radius r: every blocked cell within r of a segment is enumerated, so a
+    # segment whose nearest enumerated cell (or the border) is within r has its exact value
+    todo = np.nonzero(free)[0]
+    r = 1.0
+    limit = 2.0 * (grid.width + grid.height)
+    while todo.size:
+        sidx, lo = _blocked_cells_near(grid, ga[todo], gb[todo], np.full(todo.size, r))
+        near = np.full(todo.size, np.inf)
         if sidx.size:
-            d = _segment_box_distance(ga[idx][sidx], gb[idx][sidx], lo, lo + 1.0)
-            best = np.full(len(idx), np.inf)
-            np.minimum.at(best, sidx, d)
-            out[idx] = np.minimum(out[idx], best)
+            np.minimum.at(near, sidx, _segment_box_distance(ga[todo][sidx], gb[todo][sidx], lo, lo + 1.0))
+        value = np.minimum(near, border[todo])
+        done = (value <= r) | (r >= limit)
+        out[todo[done]] = np.maximum(value[done], 0.0)
+        todo = todo[~done]
+        r *= 2.0
     bad = np.nonzero(~free)[0]
     if bad.size:
         seg = gb[bad] - ga[bad]
