@@ -26,6 +26,8 @@ _LAZY = {
     "save_map": "optplan.world.loaders",
     "load_scen": "optplan.world.loaders",
     "validate_path": "optplan.world.geometry",
+    "export_path": "optplan.world.export",
+    "export_trajectory": "optplan.world.export",
     "path_metrics": "optplan.world.metrics",
     "shortest_path": "optplan.solvers.graph",
     "optimize": "optplan.solvers.metaheuristics",

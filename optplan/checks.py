@@ -73,3 +73,43 @@ def seed(name: str, value):
 def anything(name: str, value):
     """Any value (the consumer checks it, e.g. an algorithm's own parameter)."""
     return value
+
+
+# ------------------------------------------------------------------ resource bounds
+# Bounds on what one call may ask for, derived from memory and time rather than from taste:
+# a request past them cannot finish on a workstation, so it is refused before any work
+# starts, with the numbers in the message.
+MEMORY_BUDGET_BYTES = 2 * 1024 ** 3   # what one population may hold (2 GiB)
+POPULATION_COPIES = 8                 # float64 (pop, dim) arrays alive at once in a step (X, V, F, trials, ...)
+MAX_EVALUATIONS = 10 ** 9             # objective rows per run: ~8 h at the ~3e4 path rows/s of a 20x20 map
+MAX_RUNS = 100_000                    # runs per spec: each is a stored row (~1 s to 10 min of work)
+MAX_SEED = 2 ** 63 - 1                # seeds are stored as SQLite INTEGERs (signed 64-bit)
+
+
+def population_budget(pop, iters, max_evals, dim: int = 1) -> None:
+    """Refuse a population or budget that cannot fit in memory or finish in hours.
+
+    ``pop * dim * 8 bytes * POPULATION_COPIES`` must stay within
+    :data:`MEMORY_BUDGET_BYTES`, and the evaluations asked for (``pop * iters``, or
+    ``max_evals``) within :data:`MAX_EVALUATIONS`.
+    """
+    for name, v in (("pop", pop), ("iters", iters), ("max_evals", max_evals)):
+        if v is not None and (isinstance(v, bool) or not isinstance(v, (int, np.integer))):
+            raise ParameterError(f"{name} must be an integer, got {v!r}")
+    dim = max(int(dim), 1)
+    if pop is not None and pop > 0:
+        need = int(pop) * dim * 8 * POPULATION_COPIES
+        if need > MEMORY_BUDGET_BYTES:
+            top = MEMORY_BUDGET_BYTES // (dim * 8 * POPULATION_COPIES)
+            raise ParameterError(f"pop {pop} needs about {need / 1024 ** 3:.3g} GiB for {dim} variables per "
+                                 f"individual; the bound is {MEMORY_BUDGET_BYTES / 1024 ** 3:g} GiB, i.e. pop <= {top}")
+    evals = max_evals if max_evals is not None else (int(pop) * int(iters) if pop and iters else None)
+    if evals is not None and evals > MAX_EVALUATIONS:
+        raise ParameterError(f"the budget asks for {evals:.3g} objective evaluations (pop x iters or max_evals); the "
+                             f"bound is {MAX_EVALUATIONS:.0e}, several hours of work; lower iters or max_evals")
+
+
+def seed_bound(name: str, value) -> None:
+    """An integer seed must fit the results database's signed 64-bit INTEGER."""
+    if isinstance(value, (int, np.integer)) and not isinstance(value, bool) and value > MAX_SEED:
+        raise ParameterError(f"{name} must be <= 2**63 - 1 (stored as a 64-bit integer), got {value}")

@@ -13,6 +13,7 @@ from .errors import OptplanError
 
 EXIT_ERROR = 2          # an OptplanError (bad file, bad parameter, ...): its message is printed
 EXIT_GOAL_MISSED = 1    # simulate: the run ended without reaching the goal collision-free
+EXIT_INTERNAL = 3       # an exception that is not an OptplanError: a bug, printed on one line
 
 # Subcommands whose arguments and handler live with their layer: each module defines
 # ``add_<name>_arguments(parser)`` and ``run_<name>(args) -> int``. ``simulate`` lives here
@@ -42,6 +43,8 @@ def _cmd_plan(args) -> int:
     from .demo import format_table
 
     world = _load_world(args.map)
+    start, goal = _plan_query(args, world)
+    extra = _plan_extra_params(args)
     refine = None if args.refine == "none" else args.refine
     refine_options = {}
     if args.tube_radius is not None:
@@ -52,8 +55,10 @@ def _cmd_plan(args) -> int:
         if refine is None:
             raise OptplanError("--refine-starts only applies to a refinement; add --refine casadi or --refine qp")
         refine_options["starts"] = args.refine_starts
-    res = plan(world, tuple(args.start), tuple(args.goal), algorithm=args.algo, refine=refine, seed=args.seed,
-               pop=args.pop, iters=args.iters, clearance=args.clearance, refine_options=refine_options)
+    iters = extra.pop("iters", args.iters)
+    res = plan(world, start, goal, algorithm=args.algo, refine=refine, seed=args.seed,
+               pop=args.pop, iters=iters, clearance=args.clearance, refine_options=refine_options, **extra)
+    _export_plan(args, res)
     if args.plot:
         from .viz.plots import plot_paths
 
@@ -70,7 +75,74 @@ def _cmd_plan(args) -> int:
             print(res.message)
         if args.plot:
             print(f"wrote {args.plot}")
+        if args.export:
+            print(f"wrote {args.export}")
     return 0
+
+
+def _add_plan_extra_arguments(p) -> None:
+    p.add_argument("--max-evals", type=int, default=None, metavar="N",
+                   help="budget of a metaheuristic in objective evaluations (instead of --iters)")
+    p.add_argument("--export", metavar="FILE", help="write the path as .csv (x,y) or .yaml (nav_msgs/Path-like)")
+    p.add_argument("--scen", metavar="FILE.scen", help="take start and goal from a Moving AI scenario file")
+    p.add_argument("--query", type=int, default=0, metavar="K", help="which query of --scen (0 = first; default 0)")
+
+
+def _check_seed(seed: int) -> None:
+    from .checks import seed_bound
+
+    if seed < 0:
+        raise OptplanError(f"--seed must be an integer >= 0, got {seed}")
+    seed_bound("--seed", seed)
+
+
+def _plan_extra_params(args) -> dict:
+    if args.max_evals is None:
+        return {}
+    if args.max_evals < 1:
+        raise OptplanError(f"--max-evals must be a positive integer, got {args.max_evals}")
+    return {"max_evals": args.max_evals, "iters": None}
+
+
+def _plan_query(args, world) -> tuple:
+    """Start and goal of ``optplan plan``: --start/--goal, else the --scen query, else a
+    paper map's own pair."""
+    if args.scen is not None:
+        if args.start is not None or args.goal is not None:
+            raise OptplanError("give either --scen (start and goal from the scenario file) or --start/--goal, not both")
+        from .world.loaders import scen_query
+
+        return scen_query(world, args.scen, args.query)
+    if args.start is not None and args.goal is not None:
+        return tuple(args.start), tuple(args.goal)
+    from .world.papermaps import catalogue
+
+    paper = catalogue().get(args.map)
+    if paper is None or args.start is not None or args.goal is not None:
+        raise OptplanError(f"give --start X Y and --goal X Y in metres (or --scen FILE.scen); only paper maps "
+                           f"({', '.join(sorted(catalogue()))}) have a default pair")
+    return paper.start, paper.goal
+
+
+def _export_plan(args, res) -> None:
+    if args.export:
+        from .world.export import export_path
+
+        export_path(res.path, args.export)
+
+
+def _export_simulation(args, res) -> None:
+    if getattr(args, "export", None):
+        from .world.export import export_trajectory
+
+        export_trajectory(res.trajectory, args.export)
+
+
+def _plot_simulation(args, realized_scenario, scenario, plan, res) -> None:
+    if args.plot:
+        from .viz.animate import plot_run
+
+        plot_run(realized_scenario(scenario, args.seed, plan), res, args.plot)
 
 
 def _add_simulate_arguments(parser) -> None:
@@ -87,6 +159,9 @@ def _add_simulate_arguments(parser) -> None:
     parser.add_argument("--json", action="store_true", help="print exactly one JSON object")
     parser.add_argument("--gif", metavar="FILE.gif", help="write an animation of the run")
     parser.add_argument("--progress", action="store_true", help="print a status line every 10 simulated seconds")
+    parser.add_argument("--export", metavar="FILE",
+                        help="write the trajectory as .csv (t,x,y,theta,v,w) or .yaml (nav_msgs/Path-like)")
+    parser.add_argument("--plot", metavar="FILE.png", help="write a static picture of the run")
 
 
 def _cmd_simulate(args) -> int:
@@ -97,6 +172,7 @@ def _cmd_simulate(args) -> int:
     from .sim.experiments import plan_global
     from .world.scenario import load_scenario
 
+    _check_seed(args.seed)
     scenario = load_scenario(args.scenario)
     options = {}
     if args.subgoals:
@@ -111,6 +187,8 @@ def _cmd_simulate(args) -> int:
         from .viz.animate import animate_run
 
         animate_run(realized_scenario(scenario, args.seed, plan), res, args.gif)
+    _plot_simulation(args, realized_scenario, scenario, plan, res)
+    _export_simulation(args, res)
     status = 0 if res.reached and res.collisions == 0 else EXIT_GOAL_MISSED
     if args.json:
         print(json.dumps(res.to_json_dict()))
@@ -124,8 +202,9 @@ def _cmd_simulate(args) -> int:
     print(f"path length    {res.path_length:.3f} m")
     print(f"min clearance  {res.min_clearance:.3f} m")
     print(f"max |accel|    {res.max_abs_accel:.3f} m/s^2, max |ang accel| {res.max_abs_ang_accel:.3f} rad/s^2")
-    if args.gif:
-        print(f"wrote {args.gif}")
+    for written in (args.gif, args.plot, args.export):
+        if written:
+            print(f"wrote {written}")
     return status
 
 
@@ -144,19 +223,35 @@ def _cmd_demo(args) -> int:
     return 0
 
 
+class _OneLineParser(argparse.ArgumentParser):
+    """argparse with usage errors on one line (status 2), like every other optplan error."""
+
+    def error(self, message: str):  # noqa: D401 - argparse's hook
+        self.exit(EXIT_ERROR, f"{self.prog}: error: {one_line(message)} (see '{self.prog} --help')\n")
+
+
+def _add_version_argument(parser) -> None:
+    from . import __version__
+
+    parser.add_argument("--version", action="version", version=f"optplan {__version__}")
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The ``optplan`` argument parser with every subcommand (each with an example in its help)."""
-    parser = argparse.ArgumentParser(
+    parser = _OneLineParser(
         prog="optplan",
         description="Mobile-robot path planning as constrained programs.",
         epilog="example: optplan demo      (see 'optplan COMMAND --help' for each command)",
     )
+    _add_version_argument(parser)
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
 
     p = sub.add_parser("plan", help="plan a global path on a map", epilog=EXAMPLES["plan"])
     p.add_argument("map", help="map file (.map, .yaml, .pgm, .npy, .txt, .csv, circle-world .json) or a shipped map name")
-    p.add_argument("--start", nargs=2, type=float, required=True, metavar=("X", "Y"), help="start in metres")
-    p.add_argument("--goal", nargs=2, type=float, required=True, metavar=("X", "Y"), help="goal in metres")
+    p.add_argument("--start", nargs=2, type=float, metavar=("X", "Y"),
+                   help="start in metres (default: a paper map's own start, or the --scen query's)")
+    p.add_argument("--goal", nargs=2, type=float, metavar=("X", "Y"),
+                   help="goal in metres (default: a paper map's own goal, or the --scen query's)")
     p.add_argument("--algo", default="astar", help="planner name (see 'optplan algorithms'); default astar")
     p.add_argument("--refine", default="none", choices=["none", "casadi", "qp"], help="refinement stage")
     p.add_argument("--tube-radius", type=float, default=None, metavar="M",
@@ -171,6 +266,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--clearance", type=float, default=0.0, help="required clearance in metres")
     p.add_argument("--json", action="store_true", help="print exactly one JSON object")
     p.add_argument("--plot", metavar="FILE.png", help="write a picture of the path")
+    _add_plan_extra_arguments(p)
     p.set_defaults(func=_cmd_plan)
 
     a = sub.add_parser("algorithms", help="list every registered planner", epilog=EXAMPLES["algorithms"])
@@ -198,7 +294,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 # options that name a file or folder the command writes
-OUTPUT_OPTIONS = ("plot", "gif", "csv", "out", "plots")
+OUTPUT_OPTIONS = ("plot", "gif", "csv", "out", "plots", "export", "export_ompl")
 
 
 def _check_outputs(args) -> None:
@@ -211,18 +307,36 @@ def _check_outputs(args) -> None:
         if not value:
             continue
         target = Path(value)
-        if target.is_dir() and name != "plots":
-            raise OptplanError(f"--{name} {value} is a folder; give a file name")
-        parent = target if name == "plots" else target.parent
+        folder = name in ("plots", "export_ompl")
+        flag = name.replace("_", "-")
+        if target.is_dir() and not folder:
+            raise OptplanError(f"--{flag} {value} is a folder; give a file name")
+        if name == "export" and target.suffix.lower() not in (".csv", ".yaml", ".yml"):
+            raise OptplanError(f"--export {value}: use a .csv or .yaml file name")
+        parent = target if folder else target.parent
         existing = next((d for d in (parent, *parent.parents) if d.exists()), None)
         if existing is None or not existing.is_dir() or not os.access(existing, os.W_OK):
-            raise OptplanError(f"--{name} {value}: cannot write there ({existing or parent} is not a writable folder)")
+            raise OptplanError(f"--{flag} {value}: cannot write there ({existing or parent} is not a writable folder)")
+
+
+MAX_MESSAGE_CHARS = 2000  # an error names what was wrong; it never echoes a whole input back
+
+
+def one_line(message) -> str:
+    """An error message on one line of at most :data:`MAX_MESSAGE_CHARS` characters
+    (white space runs collapsed, the middle of a long message elided)."""
+    text = " ".join(str(message).split())
+    if len(text) > MAX_MESSAGE_CHARS:
+        half = MAX_MESSAGE_CHARS // 2 - 10
+        text = f"{text[:half]} [... {len(text) - 2 * half} characters ...] {text[-half:]}"
+    return text
 
 
 def main(argv: list[str] | None = None) -> int:
     """Run the command line with ``argv`` (default ``sys.argv[1:]``); returns the exit status
     (0 success, 1 a simulation that missed the goal or collided, 2 an OptplanError whose
-    message was printed on one line, 130 interrupted)."""
+    message was printed on one line, 3 an internal error (a bug; one line, the traceback with
+    ``OPTPLAN_TRACEBACK=1``), 130 interrupted)."""
     parser = build_parser()
     args = parser.parse_args(argv)
     if not getattr(args, "command", None):
@@ -232,7 +346,7 @@ def main(argv: list[str] | None = None) -> int:
         _check_outputs(args)
         return int(args.func(args) or 0)
     except OptplanError as exc:
-        print(f"optplan: error: {exc}", file=sys.stderr)
+        print(f"optplan: error: {one_line(exc)}", file=sys.stderr)
         return EXIT_ERROR
     except OSError as exc:  # a file the user named could not be read or written
         where = f" {exc.filename}" if getattr(exc, "filename", None) else ""
@@ -241,6 +355,14 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("optplan: interrupted", file=sys.stderr)
         return 130
+    except Exception as exc:  # a bug, not a bad input: say so on one line, keep the details on request
+        import os
+
+        if os.environ.get("OPTPLAN_TRACEBACK"):
+            raise
+        print(f"optplan: internal error: {type(exc).__name__}: {one_line(exc)} (this is a bug in optplan; "
+              f"rerun with OPTPLAN_TRACEBACK=1 for the traceback and report it)", file=sys.stderr)
+        return EXIT_INTERNAL
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .checks import population_budget, seed_bound
 from .errors import ParameterError, UnknownAlgorithmError
 from .papers import paper_of_algorithm
 from .registry import GRAPH_METHODS
@@ -135,6 +136,11 @@ def plan(world, start, goal, algorithm: str = "astar", refine: str | None = None
         raise ParameterError(f"refine must be one of none, casadi, qp; got {refine!r}")
     refine_options = _checked_refine_options(refine_options)
     start, goal = check_start_goal(world, start, goal, _checked_clearance(clearance))
+    if name not in GRAPH_METHODS:
+        # one variable per column on grids (the default encoding), a few waypoints elsewhere
+        dim = max(getattr(world, "width", 8), getattr(world, "height", 8)) * 2
+        population_budget(pop, iters, params.get("max_evals"), dim)
+    seed_bound("seed", seed)
     if name in GRID_ONLY and not world.is_grid:
         raise ParameterError(f"{name!r} needs a grid map ({GRID_ONLY[name]}); on a circle world use "
                              "'visibility' or a metaheuristic such as 'pso', 'ipso' or 'ga'")

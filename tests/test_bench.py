@@ -20,7 +20,7 @@ EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
 SMALL = {
     "name": "small", "kind": "plan", "maps": ["chen2025_20"],
-    "algorithms": ["msiar-gwo", "gwo", {"name": "pso", "label": "pso-broken", "params": {"no_such_param": 1}}],
+    "algorithms": ["msiar-gwo", "gwo", {"name": "pso", "label": "pso-broken", "params": {"postprocess": "no_such_param"}}],
     "params": {"pop": 20, "iters": 25}, "runs": 3, "reference": "msiar-gwo",
 }
 # metrics that depend on the clock or the process, not on the seed
@@ -172,7 +172,7 @@ def test_rerun_skips_stored_runs_and_csv_has_parameter_and_metric_columns(tmp_pa
 
 
 def test_execute_run_reports_exceptions_as_failed_runs():
-    rec = load_spec({**SMALL, "algorithms": [{"name": "gwo", "params": {"no_such_param": 1}}],
+    rec = load_spec({**SMALL, "algorithms": [{"name": "gwo", "params": {"postprocess": "no_such_param"}}],
                      "reference": None}).expand()[0]
     out = execute_run(rec.to_dict())
     assert out["status"] == "failed" and out["error"].startswith("ParameterError") and out["key"] == rec.key

@@ -18,7 +18,7 @@ CLOCK = {"runtime_s", "wall_s", "worker", "finished_at", "mean_step_ms"}
 
 SPEC = {
     "name": "dask_vs_local", "kind": "plan", "maps": ["chen2025_20", "yang2023_env1"],
-    "algorithms": ["msiar-gwo", "pso", {"name": "gwo", "label": "gwo-broken", "params": {"no_such_param": 1}}],
+    "algorithms": ["msiar-gwo", "pso", {"name": "gwo", "label": "gwo-broken", "params": {"postprocess": "no_such_param"}}],
     "params": {"pop": 16, "iters": 20}, "runs": 3, "reference": "msiar-gwo",
 }
 

@@ -222,3 +222,21 @@ def test_worlds_follow_the_world_protocol():
     assert isinstance(grid, World) and isinstance(circles, World)
     assert grid.is_grid is True and circles.is_grid is False
     assert not isinstance(object(), World)
+
+
+def test_float_segments_ending_exactly_on_a_grid_line_are_free():
+    # a segment from an off-centre point that stops exactly on the edge of a blocked row
+    # touches it without entering; float rounding of y(x1) used to push it over the edge
+    occ = np.zeros((6, 8), bool)
+    occ[3, :] = True
+    g = op.GridMap(occ)
+    rng = np.random.default_rng(5)
+    A = np.column_stack([rng.uniform(0, 8, 500), rng.uniform(0, 3, 500)])
+    B = np.column_stack([rng.uniform(0, 8, 500), np.full(500, 3.0)])
+    assert segments_free(g, A, B).all()
+    assert segments_free(g, B, A).all()
+    assert not segments_free(g, A, B + [0.0, 1e-9]).any()
+    # same on the transposed map (vertical rule) and as a validated path
+    gt = op.GridMap(occ.T.copy())
+    assert segments_free(gt, A[:, ::-1], B[:, ::-1]).all()
+    assert op.validate_path(g, [[1.4052449648204721, 2.5895367670496596], [4.331689761992734, 3.0]])

@@ -57,8 +57,11 @@ def test_binary_and_missing_and_unknown(tmp_path):
         op.load_map(f)
     with pytest.raises(op.MapFormatError, match="does not exist"):
         op.load_map(tmp_path / "nope.map")
-    (tmp_path / "x.bmp").write_text("x")
+    (tmp_path / "x.xyz").write_text("x")
     with pytest.raises(op.MapFormatError, match="unknown map format"):
+        op.load_map(tmp_path / "x.xyz")
+    (tmp_path / "x.bmp").write_text("x")  # images are read through Pillow; this one is not an image
+    with pytest.raises(op.MapFormatError, match="not a readable image"):
         op.load_map(tmp_path / "x.bmp")
 
 

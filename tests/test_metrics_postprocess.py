@@ -59,3 +59,35 @@ def test_spline_passes_through_waypoints():
         assert np.min(np.hypot(*(s - pt).T)) < 1e-9
     with pytest.raises(op.ParameterError):
         spline_resample(w, 1)
+
+
+def test_min_clearance_is_exact_where_samples_miss_the_nearest_point():
+    # a diagonal segment passing 0.1 m from the corner (6, 5) of the blocked cell [5,6]x[5,6];
+    # samples along it never land on the foot of the perpendicular
+    occ = np.zeros((10, 10), bool)
+    occ[5, 5] = True
+    g = op.GridMap(occ)
+    u, n = np.array([1.0, 1.0]) / np.sqrt(2), np.array([1.0, -1.0]) / np.sqrt(2)
+    foot = np.array([6.0, 5.0]) + 0.1 * n
+    path = [foot - 4.0 * u, foot + 3.013 * u]
+    assert path_metrics(g, path).min_clearance == pytest.approx(0.1, abs=1e-12)
+
+
+def test_min_clearance_is_exact_on_circle_worlds_and_negative_through_obstacles():
+    w = op.CircleWorld((0, 0, 10, 10), [(5.0, 5.0, 1.0)], safety=0.25)
+    assert path_metrics(w, [[0.5, 6.6], [9.5, 6.6]]).min_clearance == pytest.approx(0.35, abs=1e-12)
+    assert path_metrics(w, [[0.5, 5.0], [9.5, 5.0]]).min_clearance == pytest.approx(-1.25, abs=1e-12)
+    g = op.GridMap.from_rows([[0, 0, 0], [0, 1, 0], [0, 0, 0]])
+    assert path_metrics(g, [[0.5, 1.5], [2.5, 1.5]]).min_clearance < 0
+
+
+def test_exact_min_clearance_never_exceeds_dense_samples():
+    rng = np.random.default_rng(2)
+    for _ in range(30):
+        g = op.GridMap(rng.random((9, 11)) < 0.2, resolution=0.5)
+        a, b = rng.uniform(0, [5.5, 4.5], (2, 2))
+        if not g.segments_free(a, b):
+            continue
+        exact = g.segments_clearance(a[None], b[None])[0]
+        sampled = g.clearance(a + np.linspace(0, 1, 2001)[:, None] * (b - a)).min()
+        assert exact <= sampled + 1e-12 and exact >= sampled - 1e-3

@@ -39,6 +39,8 @@ def _common_run_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--format", choices=["markdown", "latex"], default="markdown", help="table format")
     p.add_argument("--plots", metavar="DIR", help="write box plots, convergence curves and path overlays here")
     p.add_argument("--csv", metavar="OUT.csv", help="export the runs of the spec(s) to a CSV file")
+    p.add_argument("--export-ompl", metavar="DIR", help="write the runs as OMPL benchmark logs (one per experiment "
+                   "and target) into DIR, for ompl_benchmark_statistics.py and Planner Arena")
     p.add_argument("--retry-failed", action="store_true", help="rerun runs stored as failed (default: keep them)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
 
@@ -106,6 +108,15 @@ def _tables(spec, store, args, layout: str | None = None) -> str:
     return render_report(load_results(spec, store), fmt=args.format, plots_dir=plots, layout=layout)
 
 
+def _export_ompl(store, args, keys) -> None:
+    if getattr(args, "export_ompl", None):
+        from .ompl import export_ompl
+
+        files = export_ompl(store, args.export_ompl, keys)
+        print(f"wrote {len(files)} OMPL benchmark log(s) to {args.export_ompl} (Planner Arena: "
+              f"ompl_benchmark_statistics.py {args.export_ompl}/*.log -d benchmark.db)", file=sys.stderr)
+
+
 def run_bench(args) -> int:
     """``optplan bench``: run a spec into the database, print its tables; exit 1 if runs failed."""
     from .spec import load_spec
@@ -130,6 +141,7 @@ def run_bench(args) -> int:
         if args.csv:
             n = store.to_csv(args.csv, [r.key for r in spec.expand()])
             print(f"wrote {n} rows to {args.csv}", file=sys.stderr)
+        _export_ompl(store, args, [r.key for r in spec.expand()])
         if failed:
             print(f"optplan: {failed} run(s) failed; their messages are in the 'error' column of {args.db} "
                   f"(--retry-failed runs them again)", file=sys.stderr)
@@ -188,6 +200,7 @@ def run_reproduce(args) -> int:
         if args.csv:
             n = store.to_csv(args.csv, keys)
             print(f"wrote {n} rows to {args.csv}", file=sys.stderr)
+        _export_ompl(store, args, keys)
         if failed:
             print(f"optplan: {failed} run(s) failed (see the 'failed' counts in the tables)", file=sys.stderr)
         return 1 if failed else 0

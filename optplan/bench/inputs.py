@@ -53,9 +53,9 @@ def _map_files(spec: str, base_dir: Path | None = None) -> list[tuple[str, Path 
     out: list[tuple[str, Path | None]] = [("map", path)]
     if path is not None and path.suffix.lower() in (".yaml", ".yml"):
         try:
-            import yaml
+            from ..world.loaders import read_yaml
 
-            meta = yaml.safe_load(path.read_text())
+            meta = read_yaml(path, "map metadata")
             image = Path(str(meta["image"]))
         except Exception:  # unreadable metadata: the loader reports it when the run starts
             return out
@@ -74,9 +74,9 @@ def _scenario_files(spec: str) -> list[tuple[str, Path | None]]:
     if p is None:
         return out
     try:
-        import yaml
+        from ..world.loaders import read_yaml
 
-        data = yaml.safe_load(p.read_text())
+        data = read_yaml(p, "scenario file")
     except Exception:  # unreadable: load_scenario reports it when the run starts
         return out
     m = data.get("map") if isinstance(data, dict) else None

@@ -95,8 +95,26 @@ def experiment_plots(res: ExperimentResults, out_dir: str | Path, metric: str | 
                 from ..viz.plots import plot_paths
 
                 files.append(out_dir / f"{_safe(spec.name)}_{_safe(t.name)}_paths.png")
-                plot_paths(world, paths, files[-1], title=f"{t.name}: best run of each")
+                ends = _query_of(spec.kind, t.spec)  # a trajectory ends where the robot stopped
+                plot_paths(world, paths, files[-1], title=f"{t.name}: best run of each", start=ends[0],
+                           goal=ends[1])
     return files
+
+
+def _query_of(kind: str, target_spec: Mapping) -> tuple:
+    """``(start, goal)`` of a target (``(None, None)`` when it has none to draw)."""
+    try:
+        if kind in ("plan", "program"):
+            from .runner import plan_target
+
+            _, s, g = plan_target(json.dumps(dict(target_spec), sort_keys=True))
+            return s, g
+        from ..world.scenario import load_scenario
+
+        sc = load_scenario(target_spec["scenario"])
+        return sc.start[:2], sc.goal
+    except Exception:  # nothing to mark: plot_paths falls back to the paths' ends
+        return None, None
 
 
 def _world_of(kind: str, target_spec: Mapping):

@@ -27,6 +27,7 @@ import socket
 import sys
 import time
 from dataclasses import dataclass
+from contextlib import contextmanager
 from typing import Any, Callable, Iterable, Mapping
 
 from ..errors import ParameterError
@@ -181,11 +182,33 @@ def _run_simulate(rec) -> tuple[Any, dict]:
     return res, extra
 
 
-def warm_up(extra: tuple[str, ...] = ()) -> None:
+def _exit_with_parent(parent_pid: int, period_s: float = 1.0) -> None:
+    """In a worker: end the process once ``parent_pid`` (the bench process) is gone, so a
+    ``kill -9`` of the bench leaves no orphan workers holding memory."""
+    import threading
+
+    def watch():
+        while True:
+            time.sleep(period_s)
+            try:
+                os.kill(parent_pid, 0)
+            except ProcessLookupError:
+                os._exit(1)
+            except PermissionError:  # the pid was reused by another user's process: the parent is gone
+                os._exit(1)
+
+    threading.Thread(target=watch, name="optplan-parent-watch", daemon=True).start()
+
+
+def warm_up(extra: tuple[str, ...] = (), parent_pid: int | None = None) -> None:
     """Import what the solvers import lazily, so that no run's ``runtime_s`` includes one-time
     module loading (scipy.spatial alone takes ~0.5 s, cvxpy 1.5 s); called once per worker
-    process. ``extra`` names further modules the runs need (:func:`warm_modules`)."""
+    process. ``extra`` names further modules the runs need (:func:`warm_modules`);
+    ``parent_pid``, when given, is the bench process this worker must not outlive."""
     import importlib
+
+    if parent_pid is not None:
+        _exit_with_parent(parent_pid)
 
     for mod in ("scipy.spatial", "scipy.interpolate", "scipy.stats", "optplan.planning", "optplan.solvers.paths",
                 "optplan.solvers.metaheuristics", "optplan.formulations.functions", "optplan.world.papermaps",
@@ -404,7 +427,44 @@ def _pool_context():
     return mp.get_context("forkserver" if "forkserver" in mp.get_all_start_methods() else "spawn")
 
 
+@contextmanager
+def _main_script_not_reimported(todo: list[dict]):
+    """Keep worker processes from re-running the caller's script.
+
+    forkserver and spawn workers normally import the parent's ``__main__`` file again; a
+    script that calls ``run_experiment(..., workers=2)`` without an
+    ``if __name__ == "__main__":`` guard then starts the whole experiment inside every
+    worker. The workers only need ``optplan`` (each run is a plain dict executed by
+    :func:`execute_run`), so while the pool runs the main module's file is hidden from
+    multiprocessing, as for an interactive session. A spec that names code in
+    ``__main__`` keeps the usual behaviour (it needs the script in the workers).
+    """
+    main = sys.modules.get("__main__")
+    hide = main is not None and getattr(main, "__file__", None) is not None and \
+        "__main__" not in json.dumps(todo, default=str)
+    if not hide:
+        yield
+        return
+    saved = {k: main.__dict__[k] for k in ("__file__", "__spec__") if k in main.__dict__}
+    for k in saved:
+        if k == "__spec__":
+            main.__spec__ = None
+        else:
+            del main.__dict__[k]
+    try:
+        yield
+    finally:
+        main.__dict__.update(saved)
+
+
 def _run_process_pool(todo: list[dict], workers: int, record: Callable) -> None:
+    """Run ``todo`` on a process pool (see :func:`_pool_loop`), never re-running the
+    caller's script in the workers (:func:`_main_script_not_reimported`)."""
+    with _main_script_not_reimported(todo):
+        _pool_loop(todo, workers, record)
+
+
+def _pool_loop(todo: list[dict], workers: int, record: Callable) -> None:
     """A process pool with at most ``2 * workers`` runs in flight.
 
     A worker that dies hard (segfault, out of memory) breaks the pool; the runs
@@ -418,7 +478,7 @@ def _run_process_pool(todo: list[dict], workers: int, record: Callable) -> None:
     suspects: list[dict] = []
     while queue or suspects:
         pool = ProcessPoolExecutor(max_workers=workers, mp_context=_pool_context(), initializer=warm_up,
-                                   initargs=(warm_modules(todo),))
+                                   initargs=(warm_modules(todo), os.getpid()))
         in_flight: dict = {}
         broken = alone = False
         try:

@@ -43,6 +43,7 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Mapping
 
+from ..checks import MAX_RUNS, population_budget, seed_bound
 from ..errors import ParameterError, ScenarioError, UnknownAlgorithmError
 
 SPECS_DIR = Path(__file__).resolve().parent.parent / "data" / "specs"
@@ -59,7 +60,8 @@ TOP_KEYS = {"name", "title", "paper", "part", "report", "kind", "maps", "scenari
 QUICK_KEYS = {"runs", "params", "maps", "scenarios", "functions", "algorithms", "refine", "local_planners", "seeds",
               "title", "reference", "args"}
 ALGO_KEYS = {"name", "label", "params", "runs"}
-MAP_KEYS = {"name", "map", "start", "goal"}
+MAX_PARAMS = 200  # per algorithm entry; every parameter is a column of the results table
+MAP_KEYS = {"name", "map", "start", "goal", "scen", "queries"}
 
 
 # ----------------------------------------------------------------------------- records
@@ -247,23 +249,21 @@ def load_spec(source: str | Path | Mapping[str, Any], quick: bool = False, runs:
     if isinstance(source, Mapping):
         raw = copy.deepcopy(dict(source))
     else:
-        import yaml
+        from ..world.loaders import read_yaml
 
         path = spec_path(source)
-        try:
-            raw = yaml.safe_load(path.read_text())
-        except yaml.YAMLError as exc:
-            raise ScenarioError(f"spec {path} is not valid YAML: {exc}") from None
+        raw = read_yaml(path, "spec", ScenarioError)  # bounded: size, alias expansion, one-line errors
         if not isinstance(raw, dict):
             raise ScenarioError(f"spec {path} must be a YAML mapping (name:, kind:, maps:, algorithms:, ...), "
                                 f"got {type(raw).__name__}")
     where = f"spec {path}" if path else "spec"
     _check_keys(raw, TOP_KEYS, where)
+    if raw.get("quick") is not None:  # checked whether or not --quick is asked for
+        if not isinstance(raw["quick"], dict):
+            raise ScenarioError(f"{where}: 'quick' must be a mapping of overrides")
+        _check_keys(raw["quick"], QUICK_KEYS, f"{where} quick:")
     if quick and raw.get("quick"):
         q = raw["quick"]
-        if not isinstance(q, dict):
-            raise ScenarioError(f"{where}: 'quick' must be a mapping of overrides")
-        _check_keys(q, QUICK_KEYS, f"{where} quick:")
         for k, v in q.items():
             if k in ("params", "args"):
                 raw[k] = {**(raw.get(k) or {}), **(v or {})}
@@ -317,7 +317,7 @@ def _parse(raw: dict, path: Path | None, where: str) -> ExperimentSpec:
             raise ScenarioError(f"{where}: {', '.join(map(repr, given))} "
                                 f"{'applies' if len(given) == 1 else 'apply'} only to kind program")
     base_dir = path.parent if path else Path.cwd()
-    targets = _parse_targets(kind, raw, base_dir, where)
+    targets = _parse_targets(kind, raw, base_dir, where, path is not None)
 
     shared = raw.get("params") or {}
     if not isinstance(shared, dict):
@@ -364,6 +364,7 @@ def _parse(raw: dict, path: Path | None, where: str) -> ExperimentSpec:
         _check_keys(reference, {"algorithm", "refine", "local_planner"}, f"{where} reference:")
         reference = {"algorithm": ref_label, "refine": _refine_name(reference.get("refine"), where),
                      "local_planner": reference.get("local_planner")}
+    _check_title(raw.get("title"), {"runs", "name", *shared}, where)
     return ExperimentSpec(
         name=name, kind=kind, targets=targets, algorithms=algos, refine=refine, local_planners=local, seeds=seeds,
         reference=reference, metric=metric, alpha=float(alpha), title=str(raw.get("title") or ""),
@@ -372,7 +373,7 @@ def _parse(raw: dict, path: Path | None, where: str) -> ExperimentSpec:
         program=program)
 
 
-def _parse_targets(kind: str, raw: dict, base_dir: Path, where: str) -> list[TargetSpec]:
+def _parse_targets(kind: str, raw: dict, base_dir: Path, where: str, from_file: bool = False) -> list[TargetSpec]:
     key = TARGET_KEY[kind]
     items = _as_list(raw.get(key), key, where)
     if not items:
@@ -389,15 +390,16 @@ def _parse_targets(kind: str, raw: dict, base_dir: Path, where: str) -> list[Tar
                                         f"optplan/data/maps/paper_maps.yaml ({', '.join(sorted(cat))}) or "
                                         f"{{name:, map: FILE, start: [x, y], goal: [x, y]}}")
                 out.append(TargetSpec(it, {"paper_map": it}))
+            elif isinstance(it, dict) and "scen" in it:
+                out += _scen_targets(it, base_dir, from_file, where)
             elif isinstance(it, dict):
-                _check_keys(it, MAP_KEYS, f"{where} map entry")
+                _check_keys(it, MAP_KEYS - {"scen", "queries"}, f"{where} map entry")
                 if "map" not in it or "start" not in it or "goal" not in it:
-                    raise ScenarioError(f"{where}: a map entry needs 'map', 'start' and 'goal', got {it}")
+                    raise ScenarioError(f"{where}: a map entry needs 'map', 'start' and 'goal' (or 'scen'), got {it}")
                 start, goal = _point(it["start"], "start", where), _point(it["goal"], "goal", where)
-                m = str(it["map"])
-                resolved = base_dir / m
-                m = str(resolved.resolve()) if resolved.exists() else m  # else a shipped map name
+                m = _spec_file(it["map"], base_dir, from_file, "map", where)
                 nm = str(it.get("name") or Path(m).stem)
+                _check_map_target(m, start, goal, f"{where} map {nm!r}")
                 out.append(TargetSpec(nm, {"map": m, "start": start, "goal": goal}))
             else:
                 raise ScenarioError(f"{where}: a map is a paper map name or a mapping, got {it!r}")
@@ -406,7 +408,7 @@ def _parse_targets(kind: str, raw: dict, base_dir: Path, where: str) -> list[Tar
             if not isinstance(it, str):
                 raise ScenarioError(f"{where}: a scenario is a shipped scenario name or a YAML file path, got {it!r}")
             resolved = base_dir / it
-            sc = str(resolved.resolve()) if resolved.is_file() else it
+            sc = _spec_file(it, base_dir, from_file, "scenario", where) if resolved.is_file() else it
             if not resolved.is_file():
                 try:
                     from ..world.scenario import scenario_names
@@ -434,6 +436,104 @@ def _parse_targets(kind: str, raw: dict, base_dir: Path, where: str) -> list[Tar
     return out
 
 
+def _check_title(title, allowed: set, where: str) -> None:
+    """A title may name ``{runs}``, ``{name}`` and the shared parameters, nothing else (no
+    attributes, indices or unknown names: the title is filled in with str.format)."""
+    import string
+
+    if title is None:
+        return
+    if not isinstance(title, str):
+        raise ScenarioError(f"{where}: title must be text, got {title!r}")
+    try:
+        fields = [f for _, f, _, _ in string.Formatter().parse(title) if f is not None]
+    except ValueError as exc:
+        raise ScenarioError(f"{where}: title {title!r} is not a valid template ({exc}); write braces as {{{{ }}}}") \
+            from None
+    bad = [f for f in fields if f not in allowed]
+    if bad:
+        raise ScenarioError(f"{where}: title names {{{bad[0]}}}; a title may use {{runs}}, {{name}} and the shared "
+                            f"params ({', '.join(sorted(allowed - {'runs', 'name'})) or 'none given'})")
+
+
+def _spec_file(name, base_dir: Path, from_file: bool, what: str, where: str) -> str:
+    """The absolute path of a file a spec names (relative to the spec's folder), or the name
+    itself when no such file exists (a shipped map). A spec file may only read files in its
+    own folder and below: ``../`` and absolute paths leading elsewhere are refused, so a
+    spec from somewhere else cannot make bench read arbitrary files."""
+    if not isinstance(name, str) or not name:
+        raise ScenarioError(f"{where}: a {what} is a file name or a shipped name, got {name!r}")
+    resolved = base_dir / name
+    if not resolved.exists():
+        return name
+    real, root = resolved.resolve(), base_dir.resolve()
+    if from_file and real != root and root not in real.parents:
+        raise ScenarioError(f"{where}: {what} {name!r} lies outside the spec's folder {root}; a spec may only "
+                            f"name files in its own folder (copy the file next to the spec)")
+    if not real.is_file():
+        raise ScenarioError(f"{where}: {what} {name!r} is not a file")
+    return str(real)
+
+
+def _check_map_target(m: str, start, goal, where: str):
+    """Load a map target now, so a bad map or query stops the spec before any run."""
+    from ..errors import OptplanError
+    from ..world.loaders import load_map
+
+    try:
+        world = load_map(m)
+        if start is not None:
+            world.check_query_point(start, "start")
+            world.check_query_point(goal, "goal")
+    except OptplanError as exc:
+        raise ScenarioError(f"{where}: {exc}") from None
+    return world
+
+
+def _scen_targets(it: dict, base_dir: Path, from_file: bool, where: str) -> list[TargetSpec]:
+    """Targets from a Moving AI ``.scen`` file: ``{scen: FILE.scen, map: FILE.map,
+    queries: [0, 5] | N}`` (``map`` defaults to the file the scenario names, next to it;
+    ``queries`` to every query, an integer N to the first N)."""
+    from ..errors import OptplanError
+    from ..world.loaders import load_scen, scen_query
+
+    _check_keys(it, MAP_KEYS - {"start", "goal"}, f"{where} scen entry")
+    scen = _spec_file(it["scen"], base_dir, from_file, "scen file", where)
+    try:
+        entries = load_scen(scen)
+    except OptplanError as exc:
+        raise ScenarioError(f"{where}: {exc}") from None
+    if not entries:
+        raise ScenarioError(f"{where}: {scen} holds no queries")
+    m = it.get("map")
+    if m is None:  # the scenario's own map name, looked up next to the .scen file
+        m = str(Path(scen).parent / Path(entries[0].map_name).name)
+        if not Path(m).is_file():
+            raise ScenarioError(f"{where}: {scen} names map {entries[0].map_name!r}, which is not next to it; "
+                                f"give 'map:'")
+    else:
+        m = _spec_file(m, base_dir, from_file, "map", where)
+    q = it.get("queries", len(entries))
+    if isinstance(q, int) and not isinstance(q, bool) and q >= 1:
+        picks = list(range(min(q, len(entries))))
+    elif isinstance(q, list) and q and all(isinstance(i, int) and not isinstance(i, bool) for i in q):
+        picks = q
+    else:
+        raise ScenarioError(f"{where}: 'queries' is a positive count or a list of query indices, got {q!r}")
+    world = _check_map_target(m, None, None, f"{where} map {m!r}")
+    stem = str(it.get("name") or Path(scen).name.split(".")[0])
+    out = []
+    for i in picks:
+        try:
+            start, goal = scen_query(world, scen, i)
+            world.check_query_point(start, f"query {i} start")
+            world.check_query_point(goal, f"query {i} goal")
+        except OptplanError as exc:
+            raise ScenarioError(f"{where}: {exc}") from None
+        out.append(TargetSpec(f"{stem}_q{i}", {"map": m, "start": list(start), "goal": list(goal)}))
+    return out
+
+
 def _point(v, what: str, where: str) -> list[float]:
     if not isinstance(v, (list, tuple)) or len(v) < 2 or not all(isinstance(c, (int, float)) for c in v[:2]):
         raise ScenarioError(f"{where}: {what} must be [x, y] in metres, got {v!r}")
@@ -441,6 +541,9 @@ def _point(v, what: str, where: str) -> list[float]:
 
 
 def _check_params(params: Mapping, where: str) -> None:
+    if len(params) > MAX_PARAMS:
+        raise ScenarioError(f"{where}: {len(params)} parameters; the bound is {MAX_PARAMS} (each becomes a column of "
+                            f"the results database, and SQLite allows 2000 columns per table)")
     for k, v in params.items():
         if k in ("seed", "algorithm", "refine", "local_planner", "global_planner"):
             raise ScenarioError(f"{where}: {k!r} is set by the spec grid ('seeds', 'algorithms', 'refine', "
@@ -448,10 +551,66 @@ def _check_params(params: Mapping, where: str) -> None:
         if k in ("pop", "iters", "max_evals") and v is not None and (not isinstance(v, int) or isinstance(v, bool)
                                                                      or v < 1):
             raise ParameterError(f"{where}: {k} must be a positive integer (or null), got {v!r}")
+    try:
+        population_budget(params.get("pop"), params.get("iters"), params.get("max_evals"))
+    except ParameterError as exc:
+        raise ParameterError(f"{where}: {exc}") from None
+    for k, v in params.items():
         try:
             json.dumps(v)
         except TypeError:
             raise ScenarioError(f"{where}: parameter {k!r} must be plain YAML data, got {v!r}") from None
+
+
+def _keyword_names(fn) -> set[str]:
+    import inspect
+
+    return {n for n, p in inspect.signature(fn).parameters.items()
+            if p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)}
+
+
+def accepted_params(kind: str, algorithm: str) -> set[str] | None:
+    """Keyword names a run of ``kind`` with ``algorithm`` accepts as ``params``, or ``None``
+    when they cannot be listed (then the run itself checks them)."""
+    if kind not in ("plan", "optimize"):
+        return None
+    from ..solvers.metaheuristics import get_algorithm, optimize
+
+    if kind == "optimize":
+        names = _keyword_names(optimize)
+    else:
+        from ..planning import plan
+        from ..registry import GRAPH_METHODS
+        from ..solvers.graph import shortest_path
+        from ..solvers.paths import plan_path
+
+        names = _keyword_names(plan) | _keyword_names(plan_path)
+        if algorithm in GRAPH_METHODS:
+            return names | _keyword_names(shortest_path)
+    try:
+        return names | set(get_algorithm(algorithm).defaults())
+    except Exception:  # a planner that is not an engine algorithm (ACO, the path GAs): not listed
+        return None
+
+
+def _check_param_names(kind: str, algorithm: str, params: Mapping, where: str) -> None:
+    """A misspelt parameter is found when the spec is loaded, not when every run fails."""
+    import difflib
+
+    try:  # op.plan's and op.optimize's default budget where the spec gives none
+        population_budget(params.get("pop", 30), params.get("iters", 500), params.get("max_evals"))
+    except ParameterError as exc:
+        raise ParameterError(f"{where} {algorithm}: {exc}") from None
+    known = accepted_params(kind, algorithm)
+    if known is None:
+        return
+    known -= {"world", "start", "goal", "f", "bounds", "algorithm", "seed", "refine", "callback"}
+    unknown = sorted(set(params) - known)
+    if unknown:
+        hints = [f"{u!r} (did you mean {difflib.get_close_matches(u, known, 1)[0]!r}?)"
+                 if difflib.get_close_matches(u, known, 1) else repr(u) for u in unknown]
+        raise ScenarioError(f"{where}: {algorithm} does not take the parameter(s) {', '.join(hints)}; it takes "
+                            f"{', '.join(sorted(known))}")
 
 
 def _known_algorithms(kind: str) -> list[str]:
@@ -488,6 +647,7 @@ def _parse_algorithms(kind: str, items, shared: Mapping, where: str) -> list[Alg
         runs = it.get("runs")
         if runs is not None and (not isinstance(runs, int) or isinstance(runs, bool) or runs < 1):
             raise ParameterError(f"{where}: runs of {nm!r} must be a positive integer, got {runs!r}")
+        _check_param_names(kind, nm, {**shared, **own}, where)
         out.append(AlgorithmSpec(nm, str(it.get("label") or nm), {**shared, **own}, runs))
     labels = [a.label for a in out]
     if len(set(labels)) != len(labels):
@@ -580,6 +740,10 @@ def _parse_seeds(raw: dict, where: str) -> list[int]:
             raise ParameterError(f"{where}: seeds must be a non-empty list of non-negative integers, got {seeds!r}")
         if len(set(seeds)) != len(seeds):
             raise ParameterError(f"{where}: seeds repeat: {seeds!r}")
+        if len(seeds) > MAX_RUNS:
+            raise ParameterError(f"{where}: {len(seeds)} seeds; the bound is {MAX_RUNS} runs per spec")
+        for s in seeds:
+            seed_bound(f"{where}: seed", s)
         return [int(s) for s in seeds]
     runs = raw.get("runs", 1)
     seed0 = raw.get("seed", 0)
@@ -587,6 +751,10 @@ def _parse_seeds(raw: dict, where: str) -> list[int]:
         raise ParameterError(f"{where}: runs must be a positive integer, got {runs!r}")
     if not isinstance(seed0, int) or isinstance(seed0, bool) or seed0 < 0:
         raise ParameterError(f"{where}: seed (the first run's seed) must be a non-negative integer, got {seed0!r}")
+    if runs > MAX_RUNS:
+        raise ParameterError(f"{where}: runs {runs} exceeds the bound of {MAX_RUNS} runs per spec (each run is a "
+                             f"stored row and seconds to minutes of work); split the experiment")
+    seed_bound(f"{where}: seed + runs - 1", seed0 + runs - 1)
     return list(range(seed0, seed0 + runs))
 
 

@@ -24,7 +24,7 @@ import time
 from pathlib import Path
 from typing import Any, Iterable, Mapping
 
-from ..errors import ParameterError
+from ..errors import OptplanError, ParameterError
 
 IDENTITY_COLUMNS = (
     ("key", "TEXT PRIMARY KEY"), ("experiment", "TEXT"), ("kind", "TEXT"), ("target", "TEXT"),
@@ -86,6 +86,18 @@ class ResultStore:
             raise ParameterError(f"cannot use {self.path} as a results database ({exc}); pass another --db file") \
                 from None
         self._columns = {r["name"] for r in self.conn.execute("PRAGMA table_info(runs)")}
+        self._check_schema()
+
+    def _check_schema(self) -> None:
+        """Refuse a database whose ``runs``/``traces`` tables were made by something else."""
+        missing = [c for c in IDENTITY if c not in self._columns]
+        tcols = {r["name"] for r in self.conn.execute("PRAGMA table_info(traces)")}
+        missing += [f"traces.{c}" for c in ("key", *TRACE_COLUMNS) if c not in tcols]
+        if missing:
+            self.conn.close()
+            raise ParameterError(f"{self.path} is not an optplan results database (its tables lack "
+                                 f"{', '.join(missing[:5])}{', ...' if len(missing) > 5 else ''}); pass another "
+                                 f"--db file")
 
     # ------------------------------------------------------------------ writing
     def _ensure_column(self, col: str, value: Any) -> None:
@@ -114,8 +126,19 @@ class ResultStore:
             if k not in _SKIP_METRICS and k not in IDENTITY:
                 row[column_name(k)] = _sql_value(v)
         traces = {k: json.dumps(v) for k, v in (outcome.get("traces") or {}).items() if k in TRACE_COLUMNS}
+        try:
+            self._write_row(row, traces, record["key"])
+        except sqlite3.Error as exc:  # disk full, read-only file, locked for longer than the timeout
+            raise OptplanError(f"cannot store run {record['key'][:12]} in {self.path}: {exc}; the runs stored so far "
+                               f"are kept (free space or pass another --db, then rerun to finish)") from None
+
+    def _write_row(self, row: dict, traces: dict, key: str) -> None:
         self.conn.execute("BEGIN IMMEDIATE")
         try:
+            if any(col not in self._columns for col in row):
+                # another process may have added the column since we last looked: re-read the
+                # columns under the write lock this transaction holds, then add what is missing
+                self._columns = {r["name"] for r in self.conn.execute("PRAGMA table_info(runs)")}
             for col, v in row.items():
                 self._ensure_column(col, v)
             names = ", ".join(f'"{c}"' for c in row)
@@ -124,10 +147,14 @@ class ResultStore:
             tnames = ", ".join(["key", *traces])
             tmarks = ", ".join("?" for _ in range(len(traces) + 1))
             self.conn.execute(f"INSERT OR REPLACE INTO traces ({tnames}) VALUES ({tmarks})",
-                              [record["key"], *traces.values()])
+                              [key, *traces.values()])
             self.conn.execute("COMMIT")
         except BaseException:
-            self.conn.execute("ROLLBACK")
+            if self.conn.in_transaction:  # SQLite may already have rolled back (disk full): no second error
+                try:
+                    self.conn.execute("ROLLBACK")
+                except sqlite3.Error:
+                    pass
             raise
 
     # ------------------------------------------------------------------ reading

@@ -63,12 +63,8 @@ def animate_run(scenario, result, filename: str | Path, fps: int = 10, max_frame
         patch = Circle(c[:2], c[2], facecolor="none", edgecolor="tab:blue", hatch="///", lw=0.5, zorder=3)
         ax.add_patch(patch)
         unknown.append(patch)
-    gp = np.asarray(result.global_path)
-    if gp.ndim == 2 and len(gp):
-        ax.plot(gp[:, 0], gp[:, 1], "--", color="tab:red", lw=1.2, zorder=4, label="global path (last)")
-    ax.plot(*sc.start[:2], "g^", ms=9, zorder=6)
-    ax.plot(*sc.goal, "r*", ms=12, zorder=6)
-    driven, = ax.plot([], [], "-", color="tab:blue", lw=1.6, zorder=5, label="driven")
+    _draw_route(ax, sc, result)
+    driven, = ax.plot([], [], "-", color="tab:blue", lw=1.6, zorder=5)
     robot = Circle((0, 0), sc.robot.radius, color="tab:green", zorder=7)
     sensor = Circle((0, 0), sc.sensor_range, fill=False, ls=":", color="tab:green", zorder=2)
     heading, = ax.plot([], [], "-", color="k", lw=1.2, zorder=8)
@@ -77,7 +73,7 @@ def animate_run(scenario, result, filename: str | Path, fps: int = 10, max_frame
     movers = [Circle((0, 0), ob.radius, color="tab:pink", alpha=0.9, zorder=6) for ob in sc.dynamic]
     for m in movers:
         ax.add_patch(m)
-    ax.legend(loc="upper left", fontsize=7, framealpha=0.8)
+    run_legend(ax, sc)
     head = title or f"{sc.name or 'scenario'}: {result.global_planner} + {result.local_planner}"
     label = ax.set_title(head)
     filename = Path(filename)
@@ -112,7 +108,10 @@ def animate_run(scenario, result, filename: str | Path, fps: int = 10, max_frame
         rows = env.movers(t)
         for m, row in zip(movers, rows):
             m.center = (row[0], row[1])
-        label.set_text(f"{head}  t={t:.1f} s")
+        last = f == frames[-1]
+        label.set_text(f"{head}  t={t:.1f} s" + (f"  {outcome_text(result)}" if last else ""))
+        if last:  # the last frame says how the run ended, in the colour of the outcome
+            label.set_color(OUTCOME_COLOURS.get(result.status, "black"))
         fig.canvas.restore_region(background)
         for a in moving:
             ax.draw_artist(a)
@@ -120,8 +119,109 @@ def animate_run(scenario, result, filename: str | Path, fps: int = 10, max_frame
         if palette is None:  # one palette for the whole run: quantising against it is cheap
             palette = frame.quantize(colors=96)
         images.append(frame.quantize(palette=palette, dither=Image.Dither.NONE))
-    images[0].save(filename, save_all=True, append_images=images[1:], duration=int(1000 / fps), loop=0)
+    # hold the last frame for two seconds, so the outcome can be read
+    durations = [int(1000 / fps)] * (len(images) - 1) + [2000]
+    images[0].save(filename, save_all=True, append_images=images[1:], duration=durations, loop=0)
     return filename
+
+
+OUTCOME_COLOURS = {"reached": "tab:green", "collision": "tab:red", "stuck": "tab:orange", "timeout": "tab:orange"}
+OUTCOME_WORDS = {"reached": "REACHED", "collision": "COLLIDED", "stuck": "STUCK", "timeout": "TIMED OUT"}
+
+
+def outcome_text(result) -> str:
+    """How a run ended, in one word or two (``REACHED``, ``COLLIDED``, ``STUCK``, ``TIMED OUT``)
+    and its collision count when it had any."""
+    word = OUTCOME_WORDS.get(result.status, (result.status or "ended").upper())
+    if result.collisions and result.status != "collision":
+        word += f", {result.collisions} collision step(s)"
+    return word
+
+
+def _draw_route(ax, sc, result) -> None:
+    gp = np.asarray(result.global_path)
+    if gp.ndim == 2 and len(gp):
+        ax.plot(gp[:, 0], gp[:, 1], "--", color="tab:red", lw=1.2, zorder=4)
+    ax.plot(*sc.start[:2], "g^", ms=9, zorder=6)
+    ax.plot(*sc.goal, "r*", ms=12, zorder=6)  # the scenario's goal, wherever the robot stopped
+
+
+def run_legend(ax, sc) -> None:
+    """One legend entry per kind of element a closed-loop picture shows (drawn as proxies,
+    so the entries exist even for elements that appear only in later frames)."""
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    handles = [Patch(facecolor="black", label="known obstacle"),
+               Patch(facecolor="none", edgecolor="tab:blue", hatch="///", label="unknown obstacle (unsensed)"),
+               Patch(facecolor="tab:blue", label="unknown obstacle (sensed)"),
+               Line2D([], [], ls="--", color="tab:red", label="global path (last)"),
+               Line2D([], [], color="tab:blue", lw=1.6, label="driven"),
+               Line2D([], [], marker="o", ls="", color="tab:green", ms=8, label="robot"),
+               Line2D([], [], ls=":", color="tab:green", label="sensor range"),
+               Line2D([], [], marker="^", ls="", color="g", label="start"),
+               Line2D([], [], marker="*", ls="", color="r", ms=10, label="goal")]
+    if sc.dynamic:
+        handles.append(Line2D([], [], marker="o", ls="", color="tab:pink", ms=8, label="moving obstacle"))
+    ax.legend(handles=handles, loc="upper left", fontsize=6, framealpha=0.8)
+
+
+def plot_run(scenario, result, filename: str | Path | None = None, title: str | None = None, dpi: int = 110):
+    """A static picture of a closed-loop run: the map, the obstacles the robot did not know
+    (filled), the last global path, the driven trajectory coloured by time, the robot and the
+    movers where they were at the end, the steps that collided (red crosses), and the outcome
+    in the title. Returns the Figure (written as a PNG when ``filename`` is given).
+
+    ``scenario`` is the realised scenario of the run, as for :func:`animate_run`.
+    """
+    from matplotlib.patches import Circle, Rectangle
+
+    from .plots import draw_world, finish_figure, new_figure
+    from ..sim.environment import SimEnvironment
+
+    sc = scenario
+    env = SimEnvironment(sc)
+    traj = np.asarray(result.trajectory, float)
+    fig, ax = new_figure((6.4, 6.4))
+    draw_world(ax, sc.world)
+    res = getattr(sc.world, "resolution", 1.0)
+    for lo in env.cell_lo:
+        ax.add_patch(Rectangle(lo, res, res, facecolor="tab:blue", edgecolor="tab:blue", zorder=3))
+    for c in env.circles:
+        ax.add_patch(Circle(c[:2], c[2], facecolor="tab:blue", zorder=3))
+    _draw_route(ax, sc, result)
+    if len(traj):
+        pts = ax.scatter(traj[:, 1], traj[:, 2], c=traj[:, 0], cmap="viridis", s=4, zorder=5)
+        fig.colorbar(pts, ax=ax, fraction=0.046, pad=0.04, label="t [s]")
+        t_end, x, y = traj[-1, :3]
+        ax.add_patch(Circle((x, y), sc.robot.radius, color="tab:green", zorder=7))
+        for row in env.movers(t_end):
+            ax.add_patch(Circle((row[0], row[1]), row[4], color="tab:pink", alpha=0.9, zorder=6))
+        hits = _collision_steps(env, sc, traj)
+        if len(hits):
+            ax.plot(traj[hits, 1], traj[hits, 2], "x", color="red", ms=7, zorder=8)
+    run_legend(ax, sc)
+    head = title or f"{sc.name or 'scenario'}: {result.global_planner} + {result.local_planner}"
+    fig = finish_figure(fig, None, f"{head}: {outcome_text(result)} after {result.time_s:.1f} s", dpi=dpi)
+    ax.title.set_color(OUTCOME_COLOURS.get(result.status, "black"))
+    if filename is not None:
+        filename = Path(filename)
+        filename.parent.mkdir(parents=True, exist_ok=True)
+        fig.savefig(filename, dpi=dpi)
+    return fig
+
+
+def _collision_steps(env, sc, traj: np.ndarray) -> np.ndarray:
+    """Indices of the trajectory rows where the robot's disc overlaps a mover (static
+    overlaps are drawn by the map itself)."""
+    if not sc.dynamic:
+        return np.zeros(0, dtype=np.int64)
+    hit = []
+    for i, (t, x, y) in enumerate(traj[:, :3]):  # pictures only: one row per recorded step
+        rows = env.movers(t)
+        if len(rows) and np.any(np.hypot(rows[:, 0] - x, rows[:, 1] - y) < rows[:, 4] + sc.robot.radius):
+            hit.append(i)
+    return np.asarray(hit, dtype=np.int64)
 
 
 def write_run_gif(scenario, local_planner: str, filename: str | Path, global_planner: str = "astar", seed: int = 0,

@@ -46,9 +46,13 @@ def draw_world(ax, world) -> None:
     ax.set_ylabel("y [m]")
 
 
-def plot_paths(world, paths: Mapping[str, np.ndarray], filename: str | Path | None = None, title: str = ""):
+def plot_paths(world, paths: Mapping[str, np.ndarray], filename: str | Path | None = None, title: str = "",
+               start=None, goal=None):
     """Draw ``world`` with each named ``(N, 2)`` path (metres) overlaid; returns the Figure,
-    after writing it as a PNG to ``filename`` when one is given."""
+    after writing it as a PNG to ``filename`` when one is given.
+
+    ``start`` and ``goal`` mark the query; by default the first path's ends (give them for
+    trajectories, which end where the robot stopped, not at the goal)."""
     fig, ax = new_figure((6.4, 6.4))
     draw_world(ax, world)
     styles = ["-", "--", "-.", ":"]
@@ -57,9 +61,14 @@ def plot_paths(world, paths: Mapping[str, np.ndarray], filename: str | Path | No
         if P.ndim == 2 and len(P):
             ax.plot(P[:, 0], P[:, 1], styles[k % len(styles)], lw=2, marker="o", ms=3, label=name, zorder=5)
     first = next((np.asarray(p) for p in paths.values() if len(p)), None)
-    if first is not None:
-        ax.plot(*first[0], "g^", ms=10, zorder=6, label="start")
-        ax.plot(*first[-1], "r*", ms=13, zorder=6, label="goal")
+    if start is None and first is not None:
+        start = first[0]
+    if goal is None and first is not None:
+        goal = first[-1]
+    if start is not None:
+        ax.plot(*np.asarray(start, float)[:2], "g^", ms=10, zorder=6, label="start")
+    if goal is not None:
+        ax.plot(*np.asarray(goal, float)[:2], "r*", ms=13, zorder=6, label="goal")
     ax.legend(loc="best", fontsize=8, framealpha=0.85)
     return finish_figure(fig, filename, title, dpi=120)
 

@@ -34,11 +34,17 @@ class CircleWorld:
     is_grid: ClassVar[bool] = False   # the World protocol (optplan.world.protocol)
 
     def __post_init__(self) -> None:
-        b = np.asarray(self.bounds, dtype=float).reshape(-1)
+        try:
+            b = np.asarray(self.bounds, dtype=float).reshape(-1)
+        except (TypeError, ValueError):
+            b = np.zeros(0)
         if b.shape != (4,) or not np.all(np.isfinite(b)) or b[2] <= b[0] or b[3] <= b[1]:
             raise ParameterError(f"bounds must be (xmin, ymin, xmax, ymax) with xmin < xmax and ymin < ymax, got {self.bounds!r}")
         self.bounds = tuple(float(v) for v in b)
-        c = np.asarray(self.circles, dtype=float)
+        try:
+            c = np.asarray(self.circles, dtype=float)
+        except (TypeError, ValueError):
+            raise MapFormatError(f"circles must be rows (x, y, r) of numbers, got {self.circles!r:.200}") from None
         if c.size == 0:
             c = np.zeros((0, 3))
         if c.ndim != 2 or c.shape[1] != 3:
@@ -46,7 +52,10 @@ class CircleWorld:
         if not np.all(np.isfinite(c)) or np.any(c[:, 2] <= 0):
             raise MapFormatError("circle centres must be finite and radii positive")
         self.circles = c
-        s = float(self.safety)
+        try:
+            s = float(self.safety)
+        except (TypeError, ValueError):
+            s = float("nan")
         if not np.isfinite(s) or s < 0:
             raise ParameterError(f"safety must be a finite distance >= 0 metres, got {self.safety!r}")
         self.safety = s
@@ -59,15 +68,24 @@ class CircleWorld:
 
         try:
             data = json.loads(Path(path).read_text())
-        except (OSError, ValueError) as exc:
-            raise MapFormatError(f"cannot read circle world {path}: {exc}") from None
-        if variant is not None:
-            data = data[variant]
+        except (OSError, ValueError, RecursionError) as exc:
+            raise MapFormatError(f"cannot read circle world {path}: {type(exc).__name__}: {exc}") from None
         try:
-            return cls(tuple(data["bounds"]), np.asarray(data["circles"], float), float(data.get("safety", 0.0)),
-                       data.get("name", Path(path).stem))
-        except (KeyError, TypeError) as exc:
-            raise MapFormatError(f"{path}: circle world needs 'bounds' and 'circles' ({exc})") from None
+            if variant is not None:
+                data = data[variant]
+            if not isinstance(data, dict):
+                raise TypeError(f"the file holds a {type(data).__name__}, not an object")
+            bounds = tuple(float(v) for v in data["bounds"])
+            circles = np.asarray(data["circles"], float)
+            safety = data.get("safety", 0.0)
+            if isinstance(safety, bool) or not isinstance(safety, (int, float)):
+                raise TypeError(f"safety must be a number of metres, got {safety!r}")
+            return cls(bounds, circles, float(safety), str(data.get("name", Path(path).stem)))
+        except (KeyError, TypeError, ValueError) as exc:
+            raise MapFormatError(f"{path}: a circle world is {{\"bounds\": [xmin, ymin, xmax, ymax], \"circles\": "
+                                 f"[[x, y, r], ...], \"safety\": d}} ({type(exc).__name__}: {exc})") from None
+        except ParameterError as exc:
+            raise MapFormatError(f"{path}: {exc}") from None
 
     @property
     def radii(self) -> np.ndarray:
@@ -106,6 +124,16 @@ class CircleWorld:
         t = np.clip((qx * dx + qy * dy) / np.where(L2 > 0, L2, 1.0), 0.0, 1.0)
         ex, ey = qx - t * dx, qy - t * dy
         return np.sqrt(ex * ex + ey * ey)
+
+    def segments_clearance(self, a, b) -> np.ndarray:
+        """Exact signed distance (metres) from each segment ``a[i] -> b[i]`` to the nearest
+        grown circle or the border (the border is nearest at an end point)."""
+        A, B = np.broadcast_arrays(np.asarray(a, float), np.asarray(b, float))
+        A, B = A.reshape(-1, 2), B.reshape(-1, 2)
+        d = np.minimum(self._border_distance(A), self._border_distance(B))
+        if len(self.circles) and len(A):
+            d = np.minimum(d, (self.segment_distances(A, B) - self.radii).min(axis=1))
+        return d
 
     def segments_free(self, a, b, clearance: float = 0.0) -> np.ndarray:
         """Segments stay inside the bounds (minus ``clearance``) and at least

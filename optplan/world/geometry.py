@@ -39,8 +39,11 @@ def _as_points(points) -> np.ndarray:
 
 
 def _check_clearance(clearance: float) -> float:
-    c = float(clearance)
-    if not np.isfinite(c) or c < 0:
+    try:
+        c = float(clearance)
+    except (TypeError, ValueError):
+        c = float("nan")
+    if isinstance(clearance, bool) or not np.isfinite(c) or c < 0:
         raise ParameterError(f"clearance must be a finite number >= 0 metres, got {clearance!r}")
     return c
 
@@ -137,9 +140,17 @@ def _segments_free_grid_units(occ_pad: np.ndarray, col_cum: np.ndarray, a: np.nd
     k = k_first[seg] + off
     xa = np.maximum(x0[seg], k * S)
     xb = np.minimum(x1[seg], (k + 1) * S)
-    na, nb = num(xa, seg), num(xb, seg)
+    if integer:
+        na, nb = num(xa, seg), num(xb, seg)
+        den = dx[seg] * S
+    else:
+        # float mode: a stretch that ends at the segment's end point takes that point's own
+        # y, so a segment that stops exactly on a grid line is not pushed over it by rounding
+        # (y0 * dx + (x1 - x0) * dy) / dx != y1 in floating point
+        na = np.where(xa == x0[seg], y0[seg], y0[seg] + (xa - x0[seg]) * (dy[seg] / dx[seg]))
+        nb = np.where(xb == x1[seg], y1[seg], y0[seg] + (xb - x0[seg]) * (dy[seg] / dx[seg]))
+        den = np.ones_like(na)
     nlo, nhi = np.minimum(na, nb), np.maximum(na, nb)
-    den = dx[seg] * S
     sloped = dy[seg] != 0
     if np.any(sloped):
         s_seg, s_k, s_lo, s_hi, s_den = seg[sloped], k[sloped], nlo[sloped], nhi[sloped], den[sloped]
@@ -252,40 +263,99 @@ def _segment_box_distance(a: np.ndarray, b: np.ndarray, lo: np.ndarray, hi: np.n
     return d
 
 
-def _segments_clear_grid_units(grid, ga: np.ndarray, gb: np.ndarray, r: float) -> np.ndarray:
-    """Segments (grid units) keep distance >= r (grid units) from blocked cells and border."""
-    n = len(ga)
-    ok = np.ones(n, dtype=bool)
-    lo_b, hi_b = np.array([r, r]), np.array([grid.width - r, grid.height - r])
-    ok &= np.all((ga >= lo_b) & (ga <= hi_b) & (gb >= lo_b) & (gb <= hi_b), axis=1)
-    # candidate cells: per column of the thickened segment, the rows it can reach
+def _blocked_cells_near(grid, ga: np.ndarray, gb: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Blocked cells that may lie within ``r[i]`` (grid units) of segment ``ga[i] -> gb[i]``.
+
+    Returns ``(owner, lo)``: the segment index and lower-left corner (grid units) of
+    each candidate cell. Enumerated per column of the segment thickened by ``r``: the
+    rows it can reach there, so every cell within ``r`` is listed (and a few more)."""
     xmin = np.minimum(ga[:, 0], gb[:, 0]) - r
     xmax = np.maximum(ga[:, 0], gb[:, 0]) + r
     k0 = np.floor(xmin).astype(np.int64)
     k1 = np.ceil(xmax).astype(np.int64) - 1
     seg, off = _expand(k1 - k0 + 1)
     k = k0[seg] + off
-    a, b = ga[seg], gb[seg]
+    a, b, rs = ga[seg], gb[seg], r[seg]
     dxs = b[:, 0] - a[:, 0]
     # y-range of the segment over x in [k - r, k + 1 + r]
-    xl = np.clip(k - r, np.minimum(a[:, 0], b[:, 0]), np.maximum(a[:, 0], b[:, 0]))
-    xr = np.clip(k + 1 + r, np.minimum(a[:, 0], b[:, 0]), np.maximum(a[:, 0], b[:, 0]))
+    xl = np.clip(k - rs, np.minimum(a[:, 0], b[:, 0]), np.maximum(a[:, 0], b[:, 0]))
+    xr = np.clip(k + 1 + rs, np.minimum(a[:, 0], b[:, 0]), np.maximum(a[:, 0], b[:, 0]))
     safe = np.where(dxs != 0, dxs, 1.0)
     ya = np.where(dxs != 0, a[:, 1] + (xl - a[:, 0]) * (b[:, 1] - a[:, 1]) / safe, np.minimum(a[:, 1], b[:, 1]))
     yb = np.where(dxs != 0, a[:, 1] + (xr - a[:, 0]) * (b[:, 1] - a[:, 1]) / safe, np.maximum(a[:, 1], b[:, 1]))
-    j0 = np.floor(np.minimum(ya, yb) - r).astype(np.int64)
-    j1 = np.ceil(np.maximum(ya, yb) + r).astype(np.int64) - 1
+    j0 = np.floor(np.minimum(ya, yb) - rs).astype(np.int64)
+    j1 = np.ceil(np.maximum(ya, yb) + rs).astype(np.int64) - 1
+    # rows outside the map hold no blocked cell (the border is measured separately)
+    j0, j1 = np.maximum(j0, 0), np.minimum(j1, grid.height - 1)
     own, joff = _expand(j1 - j0 + 1)
     cx, cy = k[own], j0[own] + joff
-    inside = (cx >= 0) & (cx < grid.width) & (cy >= 0) & (cy < grid.height)
+    inside = (cx >= 0) & (cx < grid.width)
     cand = np.zeros(len(cx), dtype=bool)
     cand[inside] = grid.occ[cy[inside], cx[inside]]
-    if np.any(cand):
-        sidx = seg[own][cand]
-        lo = np.stack([cx[cand], cy[cand]], axis=1).astype(float)
+    lo = np.stack([cx[cand], cy[cand]], axis=1).astype(float)
+    return seg[own][cand], lo
+
+
+def _segments_clear_grid_units(grid, ga: np.ndarray, gb: np.ndarray, r: float) -> np.ndarray:
+    """Segments (grid units) keep distance >= r (grid units) from blocked cells and border."""
+    n = len(ga)
+    ok = np.ones(n, dtype=bool)
+    lo_b, hi_b = np.array([r, r]), np.array([grid.width - r, grid.height - r])
+    ok &= np.all((ga >= lo_b) & (ga <= hi_b) & (gb >= lo_b) & (gb <= hi_b), axis=1)
+    sidx, lo = _blocked_cells_near(grid, ga, gb, np.full(n, float(r)))
+    if sidx.size:
         d = _segment_box_distance(ga[sidx], gb[sidx], lo, lo + 1.0)
         ok[sidx[~(d >= r * (1 - 1e-12))]] = False
     return ok
+
+
+def segments_clearance(grid, a, b) -> np.ndarray:
+    """Exact smallest distance (metres) from each segment ``a[i] -> b[i]`` to the blocked
+    cells and the map border of ``grid``.
+
+    A segment that satisfies the clearance-0 rule gets its exact Euclidean distance
+    (segment to unit squares, and to the border, which is closest at an end point). A
+    segment that breaks the rule gets a value <= 0: minus the deepest penetration
+    among its end points and its samples every 1/20 cell (a crossing has no single
+    depth). Shape ``(n, 2)`` in, ``(n,)`` out.
+    """
+    A, B = np.broadcast_arrays(_as_points(a), _as_points(b))
+    A, B = A.reshape(-1, 2), B.reshape(-1, 2)
+    n = len(A)
+    out = np.zeros(n)
+    if n == 0:
+        return out
+    ga, gb = grid.to_grid(A), grid.to_grid(B)
+    free = segments_free(grid, A, B)
+    # the border is closest at an end point (distance to it is linear along a segment)
+    border = np.minimum.reduce([ga[:, 0], ga[:, 1], grid.width - ga[:, 0], grid.height - ga[:, 1],
+                                gb[:, 0], gb[:, 1], grid.width - gb[:, 0], grid.height - gb[:, 1]])
+    # growing search radius r: every blocked cell within r of a segment is enumerated, so a
+    # segment whose nearest enumerated cell (or the border) is within r has its exact value
+    todo = np.nonzero(free)[0]
+    r = 1.0
+    limit = 2.0 * (grid.width + grid.height)
+    while todo.size:
+        sidx, lo = _blocked_cells_near(grid, ga[todo], gb[todo], np.full(todo.size, r))
+        near = np.full(todo.size, np.inf)
+        if sidx.size:
+            np.minimum.at(near, sidx, _segment_box_distance(ga[todo][sidx], gb[todo][sidx], lo, lo + 1.0))
+        value = np.minimum(near, border[todo])
+        done = (value <= r) | (r >= limit)
+        out[todo[done]] = np.maximum(value[done], 0.0)
+        todo = todo[~done]
+        r *= 2.0
+    bad = np.nonzero(~free)[0]
+    if bad.size:
+        seg = gb[bad] - ga[bad]
+        counts = np.maximum(np.ceil(np.hypot(seg[:, 0], seg[:, 1]) * 20).astype(np.int64), 1)
+        owner, off = _expand(counts + 1)
+        t = off / counts[owner]
+        pts = grid.to_world(ga[bad][owner] + t[:, None] * seg[owner])
+        depth = np.full(bad.size, np.inf)
+        np.minimum.at(depth, owner, grid_clearance(grid, pts) / grid.resolution)
+        out[bad] = np.minimum(depth, 0.0)
+    return out * grid.resolution
 
 
 def segments_free(grid, a, b, clearance: float = 0.0) -> np.ndarray:
@@ -407,8 +477,14 @@ def validate_path(world, path, clearance: float = 0.0) -> PathCheck:
     Returns:
         A :class:`PathCheck` (truthy when valid) naming the failing segments.
     """
+    from .queries import check_world
+
+    check_world(world)
     c = _check_clearance(clearance)
-    P = np.asarray(path, dtype=float)
+    try:
+        P = np.asarray(path, dtype=float)
+    except (TypeError, ValueError):
+        return PathCheck(False, reason=f"a path must be an (N, 2) array of numbers, got {type(path).__name__}")
     if P.ndim != 2 or P.shape[1] != 2 or len(P) == 0:
         return PathCheck(False, reason=f"a path must be an (N, 2) array with N >= 1, got shape {P.shape}")
     if not np.all(np.isfinite(P)):

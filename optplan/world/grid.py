@@ -16,6 +16,19 @@ import numpy as np
 from ..errors import InfeasibleQueryError, MapFormatError, ParameterError
 
 
+MAX_GRID_CELLS = 50_000_000  # about 7000 x 7000; the loaders refuse larger files before reading them
+MAX_EXTENT_M = 1e9
+
+
+def _finite(value, what: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise ParameterError(f"{what} must be a finite number of metres, got {value!r}")
+    v = float(value)
+    if not np.isfinite(v):
+        raise ParameterError(f"{what} must be a finite number of metres, got {value!r}")
+    return v
+
+
 @dataclass(eq=False)
 class GridMap:
     """A 2-D occupancy grid.
@@ -36,29 +49,44 @@ class GridMap:
     is_grid: ClassVar[bool] = True   # the World protocol (optplan.world.protocol)
 
     def __post_init__(self) -> None:
-        occ = np.asarray(self.occ)
+        try:
+            occ = np.asarray(self.occ)
+        except (TypeError, ValueError):
+            raise MapFormatError("occupancy must be a rectangular 2-D array of 0/1 or booleans") from None
         if occ.ndim != 2 or occ.shape[0] == 0 or occ.shape[1] == 0:
             raise MapFormatError(f"occupancy must be a non-empty 2-D array, got shape {occ.shape}")
+        if occ.size > MAX_GRID_CELLS:
+            raise MapFormatError(f"a map of {occ.shape[0]} x {occ.shape[1]} cells exceeds the bound of "
+                                 f"{MAX_GRID_CELLS} cells (a planner needs ~100 bytes per cell)")
         if occ.dtype != bool:
-            if not np.all(np.isin(occ, (0, 1))):
+            if occ.dtype.kind not in "iuf" or not np.all(np.isin(occ, (0, 1))):
                 raise MapFormatError("occupancy values must be 0 (free) or 1 (blocked)")
             occ = occ.astype(bool)
         self.occ = np.ascontiguousarray(occ)
         self.occ.setflags(write=False)
-        res = float(self.resolution)
-        if not np.isfinite(res) or res <= 0:
+        res = _finite(self.resolution, "resolution")
+        if res <= 0:
             raise ParameterError(f"resolution must be a positive finite number of metres, got {self.resolution!r}")
         self.resolution = res
-        ox, oy = (float(v) for v in self.origin)
-        if not (np.isfinite(ox) and np.isfinite(oy)):
-            raise ParameterError(f"origin must be finite, got {self.origin!r}")
+        try:
+            ox, oy = (_finite(v, "origin") for v in self.origin)
+        except (TypeError, ValueError):
+            raise ParameterError(f"origin must be two finite numbers (x, y) in metres, got {self.origin!r}") from None
         self.origin = (ox, oy)
+        # float64 keeps ~1e-6 m steps only below ~9e9 m: a larger world cannot be checked exactly
+        extent = max(abs(ox), abs(oy)) + max(occ.shape) * res
+        if extent > MAX_EXTENT_M:
+            raise ParameterError(f"the map reaches {extent:.3g} m from (0, 0); the bound is {MAX_EXTENT_M:.0e} m "
+                                 "(beyond it float64 coordinates lose micrometre precision); check resolution and origin")
 
     # ------------------------------------------------------------------ shape
     @classmethod
     def from_rows(cls, rows, resolution: float = 1.0, origin=(0.0, 0.0), name: str = "") -> "GridMap":
         """Build from rows written top row first (image convention, as in map files)."""
-        arr = np.asarray(rows)
+        try:
+            arr = np.asarray(rows)
+        except (TypeError, ValueError):
+            arr = np.zeros(0)
         if arr.ndim != 2:
             raise MapFormatError("rows must form a 2-D 0/1 matrix with equal-length rows")
         return cls(arr[::-1].copy(), resolution, origin, name)
@@ -152,6 +180,14 @@ class GridMap:
         from .geometry import segments_free
 
         return segments_free(self, a, b, clearance)
+
+    def segments_clearance(self, a, b) -> np.ndarray:
+        """Exact distance (metres) from each segment ``a[i] -> b[i]`` to blocked cells and
+        the border (<= 0 for a segment that breaks the rule); see
+        :func:`optplan.world.geometry.segments_clearance`."""
+        from .geometry import segments_clearance
+
+        return segments_clearance(self, a, b)
 
     def cells_touched_by_discs(self, discs) -> np.ndarray:
         """``(height, width)`` mask of the cells that any disc ``(x, y, r)`` (rows, metres)

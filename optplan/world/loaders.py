@@ -7,10 +7,15 @@ Supported by :func:`load_map` (dispatch on the suffix):
 
 * ``.map`` — Moving AI benchmark format (``type``/``height``/``width``/``map``
   header; ``.``, ``G`` and ``S`` are free, every other character blocked).
-* ``.yaml`` — ROS ``map_server`` metadata pointing at a ``.pgm`` (P2 or P5) image;
-  ``negate``, ``occupied_thresh``, ``free_thresh``, ``resolution`` and ``origin``
-  are honoured. Cells that are neither free nor occupied (unknown) are blocked.
-* ``.pgm`` — the image alone (resolution 1, thresholds 0.65 / 0.196).
+* ``.yaml`` — ROS ``map_server`` metadata pointing at a ``.pgm`` (P2 or P5) image, or
+  at a PNG/BMP/other image read with Pillow (the ``images`` extra); ``mode``
+  (``trinary``, ``scale``, ``raw``), ``negate``, ``occupied_thresh``, ``free_thresh``,
+  ``resolution`` and ``origin`` are honoured. Cells that are neither free nor occupied
+  (unknown) are blocked. An origin yaw other than 0 cannot be applied to an
+  axis-aligned grid: it is ignored with a :class:`MapOriginYawWarning`, as most ROS
+  nodes ignore it.
+* ``.pgm`` — the image alone (resolution 1, thresholds 0.65 / 0.196); ``.png``,
+  ``.bmp``, ``.gif``, ``.tif``, ``.jpg`` likewise through Pillow.
 * ``.npy`` — a 2-D array of 0/1 or booleans.
 * ``.txt`` / ``.csv`` — a 0/1 matrix, values separated by spaces, tabs or commas.
 """
@@ -24,9 +29,9 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import MapFormatError, ParameterError
-from .grid import GridMap
+from .grid import MAX_GRID_CELLS, GridMap
 
-MAX_CELLS = 50_000_000  # refuse maps larger than this (about 7000 x 7000)
+MAX_CELLS = MAX_GRID_CELLS  # refuse maps larger than this (about 7000 x 7000) before reading them
 MAX_FILE_BYTES = 512 * 1024 * 1024
 
 
@@ -53,6 +58,101 @@ def _check_size(h: int, w: int, path) -> None:
         raise MapFormatError(f"{path}: map size must be positive, got height {h}, width {w}")
     if h * w > MAX_CELLS:
         raise MapFormatError(f"{path}: map of {h} x {w} cells exceeds the limit of {MAX_CELLS} cells")
+
+
+def _check_path_arg(path, fn: str) -> None:
+    if not isinstance(path, (str, os.PathLike)) or (isinstance(path, str) and not path.strip()):
+        raise MapFormatError(f"{fn} needs a file path or a shipped map name, got {path!r}"
+                             + (" (to build a map from a matrix use op.GridMap.from_rows)" if isinstance(
+                                 path, (list, tuple)) or hasattr(path, "shape") else ""))
+
+
+# ------------------------------------------------------------------ YAML
+MAX_YAML_BYTES = 16 * 1024 * 1024  # scenario, spec and map metadata files are small
+MAX_YAML_NODES = 1_000_000  # values after expanding aliases: a "billion laughs" file is refused
+
+
+def _yaml_error_line(path, exc) -> str:
+    """One line naming the place and the problem of a YAML syntax error."""
+    mark = getattr(exc, "problem_mark", None) or getattr(exc, "context_mark", None)
+    where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark is not None else ""
+    problem = getattr(exc, "problem", None) or getattr(exc, "context", None) or type(exc).__name__
+    return f"{path}: not valid YAML{where}: {' '.join(str(problem).split())[:200]}"
+
+
+def _expanded_size(root) -> int:
+    """Number of values ``root`` stands for once every alias is expanded (memoised per
+    node, so a small file that expands to 10^18 values is counted without expanding it)."""
+    import yaml
+
+    sizes: dict[int, int] = {}
+    order, stack = [], [root]
+    while stack:  # post-order without recursion: deep nesting must not overflow the stack
+        node = stack.pop()
+        if id(node) in sizes:
+            continue
+        sizes[id(node)] = -1
+        order.append(node)
+        if isinstance(node, yaml.SequenceNode):
+            stack.extend(node.value)
+        elif isinstance(node, yaml.MappingNode):
+            for k, v in node.value:
+                stack.extend((k, v))
+    for node in reversed(order):
+        if isinstance(node, yaml.SequenceNode):
+            children = node.value
+        elif isinstance(node, yaml.MappingNode):
+            children = [n for kv in node.value for n in kv]
+        else:
+            children = []
+        sizes[id(node)] = 1 + sum(max(sizes[id(c)], 1) for c in children)
+    return sizes[id(root)]
+
+
+def read_yaml(path: str | os.PathLike, what: str = "YAML file", error=MapFormatError):
+    """Parse a YAML file safely and within bounds, raising ``error`` with one line.
+
+    Refuses files over :data:`MAX_YAML_BYTES`, documents that expand (through aliases)
+    to more than :data:`MAX_YAML_NODES` values, and reports a syntax error as its line,
+    column and problem. Scenario files, experiment specs and ROS map metadata all go
+    through it.
+    """
+    import yaml
+
+    p = Path(path)
+    try:
+        size = p.stat().st_size
+        if size > MAX_YAML_BYTES:
+            raise error(f"{what} {p} is {size} bytes; the limit is {MAX_YAML_BYTES} bytes")
+        data = p.read_bytes()
+    except OSError as exc:
+        raise error(f"cannot read {what} {p}: {exc.strerror or exc}") from None
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise error(f"{what} {p} is not UTF-8 text (byte {exc.start}); save it as UTF-8") from None
+    loader = None
+    try:
+        loader = yaml.SafeLoader(text)
+        node = loader.get_single_node()
+        if node is None:
+            return None
+        n = _expanded_size(node)
+        if n > MAX_YAML_NODES:
+            raise error(f"{what} {p} expands to {n:.3g} values through YAML aliases; the limit is "
+                        f"{MAX_YAML_NODES} (a file like this exhausts memory; write the values out)")
+        return loader.construct_document(node)
+    except yaml.YAMLError as exc:
+        raise error(_yaml_error_line(p, exc)) from None
+    except RecursionError:
+        raise error(f"{what} {p} is nested too deeply to read") from None
+    finally:
+        if loader is not None:
+            loader.dispose()
+
+
+def _safe_yaml(path: Path):
+    return read_yaml(path, "map metadata", MapFormatError)
 
 
 # ------------------------------------------------------------------ Moving AI
@@ -87,7 +187,13 @@ def _load_movingai(path: Path) -> GridMap:
     bad = [k for k, r in enumerate(rows) if len(r) != w]
     if bad:
         raise MapFormatError(f"{path}: row {bad[0] + 1} has {len(rows[bad[0]])} characters, header says width {w}")
-    chars = np.frombuffer("".join(rows).encode("latin-1"), dtype=np.uint8).reshape(h, w)
+    try:
+        raw = "".join(rows).encode("latin-1")
+    except UnicodeEncodeError as exc:
+        bad_char = exc.object[exc.start]
+        raise MapFormatError(f"{path}: the map holds the character {bad_char!r} (U+{ord(bad_char):04X}); a Moving AI "
+                             "map uses one byte per cell ('.', 'G', 'S' free; '@', 'O', 'T', 'W' blocked)") from None
+    chars = np.frombuffer(raw, dtype=np.uint8).reshape(h, w)
     free = np.isin(chars, np.frombuffer(b".GS", dtype=np.uint8))
     return GridMap((~free)[::-1].copy(), 1.0, (0.0, 0.0), path.stem)
 
@@ -118,6 +224,7 @@ class ScenEntry:
 
 def load_scen(path: str | os.PathLike) -> list[ScenEntry]:
     """Read a Moving AI scenario file (``version 1`` or ``version 1.0``; tab or space separated)."""
+    _check_path_arg(path, "load_scen")
     path = Path(path)
     lines = [ln for ln in _read_text(path).replace("\r", "").split("\n") if ln.strip()]
     if not lines or not re.fullmatch(r"version\s+1(\.0+)?", lines[0].strip(), flags=re.I):
@@ -133,6 +240,28 @@ def load_scen(path: str | os.PathLike) -> list[ScenEntry]:
         except ValueError:
             raise MapFormatError(f"{path}: line {n} has a non-numeric field: {ln.strip()!r}") from None
     return out
+
+
+def scen_query(world: GridMap, scen: str | os.PathLike, index: int) -> tuple[tuple[float, float], tuple[float, float]]:
+    """Start and goal (metres, cell centres) of query ``index`` of a ``.scen`` file on ``world``.
+
+    Raises:
+        MapFormatError: the file is malformed, ``index`` is out of range, or the query was
+            written for a map of another size.
+    """
+    entries = load_scen(scen)
+    if not entries:
+        raise MapFormatError(f"{scen}: the scenario file holds no queries")
+    if isinstance(index, bool) or not isinstance(index, (int, np.integer)) or not 0 <= index < len(entries):
+        raise MapFormatError(f"{scen}: query {index!r} does not exist; it holds queries 0..{len(entries) - 1}")
+    e = entries[int(index)]
+    if not isinstance(world, GridMap) or (e.width, e.height) != (world.width, world.height):
+        size = f"{world.width} x {world.height}" if isinstance(world, GridMap) else "a circle world"
+        raise MapFormatError(f"{scen}: query {index} is for a {e.width} x {e.height} map ({e.map_name}); "
+                             f"this map is {size}")
+    iy_s, iy_g = e.height - 1 - e.start_y, e.height - 1 - e.goal_y
+    s, g = world.cell_center(np.array([[e.start_x, iy_s], [e.goal_x, iy_g]]))
+    return (float(s[0]), float(s[1])), (float(g[0]), float(g[1]))
 
 
 # ------------------------------------------------------------------ matrices
@@ -168,7 +297,7 @@ def _load_npy(path: Path) -> GridMap:
     if arr.ndim != 2:
         raise MapFormatError(f"{path}: expected a 2-D array, got shape {arr.shape}")
     _check_size(*arr.shape, path)
-    if arr.dtype != bool and not np.all(np.isin(arr, (0, 1))):
+    if arr.dtype != bool and (arr.dtype.kind not in "iuf" or not np.all(np.isin(arr, (0, 1)))):
         raise MapFormatError(f"{path}: values must be 0/1 or booleans")
     return GridMap.from_rows(arr.astype(bool), name=path.stem)
 
@@ -229,45 +358,96 @@ def _read_pgm(path: Path) -> np.ndarray:
     return img.astype(np.int64), maxval
 
 
+IMAGE_SUFFIXES = (".png", ".bmp", ".gif", ".tif", ".tiff", ".jpg", ".jpeg", ".webp")
+ROS_MODES = ("trinary", "scale", "raw")
+
+
+class MapOriginYawWarning(UserWarning):
+    """A ROS map's origin has a yaw that an axis-aligned grid cannot represent."""
+
+
+def _read_image(path: Path) -> tuple[np.ndarray, int]:
+    """Read a raster image with Pillow: grey values (colour channels averaged, as ROS
+    map_server does; fully transparent pixels count as unknown, value -1), top row
+    first, and the largest value (255)."""
+    try:
+        from PIL import Image
+    except ImportError:
+        raise MapFormatError(f"{path}: reading {path.suffix} images needs Pillow; install it with "
+                             "pip install 'optplan[images]' (or pip install pillow), or convert the image to .pgm") from None
+    try:
+        with Image.open(path) as im:
+            w, h = im.size
+            _check_size(h, w, path)  # before decoding: a small file may declare a huge raster
+            rgba = np.asarray(im.convert("RGBA"), dtype=np.int64)
+    except MapFormatError:
+        raise
+    except (OSError, ValueError, SyntaxError, Image.DecompressionBombError) as exc:
+        raise MapFormatError(f"{path}: not a readable image ({type(exc).__name__}: {exc})") from None
+    grey = np.rint(rgba[..., :3].mean(axis=-1)).astype(np.int64)
+    grey[rgba[..., 3] == 0] = -1
+    return grey, 255
+
+
+def _read_raster(path: Path) -> tuple[np.ndarray, int]:
+    if path.suffix.lower() == ".pgm":
+        return _read_pgm(path)
+    if path.suffix.lower() in IMAGE_SUFFIXES:
+        return _read_image(path)
+    raise MapFormatError(f"{path}: image {path.name} is neither a .pgm nor one of {', '.join(IMAGE_SUFFIXES)}; "
+                         "convert it to PGM or PNG")
+
+
 def _grid_from_image(img: np.ndarray, maxval: int, negate: bool, occ_t: float, free_t: float,
-                     resolution: float, origin, name: str) -> GridMap:
-    # map_server: p = (maxval - v) / maxval is the occupancy probability (negate flips it)
-    p = img / maxval if negate else (maxval - img) / maxval
-    free = p < free_t
+                     resolution: float, origin, name: str, mode: str = "trinary") -> GridMap:
+    if mode == "raw":
+        # map_server raw: the pixel value is the occupancy value itself; 0 is free
+        free = img == 0
+    else:
+        # trinary and scale: p = (maxval - v) / maxval is the occupancy probability (negate
+        # flips it); below free_thresh is free. Unknown pixels (-1) and the intermediate
+        # values that scale keeps as probabilities are blocked: a planner must not rely on them.
+        p = img / maxval if negate else (maxval - img) / maxval
+        free = (p < free_t) & (img >= 0)
     return GridMap.from_rows(~free, resolution, origin, name)
 
 
 def _load_ros_yaml(path: Path) -> GridMap:
-    import yaml
+    import warnings
 
-    try:
-        meta = yaml.safe_load(_read_text(path))
-    except yaml.YAMLError as exc:
-        raise MapFormatError(f"{path}: not valid YAML ({exc})") from None
+    meta = _safe_yaml(path)
     if not isinstance(meta, dict) or "image" not in meta:
         raise MapFormatError(f"{path}: a ROS map YAML needs keys image, resolution, origin")
     try:
         res = float(meta.get("resolution", 1.0))
         origin = meta.get("origin", [0.0, 0.0, 0.0])
         ox, oy = float(origin[0]), float(origin[1])
+        yaw = float(origin[2]) if len(origin) > 2 else 0.0
         negate = bool(int(meta.get("negate", 0)))
         occ_t = float(meta.get("occupied_thresh", 0.65))
         free_t = float(meta.get("free_thresh", 0.196))
-    except (TypeError, ValueError, IndexError):
+    except (TypeError, ValueError, IndexError, OverflowError):
         raise MapFormatError(f"{path}: resolution, origin, negate and thresholds must be numbers") from None
+    if not all(np.isfinite(v) for v in (res, ox, oy, yaw)):
+        raise MapFormatError(f"{path}: resolution and origin must be finite numbers")
     if not 0 <= free_t <= occ_t <= 1:
         raise MapFormatError(f"{path}: need 0 <= free_thresh <= occupied_thresh <= 1, got {free_t}, {occ_t}")
+    mode = str(meta.get("mode", "trinary")).lower()
+    if mode not in ROS_MODES:
+        raise MapFormatError(f"{path}: mode must be one of {', '.join(ROS_MODES)}, got {meta.get('mode')!r}")
+    if yaw != 0.0:
+        warnings.warn(f"{path}: origin yaw {yaw:g} rad is ignored; the grid stays axis-aligned with its "
+                      f"lower-left corner at ({ox:g}, {oy:g}) (rotate the image to apply a yaw)",
+                      MapOriginYawWarning, stacklevel=3)
     image = Path(str(meta["image"]))
     if not image.is_absolute():
         image = path.parent / image
-    if image.suffix.lower() != ".pgm":
-        raise MapFormatError(f"{path}: image {image.name} is not a .pgm; convert it to PGM")
-    img, maxval = _read_pgm(image)
-    return _grid_from_image(img, maxval, negate, occ_t, free_t, res, (ox, oy), path.stem)
+    img, maxval = _read_raster(image)
+    return _grid_from_image(img, maxval, negate, occ_t, free_t, res, (ox, oy), path.stem, mode)
 
 
 def _load_pgm(path: Path) -> GridMap:
-    img, maxval = _read_pgm(path)
+    img, maxval = _read_raster(path)
     return _grid_from_image(img, maxval, False, 0.65, 0.196, 1.0, (0.0, 0.0), path.stem)
 
 
@@ -286,6 +466,7 @@ _LOADERS = {
     ".yaml": _load_ros_yaml,
     ".yml": _load_ros_yaml,
     ".pgm": _load_pgm,
+    **{suffix: _load_pgm for suffix in IMAGE_SUFFIXES},
 }
 
 
@@ -295,20 +476,26 @@ def load_map(path: str | os.PathLike) -> GridMap:
     Args:
         path: ``.map`` (Moving AI), ``.yaml`` + ``.pgm`` (ROS map_server), ``.pgm``,
             ``.npy``, ``.txt`` or ``.csv`` (0/1 matrix), or ``.json`` (a circle world,
-            returned as a :class:`CircleWorld`). Names of maps shipped with
-            optplan (``optplan.world.maps.names()``) are accepted too.
+            returned as a :class:`CircleWorld`), ``.png``/``.bmp``/other images through
+            Pillow. Names of maps shipped with optplan (``optplan.world.maps.names()``)
+            and of the paper maps (``chen2025_20``, ...; ``optplan.world.papermaps``) are
+            accepted too.
 
     Raises:
         MapFormatError: missing, empty, truncated, binary or malformed file, or a map
             with no free cell.
     """
+    _check_path_arg(path, "load_map")
     p = Path(path)
     if not p.exists():
         from . import maps
 
         shipped = maps.find(str(path))
+        if shipped is None:  # a paper map's name, as experiment specs use them?
+            shipped = maps.paper_map_file(str(path))
         if shipped is None:
-            raise MapFormatError(f"map file {path} does not exist (shipped maps: {', '.join(maps.names())})")
+            raise MapFormatError(f"map file {path} does not exist (shipped maps: {', '.join(maps.names())}; "
+                                 f"paper maps: see optplan/data/maps/paper_maps.yaml)")
         p = shipped
     if p.is_dir():
         raise MapFormatError(f"{p} is a folder, not a map file")

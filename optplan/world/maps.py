@@ -22,3 +22,14 @@ def find(name: str) -> Path | None:
         if cand.is_file():
             return cand
     return None
+
+
+PAPER_CATALOGUE = MAPS_DIR / "paper_maps.yaml"
+
+
+def paper_map_file(name: str) -> Path | None:
+    """The shipped file of a paper map (``chen2025_20``, ...; see ``paper_maps.yaml``), or ``None``."""
+    import yaml
+
+    entry = (yaml.safe_load(PAPER_CATALOGUE.read_text()) or {}).get(str(name))
+    return MAPS_DIR / entry["file"] if isinstance(entry, dict) and "file" in entry else None

@@ -70,13 +70,18 @@ def max_curvature(paths) -> np.ndarray:
 
 
 def min_clearance(world, path, samples_per_metre: float = 20.0) -> float:
-    """Smallest clearance along a path (metres), sampled at vertices and at
-    ``samples_per_metre`` points per metre along every segment."""
+    """Smallest clearance along a path (metres): the exact distance from its segments to
+    the obstacles and the border when the world can measure it
+    (``world.segments_clearance``: grids and circle worlds), <= 0 where the path enters
+    an obstacle. Other worlds are sampled at vertices and ``samples_per_metre`` points
+    per metre along every segment (an upper bound of the exact value)."""
     P = np.asarray(path, dtype=float)
     if len(P) == 0:
         return float("nan")
     if len(P) == 1:
         return float(world.clearance(P).min())
+    if hasattr(world, "segments_clearance"):
+        return float(world.segments_clearance(P[:-1], P[1:]).min())
     seg = np.diff(P, axis=0)
     lengths = np.hypot(seg[:, 0], seg[:, 1])
     counts = np.maximum(np.ceil(lengths * samples_per_metre).astype(int), 1)
@@ -99,6 +104,10 @@ class PathMetrics:
 
 def path_metrics(world, path) -> PathMetrics:
     """All metrics of one ``(N, 2)`` path (metres, degrees, 1/metres)."""
+    if world is not None:
+        from .queries import check_world
+
+        check_world(world)
     P = np.asarray(path, dtype=float)
     if P.ndim != 2 or len(P) == 0:
         return PathMetrics(float("inf"), float("nan"), 0, float("nan"), float("nan"))

@@ -3,7 +3,29 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import InfeasibleQueryError
+from ..errors import InfeasibleQueryError, ParameterError
+
+
+def check_world(world, what: str = "world"):
+    """``world`` must be a map optplan can plan on (a GridMap, a CircleWorld, or an object
+    with their query methods); a file name is refused with a hint to load it first."""
+    needed = ("check_query_point", "is_free", "segments_free", "clearance")
+    if not all(callable(getattr(world, m, None)) for m in needed):
+        hint = " (load a map file with op.load_map first)" if isinstance(world, (str, bytes)) or \
+            hasattr(world, "__fspath__") else ""
+        raise ParameterError(f"{what} must be an op.GridMap or op.CircleWorld, got {type(world).__name__}{hint}")
+    return world
+
+
+def as_point(point, what: str) -> np.ndarray:
+    """``point`` as a length-2 float array, or InfeasibleQueryError naming it."""
+    try:
+        p = np.asarray(point, dtype=float).reshape(-1)
+    except (TypeError, ValueError):
+        p = np.full(3, np.nan)
+    if p.shape != (2,) or not np.all(np.isfinite(p)):
+        raise InfeasibleQueryError(f"{what} must be two finite numbers (x, y) in metres, got {point!r}")
+    return p
 
 
 def check_start_goal(world, start, goal, clearance: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
@@ -13,8 +35,9 @@ def check_start_goal(world, start, goal, clearance: float = 0.0) -> tuple[np.nda
         InfeasibleQueryError: a point is not two finite numbers, lies outside the map or in
             an obstacle (or closer than ``clearance`` to one), or start and goal coincide.
     """
-    s = world.check_query_point(start, "start", clearance)
-    g = world.check_query_point(goal, "goal", clearance)
+    check_world(world)
+    s = world.check_query_point(as_point(start, "start"), "start", clearance)
+    g = world.check_query_point(as_point(goal, "goal"), "goal", clearance)
     if np.array_equal(s, g):
         raise InfeasibleQueryError(f"start and goal are the same point ({s[0]:g}, {s[1]:g}); there is nothing to plan")
     return s, g

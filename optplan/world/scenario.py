@@ -635,8 +635,6 @@ def load_scenario(path_or_dict) -> Scenario:
     Raises:
         ScenarioError: the file is missing or malformed (the message names the key).
     """
-    import yaml
-
     if isinstance(path_or_dict, Scenario):
         return path_or_dict
     if isinstance(path_or_dict, dict):
@@ -650,12 +648,9 @@ def load_scenario(path_or_dict) -> Scenario:
             raise ScenarioError(f"scenario file {path_or_dict} does not exist "
                                 f"(shipped scenarios: {', '.join(scenario_names()) or 'none'})")
         p = shipped
-    try:
-        data = yaml.safe_load(p.read_text())
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ScenarioError(f"cannot read scenario file {p}: {exc}") from None
-    except yaml.YAMLError as exc:
-        raise ScenarioError(f"scenario file {p} is not valid YAML: {str(exc).splitlines()[0]}") from None
+    from .loaders import read_yaml
+
+    data = read_yaml(p, "scenario file", ScenarioError)  # bounded: size, alias expansion, one-line errors
     if data is None:
         raise ScenarioError(f"scenario file {p} is empty")
     sc = scenario_from_dict(data, base_dir=p.parent, source=str(p))

@@ -1,0 +1,122 @@
+"""Paths and trajectories written for other tools: CSV and a ``nav_msgs/Path``-like YAML.
+
+A *path* is an ``(N, 2)`` array of points in metres (start first). A *trajectory* is the
+simulator's ``(T, 6)`` rows ``[t, x, y, theta, v, w]`` (seconds, metres, radians, m/s,
+rad/s). Both are written as:
+
+* ``.csv``: a header line, then one row per point (``x,y`` for a path; ``t,x,y,theta,v,w``
+  for a trajectory), full float precision so a file read back gives the same numbers.
+* ``.yaml`` / ``.yml``: the fields of a ROS ``nav_msgs/Path`` message (``header`` with
+  ``frame_id`` and ``stamp``, then ``poses``: ``geometry_msgs/PoseStamped`` with a
+  position and a unit quaternion for the heading about z). A path has no time or heading
+  of its own: each pose faces along the segment that leaves it (the last the one that
+  arrives) and every stamp is 0; a trajectory's stamps are its times and its headings
+  its ``theta``.
+"""
+from __future__ import annotations
+
+import math
+import os
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import ParameterError
+
+EXPORT_SUFFIXES = (".csv", ".yaml", ".yml")
+
+
+def _checked_rows(rows, width: int, what: str) -> np.ndarray:
+    try:
+        a = np.asarray(rows, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError(f"a {what} must be an array of numbers, got {type(rows).__name__}") from None
+    if a.ndim != 2 or a.shape[1] != width or len(a) == 0:
+        raise ParameterError(f"a {what} must be a non-empty array of {width} columns, got shape {a.shape}")
+    if not np.isfinite(a).all():
+        raise ParameterError(f"a {what} to export must hold finite numbers only")
+    return a
+
+
+def _target(file, kinds: str) -> Path:
+    p = Path(file)
+    if p.suffix.lower() not in EXPORT_SUFFIXES:
+        raise ParameterError(f"cannot export {kinds} to {p.name}: use a .csv or .yaml file name")
+    return p
+
+
+def path_headings(path) -> np.ndarray:
+    """Heading (radians) of each point of a path: the direction of the segment leaving it,
+    the arriving one for the last point; a repeated point keeps the previous heading."""
+    P = _checked_rows(path, 2, "path")
+    if len(P) == 1:
+        return np.zeros(1)
+    d = np.diff(P, axis=0)
+    moving = np.hypot(d[:, 0], d[:, 1]) > 0
+    heading = np.arctan2(d[:, 1], d[:, 0])
+    if moving.any():
+        # carry the last real direction over repeated points (the first ones take the first)
+        idx = np.maximum.accumulate(np.where(moving, np.arange(len(d)), -1))
+        idx = np.where(idx < 0, np.argmax(moving), idx)
+        heading = heading[idx]
+    return np.append(heading, heading[-1])
+
+
+def _write_csv(p: Path, header: str, rows: np.ndarray) -> Path:
+    np.savetxt(p, rows, delimiter=",", header=header, comments="", fmt="%.17g")
+    return p
+
+
+def _stamp(t: float) -> str:
+    secs = math.floor(t)
+    nsecs = min(int(round((t - secs) * 1e9)), 999_999_999)
+    return f"{{secs: {secs}, nsecs: {nsecs}}}"
+
+
+def _write_ros_path(p: Path, xy: np.ndarray, theta: np.ndarray, times: np.ndarray, frame_id: str) -> Path:
+    if not isinstance(frame_id, str) or not frame_id or any(c in frame_id for c in ":{}[],#\n\"'"):
+        raise ParameterError(f"frame_id must be a plain name such as 'map', got {frame_id!r}")
+    qz, qw = np.sin(theta / 2.0), np.cos(theta / 2.0)
+    lines = ["header:", "  seq: 0", f"  stamp: {_stamp(float(times[0]))}", f"  frame_id: {frame_id}", "poses:"]
+    for i in range(len(xy)):  # one pose per point, written as text: the file is for other tools
+        lines += [f"  - header: {{seq: {i}, stamp: {_stamp(float(times[i]))}, frame_id: {frame_id}}}",
+                  "    pose:",
+                  f"      position: {{x: {float(xy[i, 0])!r}, y: {float(xy[i, 1])!r}, z: 0.0}}",
+                  f"      orientation: {{x: 0.0, y: 0.0, z: {float(qz[i])!r}, w: {float(qw[i])!r}}}"]
+    p.write_text("\n".join(lines) + "\n")
+    return p
+
+
+def export_path(path, file: str | os.PathLike, frame_id: str = "map") -> Path:
+    """Write an ``(N, 2)`` path (metres) to ``file``: ``.csv`` (``x,y``) or ``.yaml``
+    (a ``nav_msgs/Path``-like message in ``frame_id``). Returns the file written.
+
+    Raises:
+        ParameterError: not an (N, 2) finite array, or an unsupported file suffix.
+    """
+    p = _target(file, "a path")
+    P = _checked_rows(path, 2, "path")
+    if p.suffix.lower() == ".csv":
+        return _write_csv(p, "x,y", P)
+    return _write_ros_path(p, P, path_headings(P), np.zeros(len(P)), frame_id)
+
+
+def export_trajectory(trajectory, file: str | os.PathLike, frame_id: str = "map") -> Path:
+    """Write a simulator trajectory (rows ``[t, x, y, theta, v, w]``) to ``file``: ``.csv``
+    (all six columns) or ``.yaml`` (a ``nav_msgs/Path``-like message: stamps from ``t``,
+    headings from ``theta``). Returns the file written.
+
+    Raises:
+        ParameterError: not a (T, 6) finite array, or an unsupported file suffix.
+    """
+    p = _target(file, "a trajectory")
+    T = _checked_rows(trajectory, 6, "trajectory")
+    if p.suffix.lower() == ".csv":
+        return _write_csv(p, "t,x,y,theta,v,w", T)
+    return _write_ros_path(p, T[:, 1:3], T[:, 3], T[:, 0], frame_id)
+
+
+def read_path_csv(file: str | os.PathLike) -> np.ndarray:
+    """Read back a path or trajectory CSV written by :func:`export_path` /
+    :func:`export_trajectory` (the rows, without the header)."""
+    return np.atleast_2d(np.loadtxt(Path(file), delimiter=",", skiprows=1))

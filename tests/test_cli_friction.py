@@ -1,0 +1,63 @@
+"""What a newcomer reaches for first: --version, a paper map by name, a Moving AI query,
+an evaluation budget, and a spec that uses .scen queries."""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import optplan as op
+from optplan.cli import main
+
+ARENA = Path(op.__file__).resolve().parent / "data" / "maps" / "arena.map"
+
+
+def test_version_is_the_package_version(capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(["--version"])
+    assert exc.value.code == 0 and capsys.readouterr().out.strip() == f"optplan {op.__version__}"
+
+
+def test_plan_a_paper_map_by_name_with_its_own_start_and_goal(capsys):
+    assert main(["plan", "chen2025_20", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    _, s, g = op.world.papermaps.paper_map("chen2025_20")
+    assert out["feasible"] and out["path"][0] == list(s) and out["path"][-1] == list(g)
+
+
+def test_max_evals_is_the_budget(capsys):
+    assert main(["plan", "chen2025_20", "--algo", "gwo", "--max-evals", "200", "--pop", "20", "--json"]) == 0
+    capsys.readouterr()
+    r = op.plan(*op.world.papermaps.paper_map("chen2025_20"), algorithm="gwo", pop=20, iters=None, max_evals=200)
+    assert "200" in r.message
+
+
+def test_a_moving_ai_query_from_the_command_line(tmp_path, capsys):
+    (tmp_path / "q.map").write_text("type octile\nheight 3\nwidth 4\nmap\n@...\n....\n....\n")
+    (tmp_path / "q.scen").write_text("version 1\n0\tq.map\t4\t3\t0\t2\t3\t0\t3.8284\n")
+    assert main(["plan", str(tmp_path / "q.map"), "--scen", str(tmp_path / "q.scen"), "--query", "0",
+                 "--algo", "dijkstra", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    # x = column, y = row from the top: (0, 2) is the bottom-left cell, (3, 0) the top-right one
+    assert out["path"][0] == [0.5, 0.5] and out["path"][-1] == [3.5, 2.5]
+    assert out["length"] == pytest.approx(3.8284, abs=1e-4)
+
+
+def test_a_spec_runs_scen_queries_and_the_octile_optimum_matches(tmp_path):
+    from optplan.bench import run_experiment
+
+    (tmp_path / "q.map").write_text("type octile\nheight 3\nwidth 4\nmap\n@...\n....\n....\n")
+    (tmp_path / "q.scen").write_text("version 1\n0\tq.map\t4\t3\t0\t2\t3\t0\t3.8284\n"
+                                     "0\tq.map\t4\t3\t1\t0\t3\t2\t2.8284\n")
+    spec = tmp_path / "s.yaml"
+    spec.write_text("kind: plan\nmaps: [{scen: q.scen}]\nalgorithms: [dijkstra]\nruns: 1\n")
+    res = run_experiment(spec, workers=1, progress=False)
+    rows = sorted(res.rows.values(), key=lambda r: r["target"])
+    assert [r["target"] for r in rows] == ["q_q0", "q_q1"]
+    assert all(r["status"] == "ok" for r in rows)
+    assert np.allclose([r["length"] for r in rows], [3.8284, 2.8284], atol=1e-4)
+    (tmp_path / "q.scen").write_text("version 1\n0\tq.map\t4\t3\t0\t0\t3\t2\t3.6056\n")  # starts on '@'
+    with pytest.raises(op.OptplanError, match="query 0 start"):
+        run_experiment(spec, workers=1, progress=False)
