@@ -102,10 +102,13 @@ def functions(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path | N
         from ..viz.convergence import plot_convergence
 
         Path(plots_dir).mkdir(parents=True, exist_ok=True)
+        shifted = {t.name: bool(t.spec.get("shifted")) for t in spec.targets}
         for name, h in histories.items():
             if all(len(v) for v in h.values()):
-                plot_convergence(h, Path(plots_dir) / f"convergence_{name}.png",
-                                 title=f"{name} (shifted where applicable)", log=name not in ("F8", "F17", "F18"))
+                tag = "" if shifted[name] else "_unshifted"   # both runs can share one plots folder
+                plot_convergence(h, Path(plots_dir) / f"convergence_{name}{tag}.png",
+                                 title=f"{name} ({'shifted where applicable' if shifted[name] else 'unshifted'})",
+                                 log=name not in ("F8", "F17", "F18"))
         out.append(f"convergence plots in {plots_dir}/")
     return "\n".join(out) + "\n"
 
@@ -399,6 +402,9 @@ def render_report(res: ExperimentResults, fmt: str = "markdown", plots_dir: Path
     if name not in LAYOUTS:
         raise ParameterError(f"unknown report layout {name!r}; known: {', '.join(LAYOUTS)}")
     text = LAYOUTS[name](res, fmt, plots_dir)
+    from .claims import render_claims
+
+    text = text.rstrip("\n") + "\n" + render_claims(res, fmt)   # the paper's claims, judged
     if fmt == "latex":  # headings and notes become LaTeX comments around the table environments
         text = "\n".join(("% " + line.lstrip("#").strip()) if line.startswith("#") else line
                           for line in text.splitlines()) + "\n"
