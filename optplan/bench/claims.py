@@ -128,7 +128,7 @@ def judge_rate(successes: int, runs: int, claimed: float) -> tuple[str, str]:
         return "0 runs", "not run"
     lo, hi = wilson_interval(successes, runs)
     figure = f"{successes}/{runs} [{100 * lo:.0f}-{100 * hi:.0f} %]"
-    if hi >= claimed:
+    if hi >= claimed - 1e-9:   # the interval's upper end is 1 up to rounding at all successes
         return figure, "holds"
     return figure, "weaker" if successes else "reversed"
 

@@ -42,9 +42,9 @@ class PrunedColumnFitness:
     the pruned path.
 
     The objective is the preset's weighted terms (length, and any turn terms) of the pruned
-    path plus ``collision_penalty`` per pruned segment that still collides (a segment is kept
-    colliding only when no later node is visible from its anchor). The violation is that
-    count, so the feasibility rule can use it too.
+    path plus ``collision_penalty`` per blocked cell that the pruned path's colliding segments
+    pass (a segment is kept colliding only when no later node is visible from its anchor).
+    The violation is that count, so the feasibility rule can use it too.
     """
 
     def __init__(self, problem) -> None:
@@ -57,6 +57,7 @@ class PrunedColumnFitness:
         self.height = int(world.height)
         self.n_nodes = enc.dim + 2
         self.free, self.dist, self.pos = self._tables(problem.clearance)
+        self.passed = self._cells_passed(problem.clearance)
 
     def _tables(self, clearance: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         enc, world, H, K = self.encoding, self.encoding.world, self.height, self.n_nodes
@@ -79,6 +80,40 @@ class PrunedColumnFitness:
         cache[key] = (free, dist, pos)
         return cache[key]
 
+    def _cells_passed(self, clearance: float, step: float = 0.05) -> np.ndarray:
+        """Blocked cells entered by the segment from path position ``k`` to ``k + 1``,
+        ``(K - 1, H, H)`` (rows of the two ends): the papers' "number of obstacles passed"
+        (chen2025 eq 32's O, yuan2021 eq 11's m_ob). Only these segments can be kept while
+        colliding: pruning keeps a colliding segment only when no later node is visible.
+        Counted on samples ``step`` cells apart; a segment the exact rule blocks counts at
+        least 1 (a corner it only clips)."""
+        enc, world, H, K = self.encoding, self.encoding.world, self.height, self.n_nodes
+        key = ("pruned_column_passed", float(clearance), step, enc.columns.tobytes(),
+               np.concatenate([enc.start, enc.goal]).tobytes())
+        cache = world._cache
+        if key in cache:
+            return cache[key]
+        A = self.pos[:-1, :, None, :]                       # (K-1, H, 1, 2)
+        B = self.pos[1:, None, :, :]                        # (K-1, 1, H, 2)
+        A, B = np.broadcast_arrays(A, B)
+        A, B = world.to_grid(A.reshape(-1, 2)), world.to_grid(B.reshape(-1, 2))
+        n_s = int(np.ceil(np.hypot(*(B - A).T).max() / step)) + 1
+        t = np.linspace(0.0, 1.0, n_s)
+        P = A[:, None, :] + t[None, :, None] * (B - A)[:, None, :]       # (m, n_s, 2) grid units
+        cells = np.floor(P).astype(np.int64)
+        cx = np.clip(cells[..., 0], 0, world.width - 1)
+        cy = np.clip(cells[..., 1], 0, H - 1)
+        blocked = np.asarray(world.occ)[cy, cx]
+        flat = cy * world.width + cx
+        new_cell = np.ones_like(blocked)
+        new_cell[:, 1:] = flat[:, 1:] != flat[:, :-1]     # a straight line never re-enters a cell
+        count = (blocked & new_cell).sum(axis=1).reshape(K - 1, H, H).astype(float)
+        k = np.arange(K - 1)
+        exact_blocked = ~self.free[k, k + 1]
+        count = np.where(exact_blocked, np.maximum(count, 1.0), 0.0)
+        cache[key] = count
+        return count
+
     def _node_rows(self, X: np.ndarray) -> np.ndarray:
         """Rows of every path position, ``(n, K)``; start and goal use row 0 of their slot
         (their table entries do not depend on the row)."""
@@ -91,7 +126,8 @@ class PrunedColumnFitness:
         """Greedy direct-connection pruning of a population.
 
         Returns ``(kept, length, collisions)``: ``kept`` ``(n, K)`` is True for the path
-        positions the pruned path keeps, ``length`` and ``collisions`` ``(n,)``.
+        positions the pruned path keeps, ``length`` ``(n,)`` and ``collisions`` ``(n,)``, the
+        blocked cells the kept colliding segments pass (:meth:`_cells_passed`).
         """
         R = self._node_rows(X)
         n, K = R.shape
@@ -112,7 +148,7 @@ class PrunedColumnFitness:
             nxt = np.where(seen, farthest, np.minimum(anchor + 1, K - 1))
             rb = R[ar, nxt]
             length += np.where(active, self.dist[anchor, nxt, ra, rb], 0.0)
-            coll += active & ~seen
+            coll += np.where(active & ~seen, self.passed[np.minimum(anchor, K - 2), ra, rb], 0.0)
             self._headings[:, step] = np.where(active, self._heading(anchor, nxt, ra, rb), np.nan)
             kept[ar[active], nxt[active]] = True
             anchor = np.where(active, nxt, anchor)
