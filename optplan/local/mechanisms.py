@@ -160,9 +160,15 @@ class BrakeAndWait(Mechanism):
     front_angle: float = math.pi / 3
     cross_angle: float = 3 * math.pi / 4
     margin: float = 0.05
+    clear_when_leaving: bool = True
 
-    def threats(self, ctx: LocalContext) -> np.ndarray:
-        """Indices of the movers that meet the four conditions."""
+    def threats(self, ctx: LocalContext, robot_radius: float = 0.0) -> np.ndarray:
+        """Indices of the movers that meet the four conditions and are still in front of the
+        robot's way: on its forward lane (the robot's heading line widened by both radii and
+        ``margin``) or heading towards it. A mover that has crossed the lane and drives away
+        from it has "disappeared in front of the planned path" (§5.4) and no longer holds the
+        robot, even while it is nearer than ``d_s`` (``clear_when_leaving=False``: wait until
+        it is farther than ``d_s``, the distance rule alone)."""
         d = np.asarray(ctx.dynamic, dtype=float).reshape(-1, 5)
         rel = d[:, 0] - ctx.state.x + 1j * (d[:, 1] - ctx.state.y)
         vel = d[:, 2] + 1j * d[:, 3]
@@ -170,7 +176,14 @@ class BrakeAndWait(Mechanism):
         near = np.abs(rel) < self.d_s
         fast = np.abs(vel) > self.v_s
         crossing = np.abs(wrap_angle(np.angle(vel) - ctx.state.theta)) <= self.cross_angle
-        return np.flatnonzero(ahead & near & fast & crossing)
+        threat = ahead & near & fast & crossing
+        if self.clear_when_leaving:
+            turn = np.exp(-1j * ctx.state.theta)             # robot frame: x forward, y left
+            lateral, lateral_v = (rel * turn).imag, (vel * turn).imag
+            on_lane = np.abs(lateral) < d[:, 4] + robot_radius + self.margin
+            approaching = lateral * lateral_v < 0
+            threat &= on_lane | approaching
+        return np.flatnonzero(threat)
 
     def in_swept_corridor(self, ctx: LocalContext, movers: np.ndarray, robot_radius: float) -> bool:
         """Whether the robot's position lies on the straight track of any of ``movers`` (rows
@@ -184,7 +197,7 @@ class BrakeAndWait(Mechanism):
         return bool(np.any(gap < self.margin))
 
     def override(self, view, ctx, window):
-        k = self.threats(ctx)
+        k = self.threats(ctx, view.robot.radius)
         if len(k) == 0:
             return None
         movers = np.asarray(ctx.dynamic, dtype=float).reshape(-1, 5)[k]
