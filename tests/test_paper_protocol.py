@@ -127,3 +127,20 @@ def test_reproduce_ends_with_the_claims_table(capsys):
     for c in claims_of("yuan2021_table1") + claims_of("yuan2021_table2"):
         assert c.quote in out
     assert "| pso |" in out and "| iba-mu0.1 |" in out and "| ba-fair |" in out
+
+
+def test_iaco_heuristic_is_the_grid_distance_and_its_paths_are_valid():
+    from optplan.solvers.gridpath.iaco import geodesic_goal_distance
+
+    world, s, g = paper_map("hou2024_env1")
+    d = geodesic_goal_distance(world, world.cell_of(g))
+    start_flat = int(world.cell_of(s)[1] * world.width + world.cell_of(s)[0])
+    astar = op.plan(world, s, g, algorithm="astar")
+    assert d[start_flat] == pytest.approx(astar.length)      # 8-connected, no corner cutting, 1 m cells
+    r = op.plan(world, s, g, algorithm="iaco", pop=20, iters=15, seed=3)
+    again = op.plan(world, s, g, algorithm="iaco", pop=20, iters=15, seed=3)
+    assert r.feasible and validate_path(world, r.path).ok and r.length >= astar.length - 1e-9
+    np.testing.assert_array_equal(r.path, again.path)
+    assert "iaco" in op.algorithms()
+    with pytest.raises(ParameterError, match="penalty"):
+        op.plan(world, s, g, algorithm="iaco", iters=2, penalty=1.5)

@@ -31,7 +31,7 @@ PAPER_OF = {
 }
 POSTPROCESS = {"hou2024": "collinear", "yang2023": "none", "yuan2021": "collinear", "li2023": "keypoints",
                "chen2025": "prune", "length": "collinear"}
-GRAPH_PLANNERS = ("aco", "ga", "iga")  # grid-graph / cell-sequence planners of their own
+GRAPH_PLANNERS = ("aco", "iaco", "ga", "iga")  # grid-graph / cell-sequence planners of their own
 # the path model a paper's planners use on grid maps when no encoding is given: yang2023
 # always plans a cubic spline through free points (eq 1-4, obstacles as their outer
 # circles, §2.2), also in its 25x25 fusion world (§7.3); the other papers use grid nodes
@@ -124,6 +124,10 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
         from .gridpath.aco import plan_aco
 
         return plan_aco(world, s, g, seed=seed, pop=pop, iters=iters, clearance=clearance, **params)
+    if name == "iaco":
+        from .gridpath.iaco import plan_iaco
+
+        return plan_iaco(world, s, g, seed=seed, pop=pop, iters=iters, clearance=clearance, **params)
     if name in ("ga", "iga") and hasattr(world, "occ") and encoding in (None, "columns"):
         from .gridpath.ga_path import plan_ga
 
