@@ -91,11 +91,18 @@ class VelocityObstacle(Mechanism):
     The same test on the robot's current velocity gives eq 19's "is collision": the mover
     with the earliest predicted contact is stored in ``step.aux["vo_threat"]`` for the
     ``vh`` term (eq 17), which is zero when nothing is flagged.
+
+    ``hard_filter``: yang2023 uses the VO only as that judgement (§5.1: "we use a fusion of
+    VO and IDWA"; eq 19 switches ``lambda`` on when the VO predicts a collision) - the
+    samples are still scored, not removed. ``False`` (default) follows the paper; ``True``
+    also rejects every sample whose velocity lies in a collision cone (the earlier reading,
+    which with the infinite ray of eq 13 rejects most forward motion near a crossing mover).
     """
 
     name: ClassVar[str] = "velocity_obstacle"
     horizon: float | None = None
     margin: float = 0.0
+    hard_filter: bool = False
 
     def _contact_time(self, vrel: np.ndarray, c: complex, rho: float) -> np.ndarray:
         """Time at which ``vrel t`` enters the disc of radius ``rho`` around ``c`` (inf = never)."""
@@ -124,11 +131,15 @@ class VelocityObstacle(Mechanism):
         for k in range(len(step.mover_r)):
             c = step.movers[k, 0] - step.mover_vel[k] * roll.t[0] - roll.z0  # mover now, relative
             rho = step.mover_r[k] + view.robot.radius + self.margin
-            keep &= ~np.isfinite(self._contact_time(v_samples - step.mover_vel[k], c, rho))
+            if self.hard_filter:   # the samples' cones are only needed to reject samples
+                keep &= ~np.isfinite(self._contact_time(v_samples - step.mover_vel[k], c, rho))
             t_now = float(self._contact_time(np.array([v_now - step.mover_vel[k]]), c, rho)[0])
             if t_now < t_threat:
                 threat, t_threat = k, t_now
         step.aux["vo_threat"] = threat
+        if not self.hard_filter:
+            step.aux["vo_rejected"] = 0
+            return None
         step.aux["vo_rejected"] = int((~keep).sum())
         return keep
 
