@@ -144,3 +144,17 @@ def test_iaco_heuristic_is_the_grid_distance_and_its_paths_are_valid():
     assert "iaco" in op.algorithms()
     with pytest.raises(ParameterError, match="penalty"):
         op.plan(world, s, g, algorithm="iaco", iters=2, penalty=1.5)
+
+
+def test_li2023_cell_program_plans_8_adjacent_cell_chains():
+    from optplan.formulations.paper_programs import li2023_cell_program
+
+    world, s, g = paper_map("li2023_30")
+    prog = li2023_cell_program(world, s, g, via=3, program_class=op.PathProgram)
+    r = prog.solve("ga", max_evals=1500, seed=0)
+    assert r.feasible and validate_path(world, r.path).ok
+    steps = np.abs(np.diff(r.path[1:-1], axis=0))
+    steps = steps[(steps > 0).any(axis=1)]                  # padding repeats the goal
+    assert steps.max() <= world.resolution + 1e-9          # neighbouring cells only
+    cost, _ = prog.evaluate(r.path)
+    assert cost == pytest.approx(r.cost)
