@@ -3,7 +3,9 @@
 --part global: Table 1 (traditional GA vs improved GA on 30x30, 60x60, 90x90:
 length, running time, key points, reductions) and Table 2 (A* vs IGA), each with
 the gap to the exact any-angle optimum that the paper does not report, and the
-Wilcoxon rank-sum p-value of IGA's lengths against TGA's.
+Wilcoxon rank-sum p-value of IGA's lengths against TGA's, and the paper's claims
+judged. It runs the shipped spec li2023_global, exactly as
+``optplan reproduce li2023 --part global`` does.
 
     python examples/li2023_iga_idwa.py --part global [--runs 20] [--quick]
 
@@ -22,60 +24,7 @@ import argparse
 
 import numpy as np
 
-from optplan.bench.global_runs import exact_optimum, global_table, run_many
-from optplan.planning import plan
-from optplan.world.papermaps import paper_map
-
-MAPS = ("li2023_30", "li2023_60", "li2023_90")
-
-
-def key_point_count(result) -> int:
-    return max(len(result.path) - 2, 0)
-
-
-def part_global(runs: int, quick: bool) -> None:
-    maps = MAPS[:1] if quick else MAPS
-    iters = 60 if quick else 200
-    print("## li2023 Table 1 analog: traditional GA (ga) vs improved GA (iga)\n")
-    print("| map | algorithm | mean length [m] | gap to optimum [%] | mean time [s] | mean key points | "
-          "length reduction [%] | time reduction [%] | key point reduction [%] |")
-    print("|---|---|---|---|---|---|---|---|---|")
-    details = []
-    for name in maps:
-        world, s, g = paper_map(name)
-        opt = exact_optimum(world, s, g)
-        sets = {a: run_many(world, s, g, a, runs, pop=50, iters=iters) for a in ("ga", "iga")}
-        stats = {}
-        for a, rs in sets.items():
-            L = rs.values("length")
-            stats[a] = (L.mean() if len(L) else np.nan, np.mean([r.runtime_s for r in rs.results]),
-                        np.mean([key_point_count(r) for r in rs.feasible]) if rs.feasible else np.nan)
-        for a in ("ga", "iga"):
-            Lm, tm, km = stats[a]
-            red = ["", "", ""]
-            if a == "iga":
-                base = stats["ga"]
-                red = [f"{100 * (1 - Lm / base[0]):.1f}", f"{100 * (1 - tm / base[1]):.1f}", f"{100 * (1 - km / base[2]):.1f}"]
-            print(f"| {name} | {a} | {Lm:.3f} | {100 * (Lm / opt - 1):.2f} | {tm:.3f} | {km:.1f} | {' | '.join(red)} |")
-        details.append((name, opt, list(sets.values())))
-    print("\n## li2023 Table 2 analog: A* vs IGA\n")
-    print("| map | A* length [m] | A* key points | A* time [s] | IGA mean length [m] | IGA key points | IGA time [s] | optimum [m] |")
-    print("|---|---|---|---|---|---|---|---|")
-    for name, opt, sets in details:
-        world, s, g = paper_map(name)
-        a = plan(world, s, g, algorithm="astar")
-        from optplan.world.postprocess import remove_collinear
-
-        ak = len(remove_collinear(a.path)) - 2
-        iga = sets[1]
-        print(f"| {name} | {a.length:.3f} | {ak} | {a.runtime_s:.4f} | {iga.values('length').mean():.3f} | "
-              f"{np.mean([key_point_count(r) for r in iga.feasible]):.1f} | "
-              f"{np.mean([r.runtime_s for r in iga.results]):.3f} | {opt:.3f} |")
-    print("\n## Per-map detail (Wilcoxon rank-sum of lengths against ga)\n")
-    for name, opt, sets in details:
-        print(f"### {name}\n")
-        print(global_table(sets, opt, reference="ga"))
-        print()
+from optplan.bench.command import reproduce
 
 
 def main(argv=None) -> int:
@@ -88,8 +37,8 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     if args.part == "local":
         return part_local(args)
-    part_global(3 if args.quick else args.runs, args.quick)
-    return 0
+    return reproduce("li2023", "global", quick=args.quick, runs=None if args.quick or args.runs == 20 else args.runs,
+                     workers=1)
 
 
 def part_local(args) -> int:
@@ -97,7 +46,7 @@ def part_local(args) -> int:
     from optplan.viz.animate import write_run_gif
 
     if args.quick:
-        paper_local("li2023 Experiment I analog (quick): traditional DWA vs IGA-DWA, A* global path", ["li2023_exp1"], 1,
+        paper_local("li2023 Experiment I analog (quick smoke test, 40 s limit): traditional DWA vs IGA-DWA, A* global path", ["li2023_exp1"], 1,
                     planners=["dwa", "iga-dwa"], time_limit=40)
     else:
         gopts = {"pop": 50, "iters": args.iters or 100}

@@ -17,6 +17,15 @@ the paths of the first run overlaid.
     python examples/refined_vs_pure.py [--runs 10] [--quick] [--out refined_vs_pure] [--maps NAME ...]
                                        [--tube-radius M] [--starts K]
 
+--part local: the same comparison in closed loop. For each paper with a fusion
+(hou2024, yang2023, yuan2021, li2023), its global planner -> its local planner and
+qp-dwa, with the pure global path, + casadi and + qp, on the same scenarios and
+seeds (the shipped specs PAPER_refined_closed_loop, also ``optplan reproduce PAPER
+--part refined``): success, collisions, time, with the Wilson interval of each
+pipeline's success and the exact McNemar test against the paper's pure fusion.
+
+    python examples/refined_vs_pure.py --part local [--runs 10] [--quick] [--papers hou2024 li2023]
+
 Both smoothers are local: a seed in another homotopy class than the optimum
 (around the other side of an obstacle) stays there, which is what keeps a run
 above 1 %. The tube stage (``optplan.solvers.tube``) lets ``casadi`` switch to
@@ -46,6 +55,18 @@ from optplan.world.metrics import max_curvature
 from optplan.world.papermaps import maps_of, paper_map
 
 VARIANTS = ("pure", "casadi-local", "casadi", "qp")
+LOCAL_PAPERS = ("hou2024", "yang2023", "yuan2021", "li2023")
+
+
+def part_local(args) -> int:
+    """The closed-loop pure vs refined experiment of each chosen paper (its shipped spec)."""
+    from optplan.bench.command import reproduce
+
+    status = 0
+    for paper in args.papers:
+        runs = None if args.quick or args.runs == 10 else args.runs
+        status = max(status, reproduce(paper, "refined", quick=args.quick, runs=runs, workers=1))
+    return status
 
 
 def variants_of(world, pure, tube_radius=None, with_alternatives=None, starts=None):
@@ -120,7 +141,13 @@ def main(argv=None) -> int:
     ap.add_argument("--starts", type=int, default=None, metavar="K",
                     help="refinement starts of the 'casadi' variant (default: refine='casadi''s default, "
                          f"{starts_for('casadi')})")
+    ap.add_argument("--part", choices=["global", "local"], default="global",
+                    help="global: paths on the paper maps (default); local: the closed loop")
+    ap.add_argument("--papers", nargs="+", default=list(LOCAL_PAPERS), choices=LOCAL_PAPERS,
+                    help="--part local: which papers' fusions (default: all four)")
     args = ap.parse_args(argv)
+    if args.part == "local":
+        return part_local(args)
     runs = 3 if args.quick else args.runs
 
     def budget(paper: str) -> tuple[int, int]:

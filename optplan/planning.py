@@ -12,7 +12,8 @@ from .world.queries import check_start_goal
 
 REFINE_MODES = (None, "none", "casadi", "qp")
 # planners that exist only on occupancy grids, and why
-GRID_ONLY = {"aco": "ACO walks the grid's cell graph", "iga": "IGA evolves sequences of grid cells",
+GRID_ONLY = {"aco": "ACO walks the grid's cell graph", "iaco": "IACO walks the grid's cell graph",
+             "iga": "IGA evolves sequences of grid cells",
              "astar": "A* searches the grid's cell graph", "dijkstra": "Dijkstra searches the grid's cell graph"}
 
 

@@ -14,7 +14,7 @@ CASES = [
     (["chen2025_msiar_gwo.py", "--part", "paths", "--quick"], ["Table 8 analog", "exact optimum"]),
     (["hou2024_missa_dwa.py", "--part", "global", "--quick"], ["| missa |", "exact optimum"]),
     (["yang2023_ipso_idwa.py", "--part", "global", "--quick"], ["| ipso |", "Table 3 analog"]),
-    (["yuan2021_iba_dwa.py", "--part", "global", "--quick"], ["| iba |", "turning cost"]),
+    (["yuan2021_iba_dwa.py", "--part", "global", "--quick"], ["| iba |", "mu = 0.1", "Claims of the paper"]),
     (["li2023_iga_idwa.py", "--part", "global", "--quick"], ["| iga |", "Table 2 analog"]),
 ]
 

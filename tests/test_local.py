@@ -192,7 +192,7 @@ def test_a_robot_pinned_beside_a_corner_turns_away_and_leaves(name):
     assert min(gaps) >= start_gap - 1e-9
 
 
-def test_idwa_velocity_obstacle_rejects_a_crossing_mover(field):
+def test_idwa_velocity_obstacle_flags_a_crossing_mover(field):
     robot = RobotSpec()
     st = RobotState(2.0, 5.0, 0.0, 0.5, 0.0)
     # at 0.5 m/s east the robot meets this northbound mover at (4.5, 5) after 5 s
@@ -200,10 +200,13 @@ def test_idwa_velocity_obstacle_rejects_a_crossing_mover(field):
     ctx = ctx_at(field, st, (9.5, 5.0), [mover])
     r = rollout(st, np.array([0.5, 0.2]), np.zeros(2), np.zeros(1), DT, 30)
     step = assess(ctx, robot, r)
-    vo = VelocityObstacle()
+    vo = VelocityObstacle(hard_filter=True)
     planner = make_local_planner("idwa", robot, DT)
     keep = vo.filter(planner, step)
     assert keep.tolist() == [False, True]  # 0.5 m/s leads into the mover, 0.2 m/s lets it pass
+    # the paper's use (yang2023 eq 19): the VO only judges "is collision", no sample is removed
+    paper_step = assess(ctx, robot, r)
+    assert VelocityObstacle().filter(planner, paper_step) is None and paper_step.aux["vo_threat"] == 0
     assert step.aux["vo_threat"] == 0  # the current velocity is in the cone: lambda = 1.5 alpha (eq 19)
     planner.reset(st, ctx.global_path)
     cmd = planner.command(ctx)

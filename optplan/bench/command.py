@@ -206,3 +206,16 @@ def run_reproduce(args) -> int:
         return 1 if failed else 0
     finally:
         store.close()
+
+
+def reproduce(paper: str, part: str | None = None, *, quick: bool = False, runs: int | None = None,
+              workers: int | None = None, db: str = ":memory:", plots: str | None = None,
+              progress: bool = True) -> int:
+    """``optplan reproduce PAPER [--part PART]`` from Python (what the example scripts call, so
+    both print the same tables, claims included); returns the command's exit status."""
+    if paper not in PAPERS:
+        raise ParameterError(f"unknown paper {paper!r}; known: {', '.join(PAPERS)}")
+    args = argparse.Namespace(paper=paper, part=part, quick=quick, runs=runs, workers=workers, db=db,
+                              executor="local", format="markdown", plots=plots, csv=None, retry_failed=False,
+                              no_progress=not progress)
+    return run_reproduce(args)

@@ -71,7 +71,8 @@ def wilcoxon_p(a: np.ndarray, b: np.ndarray) -> float:
 
 
 def global_table(sets: list[RunSet], optimum: float, reference: str | None = None, fmt: str = "markdown") -> str:
-    """Markdown (or LaTeX with ``fmt="latex"``): min/mean length, gap of the best and mean to
+    """Markdown (or LaTeX with ``fmt="latex"``): min/mean/max length and its standard deviation
+    (ddof 0; the square is yuan2021 Table 1's variance), gap of the best and mean to
     the optimum, turning, time, objective evaluations spent, feasible share, and the rank-sum
     p-value against ``reference``."""
     return global_table_data(sets, optimum, reference).render(fmt)
@@ -82,9 +83,9 @@ def global_table_data(sets: list[RunSet], optimum: float, reference: str | None 
     from .tables import Table
 
     ref = next((s for s in sets if s.algorithm == reference), None)
-    table = Table(["algorithm", "min length [m]", "mean length [m]", "best gap [%]", "mean gap [%]",
-                   "min turn [deg]", "mean turn [deg]", "mean time [s]", "mean evals", "feasible",
-                   "p vs " + (reference or "-")])
+    table = Table(["algorithm", "min length [m]", "mean length [m]", "max length [m]", "std length [m]",
+                   "best gap [%]", "mean gap [%]", "min turn [deg]", "mean turn [deg]", "mean time [s]",
+                   "mean evals", "feasible", "p vs " + (reference or "-")])
     for s in sets:
         L = s.values("length")
         T = s.values("turn_angle_deg")
@@ -94,12 +95,14 @@ def global_table_data(sets: list[RunSet], optimum: float, reference: str | None 
         count = f"{len(L)}/{len(s.results) + s.failed}" + (f" ({s.failed} failed)" if s.failed else "")
         if len(L):
             p = wilcoxon_p(L, ref.values("length")) if ref is not None and s is not ref else float("nan")
-            table.rows.append([s.algorithm, f"{L.min():.4f}", f"{L.mean():.4f}", f"{100 * (L.min() / optimum - 1):.2f}",
+            table.rows.append([s.algorithm, f"{L.min():.4f}", f"{L.mean():.4f}", f"{L.max():.4f}", f"{L.std():.4f}",
+                               f"{100 * (L.min() / optimum - 1):.2f}",
                                f"{100 * (L.mean() / optimum - 1):.2f}", f"{T.min():.1f}", f"{T.mean():.1f}", mean_t,
                                evals, count, "-" if np.isnan(p) else f"{p:.3g}"])
         else:
-            table.rows.append([s.algorithm, "-", "-", "-", "-", "-", "-", mean_t, evals, count, "-"])
-    table.notes.append(f"exact optimum (any-angle, same start/goal): {optimum:.4f} m")
+            table.rows.append([s.algorithm, "-", "-", "-", "-", "-", "-", "-", "-", mean_t, evals, count, "-"])
+    table.notes.append(f"exact optimum (any-angle, same start/goal): {optimum:.4f} m; std over the feasible runs "
+                       "(ddof 0, as the papers report; its square is a variance)")
     return table
 
 

@@ -62,3 +62,15 @@ def smoothing_program(world, start, goal, n: int = 50, w_smooth: float = 0.5, cl
     prog.minimize(T.squared_length() + float(w_smooth) * T.bending())
     prog.subject_to(T.clearance() >= float(clearance))
     return prog
+
+
+def li2023_cell_program(world, start, goal, via: int = 4, clearance: float = 0.0,
+                        program_class=PathProgram) -> PathProgram:
+    """li2023's fitness (eq 2, constraint eq 3) over li2023's own representation, a general
+    sequence of 8-adjacent grid cells (:class:`~optplan.formulations.variables.CellSequence`
+    through ``via`` free via cells), which may visit a column several times (li2023's
+    example M1); the spec ``li2023_cells`` runs it (``optplan reproduce li2023 --part cells``)."""
+    from .variables import CellSequence
+
+    return paper_program("li2023", world, start, goal, variables=CellSequence(via), clearance=clearance,
+                         program_class=program_class)

@@ -54,6 +54,8 @@ PRESETS: dict[str, FitnessPreset] = {
                       turn_cost=0.0, collision_penalty=100.0),
         FitnessPreset("yuan2021-smooth", "yuan2021 eq 13 with the smoothing term on (mu = 1)", turn_cost=1.0,
                       collision_penalty=100.0),
+        FitnessPreset("yuan2021-mu0.1", "yuan2021 eq 13 with the Table 2 weights eta = lambda = 1, mu = 0.1 "
+                      "(§5.1 (2))", turn_cost=0.1, collision_penalty=100.0),
         FitnessPreset("li2023", "li2023 eq 2-3: alpha*l + beta*theta + gamma*turns, alpha = 1, beta = 0.1, "
                       "gamma = 0.1 (the paper leaves the weights open); eq 3 as a hard constraint",
                       turn_angle=0.1, turn_count=0.1, collision_penalty=100.0, penetration_penalty=0.0),

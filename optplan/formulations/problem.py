@@ -53,6 +53,12 @@ class PathProblem:
         self._collision_penalty = float(pen)
 
     @property
+    def collision_penalty(self) -> float:
+        """What the penalty mode adds per colliding segment (the preset's value, or chen2025
+        eq 32's goal product ``Tx * Ty`` resolved on this map)."""
+        return self._collision_penalty
+
+    @property
     def _distance(self):
         """Signed distance callable of the world (built on first use: sampling the
         field of a large grid takes a while and many presets never need it)."""

@@ -91,11 +91,18 @@ class VelocityObstacle(Mechanism):
     The same test on the robot's current velocity gives eq 19's "is collision": the mover
     with the earliest predicted contact is stored in ``step.aux["vo_threat"]`` for the
     ``vh`` term (eq 17), which is zero when nothing is flagged.
+
+    ``hard_filter``: yang2023 uses the VO only as that judgement (§5.1: "we use a fusion of
+    VO and IDWA"; eq 19 switches ``lambda`` on when the VO predicts a collision) - the
+    samples are still scored, not removed. ``False`` (default) follows the paper; ``True``
+    also rejects every sample whose velocity lies in a collision cone (the earlier reading,
+    which with the infinite ray of eq 13 rejects most forward motion near a crossing mover).
     """
 
     name: ClassVar[str] = "velocity_obstacle"
     horizon: float | None = None
     margin: float = 0.0
+    hard_filter: bool = False
 
     def _contact_time(self, vrel: np.ndarray, c: complex, rho: float) -> np.ndarray:
         """Time at which ``vrel t`` enters the disc of radius ``rho`` around ``c`` (inf = never)."""
@@ -124,11 +131,15 @@ class VelocityObstacle(Mechanism):
         for k in range(len(step.mover_r)):
             c = step.movers[k, 0] - step.mover_vel[k] * roll.t[0] - roll.z0  # mover now, relative
             rho = step.mover_r[k] + view.robot.radius + self.margin
-            keep &= ~np.isfinite(self._contact_time(v_samples - step.mover_vel[k], c, rho))
+            if self.hard_filter:   # the samples' cones are only needed to reject samples
+                keep &= ~np.isfinite(self._contact_time(v_samples - step.mover_vel[k], c, rho))
             t_now = float(self._contact_time(np.array([v_now - step.mover_vel[k]]), c, rho)[0])
             if t_now < t_threat:
                 threat, t_threat = k, t_now
         step.aux["vo_threat"] = threat
+        if not self.hard_filter:
+            step.aux["vo_rejected"] = 0
+            return None
         step.aux["vo_rejected"] = int((~keep).sum())
         return keep
 
@@ -160,9 +171,15 @@ class BrakeAndWait(Mechanism):
     front_angle: float = math.pi / 3
     cross_angle: float = 3 * math.pi / 4
     margin: float = 0.05
+    clear_when_leaving: bool = True
 
-    def threats(self, ctx: LocalContext) -> np.ndarray:
-        """Indices of the movers that meet the four conditions."""
+    def threats(self, ctx: LocalContext, robot_radius: float = 0.0) -> np.ndarray:
+        """Indices of the movers that meet the four conditions and are still in front of the
+        robot's way: on its forward lane (the robot's heading line widened by both radii and
+        ``margin``) or heading towards it. A mover that has crossed the lane and drives away
+        from it has "disappeared in front of the planned path" (§5.4) and no longer holds the
+        robot, even while it is nearer than ``d_s`` (``clear_when_leaving=False``: wait until
+        it is farther than ``d_s``, the distance rule alone)."""
         d = np.asarray(ctx.dynamic, dtype=float).reshape(-1, 5)
         rel = d[:, 0] - ctx.state.x + 1j * (d[:, 1] - ctx.state.y)
         vel = d[:, 2] + 1j * d[:, 3]
@@ -170,7 +187,14 @@ class BrakeAndWait(Mechanism):
         near = np.abs(rel) < self.d_s
         fast = np.abs(vel) > self.v_s
         crossing = np.abs(wrap_angle(np.angle(vel) - ctx.state.theta)) <= self.cross_angle
-        return np.flatnonzero(ahead & near & fast & crossing)
+        threat = ahead & near & fast & crossing
+        if self.clear_when_leaving:
+            turn = np.exp(-1j * ctx.state.theta)             # robot frame: x forward, y left
+            lateral, lateral_v = (rel * turn).imag, (vel * turn).imag
+            on_lane = np.abs(lateral) < d[:, 4] + robot_radius + self.margin
+            approaching = lateral * lateral_v < 0
+            threat &= on_lane | approaching
+        return np.flatnonzero(threat)
 
     def in_swept_corridor(self, ctx: LocalContext, movers: np.ndarray, robot_radius: float) -> bool:
         """Whether the robot's position lies on the straight track of any of ``movers`` (rows
@@ -184,7 +208,7 @@ class BrakeAndWait(Mechanism):
         return bool(np.any(gap < self.margin))
 
     def override(self, view, ctx, window):
-        k = self.threats(ctx)
+        k = self.threats(ctx, view.robot.radius)
         if len(k) == 0:
             return None
         movers = np.asarray(ctx.dynamic, dtype=float).reshape(-1, 5)[k]

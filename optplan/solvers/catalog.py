@@ -38,7 +38,7 @@ def planner_kind(name: str, world, encoding=None) -> str:
     """``graph``, ``aco``, ``cell-ga`` (the grid GAs on their own chromosome) or ``swarm``."""
     if name in GRAPH_METHODS:
         return "graph"
-    if name == "aco":
+    if name in ("aco", "iaco"):
         return "aco"
     if name in ("ga", "iga") and world.is_grid and encoding in (None, "columns"):
         return "cell-ga"
@@ -54,8 +54,10 @@ def planner_options(name: str, world, encoding=None) -> set[str]:
         return keyword_names(shortest_path, PLAN_OWN | {"method"})
     if kind == "aco":
         from .gridpath.aco import aco_path, plan_aco
+        from .gridpath.iaco import plan_iaco
 
-        return keyword_names(plan_aco, PLAN_OWN) | keyword_names(aco_path, PLAN_OWN)
+        entry = plan_iaco if name == "iaco" else plan_aco
+        return keyword_names(entry, PLAN_OWN) | keyword_names(aco_path, PLAN_OWN)
     if kind == "cell-ga":
         from .gridpath.ga_path import GAParams, plan_ga
 

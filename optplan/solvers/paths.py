@@ -16,6 +16,7 @@ from ..errors import ParameterError, UnknownAlgorithmError
 from ..papers import LENGTH, PAPERS
 from ..formulations.encodings import ColumnNodes, FreeWaypoints, SplinePath
 from ..formulations.problem import PathProblem
+from ..formulations.pruned import PrunedColumnFitness, check_fitness_on
 from ..world.postprocess import key_points, prune_direct, remove_collinear
 from .archive import ARCHIVE_EVERY, archive_alternatives
 from .result import check_alternatives, make_plan_result
@@ -23,7 +24,7 @@ from .result import check_alternatives, make_plan_result
 # derived from the one table of paper methods (optplan/papers.py)
 PAPER_OF = {a: p.key for p in PAPERS.values() for a in p.algorithms}
 POSTPROCESS = {**{k: p.postprocess for k, p in PAPERS.items()}, LENGTH.key: LENGTH.postprocess}
-GRAPH_PLANNERS = ("aco", "ga", "iga")  # grid-graph / cell-sequence planners of their own
+GRAPH_PLANNERS = ("aco", "iaco", "ga", "iga")  # grid-graph / cell-sequence planners of their own
 # the path model a paper's planners use on grid maps when no encoding is given
 # (yang2023: a cubic spline through free points, eq 1-4, §2.2, also in §7.3)
 GRID_ENCODING = {k: p.grid_encoding for k, p in PAPERS.items() if p.grid_encoding != "columns"}
@@ -76,7 +77,7 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
               clearance: float = 0.0, preset: str | None = None, encoding: str | None = None,
               constraint: str | None = "feasibility", postprocess: str | None = None, max_evals: int | None = None,
               waypoints: int = 3, init: str | None = "auto", alternatives: int = 0,
-              alternative_separation: float | None = None, **params):
+              alternative_separation: float | None = None, fitness_on: str = "nodes", **params):
     """Plan with a metaheuristic (or ACO / the path GAs) and return a validated PlanResult.
 
     ``preset`` defaults to the algorithm's paper (:data:`PAPER_OF`). ``constraint``
@@ -95,6 +96,11 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
     MISSA's chaotic map), ``"auto"`` (default) is ``"feasible"`` for column nodes
     and ``"own"`` otherwise.
 
+    ``fitness_on``: ``"nodes"`` (default) scores the raw column-node path; ``"pruned"``
+    scores the path after the direct-connection test, the order of chen2025 §4.3.1 (nodes,
+    pruning, then eq 32) and the papers' protocol (:mod:`optplan.formulations.pruned`); the
+    returned path is then the pruned path that was scored. Column nodes only.
+
     ``alternatives``: also return up to that many other valid paths of the run's
     population (snapshots every :data:`ARCHIVE_EVERY` iterations and the final one,
     best first by fitness) in ``result.alternatives``, each leaving the
@@ -110,6 +116,10 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
         from .gridpath.aco import plan_aco
 
         return plan_aco(world, s, g, seed=seed, pop=pop, iters=iters, clearance=clearance, **params)
+    if name == "iaco":
+        from .gridpath.iaco import plan_iaco
+
+        return plan_iaco(world, s, g, seed=seed, pop=pop, iters=iters, clearance=clearance, **params)
     if name in ("ga", "iga") and hasattr(world, "occ") and encoding in (None, "columns"):
         from .gridpath.ga_path import plan_ga
 
@@ -133,6 +143,12 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
                                 seed=seed if isinstance(seed, int) else None, message="start and goal in adjacent columns")
     bounds = np.stack([problem.lower, problem.upper], axis=1)
     repair = getattr(problem.encoding, "repair", None)
+    pruned = None
+    if check_fitness_on(fitness_on) == "pruned":
+        if alternatives:
+            raise ParameterError("fitness_on='pruned' does not offer alternatives (refine a pruned path with "
+                                 "refine_options={'starts': 1})")
+        pruned = PrunedColumnFitness(problem)
     if init == "auto":
         init = "feasible" if isinstance(problem.encoding, ColumnNodes) else "own"
     if init == "feasible":
@@ -143,12 +159,16 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
         init = None
     else:
         raise ParameterError(f"init must be 'auto', 'feasible' or 'own', got {init!r}")
-    opt = metaheuristics.optimize(problem.evaluate if problem.preset.constraint == "feasibility" else problem.objective,
+    scored = pruned if pruned is not None else problem
+    opt = metaheuristics.optimize(scored.evaluate if problem.preset.constraint == "feasibility" else scored.objective,
                                   bounds, algorithm=name, pop=pop, iters=iters, seed=seed, max_evals=max_evals,
                                   repair=repair, init=init, archive_every=ARCHIVE_EVERY if alternatives else None,
                                   **params)
-    raw = problem.encoding.waypoints(opt.x)
-    mode = postprocess or POSTPROCESS.get(preset if isinstance(preset, str) else "length", "collinear")
+    if pruned is not None:  # the path that was scored; further post-processing only on request
+        raw, mode = pruned.path(opt.x), postprocess or "none"
+    else:
+        raw = problem.encoding.waypoints(opt.x)
+        mode = postprocess or POSTPROCESS.get(preset if isinstance(preset, str) else "length", "collinear")
     path = postprocess_path(world, raw, mode, clearance)
     others = []
     if alternatives:

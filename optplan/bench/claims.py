@@ -1,0 +1,269 @@
+"""The papers' quantitative claims, judged against our runs.
+
+Each :class:`Claim` quotes one statement of a paper with the table or figure it comes from,
+names the shipped spec whose runs judge it, and says what is compared. The verdict is
+computed from the stored runs, never written by hand:
+
+* ``less`` — group ``better`` has a lower mean ``metric`` than group ``other`` (the paper's
+  reduction ``claimed``, a fraction, or ``None`` for a direction only). Our figure is the
+  reduction of the mean with a 95 % bootstrap interval (seeded, so it repeats) and the
+  two-sided rank-sum p-value (a one-sample signed-rank test when ``other`` is a single
+  deterministic run, e.g. A*). Verdict: ``not significant`` when p >= alpha; ``reversed``
+  when significant the other way; ``weaker`` when the interval lies below the claimed
+  reduction; else ``holds``.
+* ``less_spread`` — group ``better`` has a smaller spread (variance / standard deviation)
+  of ``metric``: our figure is the ratio of standard deviations and Levene's test
+  (median-centred) p-value; verdicts as for ``less`` (no claimed size).
+* ``rate`` — the share of ``better``'s runs that succeed (feasible path; goal reached without
+  collision) is at least ``claimed``. Our figure is the share with its Wilson 95 % interval.
+  Verdict: ``holds`` when the interval reaches the claimed share, ``weaker`` when it lies
+  below it but some runs succeed, ``reversed`` when none do.
+
+A claim whose groups or target the spec does not hold (a quick run on fewer maps, a missing
+baseline) is listed as ``not run``, so every claim is always shown.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .tables import Table
+
+VERDICTS = ("holds", "weaker", "not significant", "reversed", "not run")
+BOOTSTRAP = 2000
+
+
+@dataclass(frozen=True)
+class Claim:
+    """One quantitative statement of a paper.
+
+    Attributes:
+        spec: name of the shipped spec whose runs judge it.
+        source: where the paper says it (table / figure / section).
+        quote: the statement, in short.
+        target: the map or scenario it is about.
+        kind: ``less``, ``less_spread`` or ``rate`` (module docstring).
+        better: the group label the paper says is better (or that succeeds, for ``rate``).
+        other: the group it is compared with (``less``, ``less_spread``).
+        metric: the stored metric (``length``, ``runtime_s``, ``turn_angle_deg``, ``n_turns``,
+            ``time_s``, ...); ``rate`` ignores it.
+        claimed: the paper's reduction (fraction) or success share; ``None``: direction only.
+        note: what the reader should know (e.g. timings on a shared machine).
+    """
+
+    spec: str
+    source: str
+    quote: str
+    target: str
+    kind: str
+    better: str
+    other: str | None = None
+    metric: str = "length"
+    claimed: float | None = None
+    note: str = ""
+
+
+def _reduction(a: np.ndarray, b: np.ndarray) -> float:
+    return float(1.0 - a.mean() / b.mean())
+
+
+def _bootstrap_reduction(a: np.ndarray, b: np.ndarray, seed: int = 0) -> tuple[float, float]:
+    """95 % percentile interval of ``1 - mean(a) / mean(b)`` (vectorised resampling)."""
+    rng = np.random.default_rng(seed)
+    ia = rng.integers(0, len(a), size=(BOOTSTRAP, len(a)))
+    ib = rng.integers(0, len(b), size=(BOOTSTRAP, len(b)))
+    r = 1.0 - a[ia].mean(axis=1) / b[ib].mean(axis=1)
+    return float(np.percentile(r, 2.5)), float(np.percentile(r, 97.5))
+
+
+def judge_less(a, b, claimed: float | None, alpha: float = 0.05) -> tuple[str, str]:
+    """``(our figure, verdict)`` of "``a`` is lower than ``b`` by ``claimed``" (see module doc)."""
+    from scipy.stats import wilcoxon
+
+    from .stats import ranksum_p
+
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    if len(a) < 2 or len(b) < 1:
+        return f"{len(a)} and {len(b)} runs", "not run"
+    red = _reduction(a, b)
+    if len(b) == 1:   # a deterministic reference (A*): one-sample signed-rank test
+        diff = a - b[0]
+        p = 1.0 if np.all(diff == 0) else float(wilcoxon(diff, alternative="two-sided").pvalue)
+        lo, hi = _bootstrap_reduction(a, np.repeat(b, 2))
+    else:
+        p = ranksum_p(a, b)
+        lo, hi = _bootstrap_reduction(a, b)
+    figure = f"{100 * red:+.1f} % [{100 * lo:+.1f}, {100 * hi:+.1f}], p={p:.2g}"
+    if not np.isfinite(p) or p >= alpha:
+        return figure, "not significant"
+    if red < 0:
+        return figure, "reversed"
+    if claimed is not None and hi < claimed:
+        return figure, "weaker"
+    return figure, "holds"
+
+
+def judge_less_spread(a, b, alpha: float = 0.05) -> tuple[str, str]:
+    """``(our figure, verdict)`` of "``a`` varies less than ``b``" (Levene's test)."""
+    from scipy.stats import levene
+
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    if len(a) < 2 or len(b) < 2:
+        return f"{len(a)} and {len(b)} runs", "not run"
+    sa, sb = a.std(), b.std()
+    p = 1.0 if sa == sb == 0 else float(levene(a, b, center="median").pvalue)
+    ratio = sa / sb if sb > 0 else float("inf")
+    figure = f"std {sa:.3g} vs {sb:.3g} (ratio {ratio:.2f}), p={p:.2g}"
+    if not np.isfinite(p) or p >= alpha:
+        return figure, "not significant"
+    return figure, "holds" if sa < sb else "reversed"
+
+
+def judge_rate(successes: int, runs: int, claimed: float) -> tuple[str, str]:
+    """``(our figure, verdict)`` of "at least ``claimed`` of the runs succeed"."""
+    from .stats import wilson_interval
+
+    if runs == 0:
+        return "0 runs", "not run"
+    lo, hi = wilson_interval(successes, runs)
+    figure = f"{successes}/{runs} [{100 * lo:.0f}-{100 * hi:.0f} %]"
+    if hi >= claimed - 1e-9:   # the interval's upper end is 1 up to rounding at all successes
+        return figure, "holds"
+    return figure, "weaker" if successes else "reversed"
+
+
+def _group(res, target: str, label: str):
+    for (lab, refine, local), recs in res.groups(target).items():
+        if res.group_name(lab, refine, local) == label or lab == label:
+            return recs
+    return None
+
+
+def judge(claim: Claim, res) -> tuple[str, str]:
+    """``(our figure, verdict)`` of one claim on the stored runs ``res`` of its spec."""
+    if claim.target not in {t.name for t in res.spec.targets}:
+        return "target not in this run", "not run"
+    a = _group(res, claim.target, claim.better)
+    b = _group(res, claim.target, claim.other) if claim.other else None
+    if a is None or (claim.other and b is None):
+        return "group not in this run", "not run"
+    if claim.kind == "rate":
+        stored, _, ok = res.counts(a)
+        return judge_rate(ok, stored, claim.claimed if claim.claimed is not None else 1.0)
+    va, vb = res.values(a, claim.metric), res.values(b, claim.metric)
+    if claim.kind == "less":
+        return judge_less(va, vb, claim.claimed, res.spec.alpha)
+    if claim.kind == "less_spread":
+        return judge_less_spread(va, vb, res.spec.alpha)
+    raise ValueError(f"unknown claim kind {claim.kind!r}")
+
+
+def _claimed_text(c: Claim) -> str:
+    if c.claimed is None:
+        return "better"
+    return f"{100 * c.claimed:.1f} %" if c.kind == "less" else (f">= {100 * c.claimed:.0f} %" if c.kind == "rate"
+                                                               else "")
+
+
+def claims_of(spec_name: str) -> list[Claim]:
+    """The claims judged by one shipped spec."""
+    return [c for c in CLAIMS if c.spec == spec_name]
+
+
+def claims_table(res) -> Table | None:
+    """The claims table of one spec's runs (``None`` when the spec judges no claim)."""
+    claims = claims_of(res.spec.name)
+    if not claims:
+        return None
+    table = Table(["source", "claim", "target", "compared", "claimed", "ours (95 % interval, p)", "verdict"],
+                  caption=f"claims judged by {res.spec.name}")
+    notes = []
+    for c in claims:
+        figure, verdict = judge(c, res)
+        compared = c.better + (f" vs {c.other}" if c.other else "") + (f" ({c.metric})" if c.kind != "rate" else "")
+        table.rows.append([c.source, c.quote, c.target, compared, _claimed_text(c), figure, verdict])
+        if c.note and c.note not in notes:
+            notes.append(c.note)
+    table.notes.append("verdicts are computed (optplan/bench/claims.py): less -> reduction of the mean with a "
+                       "bootstrap interval and the rank-sum p-value; rate -> Wilson interval; weaker: significant "
+                       "but the interval lies below the claimed size")
+    table.notes += notes
+    return table
+
+
+def render_claims(res, fmt: str = "markdown") -> str:
+    """The claims table as text, with its heading, or ``""``."""
+    table = claims_table(res)
+    if table is None:
+        return ""
+    return f"\n## Claims of the paper ({res.spec.name})\n\n{table.render(fmt)}\n"
+
+
+_TIMING = "timings were measured on a machine shared with other jobs: times are inflated and noisy"
+_PROTO = "paper protocol"
+
+CLAIMS: tuple[Claim, ...] = (
+    # hou2024 §4.3, Tables 2-3 (ISSA in the tables is MISSA)
+    *(Claim("hou2024_global", f"Table {2 + i}", "all four algorithms devise collision-free global paths", m,
+            "rate", "missa", claimed=1.0) for i, m in enumerate(("hou2024_env1", "hou2024_env2"))),
+    Claim("hou2024_global", "Table 2", "average length 15.31 % below SSA", "hou2024_env1", "less", "missa", "ssa",
+          claimed=0.1531),
+    Claim("hou2024_global", "Table 2", "average length 8.76 % below ACO", "hou2024_env1", "less", "missa", "aco",
+          claimed=0.0876),
+    Claim("hou2024_global", "Table 2", "average length 7.09 % below IACO", "hou2024_env1", "less", "missa", "iaco",
+          claimed=0.0709),
+    Claim("hou2024_global", "Table 2", "average runtime 88.39 % below IACO", "hou2024_env1", "less", "missa", "iaco",
+          "runtime_s", 0.8839, _TIMING),
+    Claim("hou2024_global", "Table 2", "average total rotation 80.60 % below SSA", "hou2024_env1", "less", "missa",
+          "ssa", "turn_angle_deg", 0.8060),
+    Claim("hou2024_global", "Table 2", "average runtime 41.84 % below SSA", "hou2024_env1", "less", "missa", "ssa",
+          "runtime_s", 0.4184, _TIMING),
+    Claim("hou2024_global", "Table 3", "average length 11.92 % below SSA", "hou2024_env2", "less", "missa", "ssa",
+          claimed=0.1192),
+    Claim("hou2024_global", "Table 3", "average length 19.55 % below ACO", "hou2024_env2", "less", "missa", "aco",
+          claimed=0.1955),
+    Claim("hou2024_global", "Table 3", "average length 9.81 % below IACO", "hou2024_env2", "less", "missa", "iaco",
+          claimed=0.0981),
+    Claim("hou2024_global", "Table 3", "average runtime 86.53 % below IACO", "hou2024_env2", "less", "missa", "iaco",
+          "runtime_s", 0.8653, _TIMING),
+    Claim("hou2024_global", "Table 3", "average total rotation 57.79 % below SSA", "hou2024_env2", "less", "missa",
+          "ssa", "turn_angle_deg", 0.5779),
+    Claim("hou2024_global", "Table 3", "average runtime 33.23 % below SSA", "hou2024_env2", "less", "missa", "ssa",
+          "runtime_s", 0.3323, _TIMING),
+    # yuan2021 §5.1
+    Claim("yuan2021_table1", "Table 1", "average length 2.88 % below BA", "yuan2021_25", "less", "iba", "ba",
+          claimed=0.0288),
+    Claim("yuan2021_table1", "Table 1", "average length 7.13 % below PSO", "yuan2021_25", "less", "iba", "pso",
+          claimed=0.0713),
+    Claim("yuan2021_table1", "Table 1", "IBA is more stable (variance 1.81 vs BA 4.65)", "yuan2021_25",
+          "less_spread", "iba", "ba"),
+    Claim("yuan2021_table1", "Table 1", "every run finds a collision-free path", "yuan2021_25", "rate", "iba",
+          claimed=1.0),
+    Claim("yuan2021_table2", "Table 2", "mu = 0.1 cuts the average corners 12.6 -> 9.1 (27.8 %)", "yuan2021_25",
+          "less", "iba-mu0.1", "iba-mu0", "n_turns", 1 - 9.1 / 12.6),
+    Claim("yuan2021_table2", "§5.1 (2)", "the smoothing term lengthens the path (39.21 vs 37.45, -4.70 %)",
+          "yuan2021_25", "less", "iba-mu0", "iba-mu0.1", "length", None),
+    # yang2023 §7.1 (IPSO1 and IPSO2 are not implemented)
+    Claim("yang2023_global", "Table 1", "IPSO average length below PSO (15.0966 vs 15.7687, 4.26 %)",
+          "yang2023_env1", "less", "ipso", "pso", claimed=1 - 15.0966 / 15.7687),
+    Claim("yang2023_global", "Table 2", "IPSO average length below PSO (22.0474 vs 22.4382, 1.74 %)",
+          "yang2023_env2", "less", "ipso", "pso", claimed=1 - 22.0474 / 22.4382),
+    # li2023 §6.1, Tables 1-2
+    *(Claim("li2023_global", "Table 1", f"IGA path {c:.1%} shorter than TGA", m, "less", "iga", "ga", claimed=c)
+      for m, c in (("li2023_30", 0.027), ("li2023_60", 0.048), ("li2023_90", 0.049))),
+    *(Claim("li2023_global", "Table 1", f"IGA running time {c:.1%} below TGA", m, "less", "iga", "ga", "runtime_s",
+            c, _TIMING) for m, c in (("li2023_30", 0.373), ("li2023_60", 0.485), ("li2023_90", 0.621))),
+    *(Claim("li2023_global", "Table 2", f"IGA path {c:.1%} shorter than A*", m, "less", "iga", "astar", claimed=c)
+      for m, c in (("li2023_30", 0.014), ("li2023_60", 0.072), ("li2023_90", 0.086))),
+    # chen2025 §4.3, Tables 9-11 (mean path length; AGWO and RSMGWO are not implemented)
+    *(Claim("chen2025_paths", f"Table {t}", f"MSIAR-GWO mean length below {o.upper()} ({a:.2f} vs {b:.2f})", m,
+            "less", "msiar-gwo", o, claimed=1 - a / b)
+      for t, m, rows in ((9, "chen2025_20", {"gwo": 29.8550, "aro": 28.7696, "igwo": 28.7271, "woa": 32.2861}),
+                         (10, "chen2025_30", {"gwo": 53.6080, "aro": 46.0486, "igwo": 46.9421, "woa": 51.5709}),
+                         (11, "chen2025_40", {"gwo": 88.9720, "aro": 71.8339, "igwo": 85.1341, "woa": 74.8505}))
+      for o, b in rows.items()
+      for a in ({"chen2025_20": 28.5610, "chen2025_30": 44.0835, "chen2025_40": 68.6196}[m],)),
+    *(Claim("chen2025_paths", f"Table {t}", "MSIAR-GWO varies less than GWO", m, "less_spread", "msiar-gwo", "gwo")
+      for t, m in ((9, "chen2025_20"), (10, "chen2025_30"), (11, "chen2025_40"))),
+)
