@@ -13,6 +13,7 @@ import numpy as np
 
 from ...errors import ParameterError, UnknownAlgorithmError
 from ...results import OptimizeResult
+from ..budget import Budget
 from .engine import Algorithm, Problem, pooled_archive, run
 
 # registry: name -> class (filled from the family modules)
@@ -75,7 +76,7 @@ def _bounds(bounds, dim: int | None) -> tuple[np.ndarray, np.ndarray]:
 def optimize(f: Callable, bounds, algorithm: str = "gwo", pop: int = 30, iters: int | None = 500,
              max_evals: int | None = None, seed=0, *, dim: int | None = None, init=None, repair=None,
              callback=None, progress: bool = False, stagnation: int | None = None, target: float | None = None,
-             archive_every: int | None = None, **params) -> OptimizeResult:
+             archive_every: int | None = None, budget: Budget | None = None, **params) -> OptimizeResult:
     """Minimise a batched objective with a registered metaheuristic.
 
     Args:
@@ -96,26 +97,26 @@ def optimize(f: Callable, bounds, algorithm: str = "gwo", pop: int = 30, iters: 
         archive_every: keep the population every that many iterations (and the initial
             and final ones) and return their distinct points in ``result.archive``
             (best first); ``None`` (default) keeps nothing. Costs no evaluations.
+        budget: a :class:`~optplan.solvers.budget.Budget` instead of ``iters``,
+            ``max_evals``, ``stagnation`` and ``target`` (leave those at their defaults).
         **params: the algorithm's own parameters (see its class for defaults).
     """
     cls = get_algorithm(algorithm)
     pop = _positive_int("pop", pop, max(cls.min_pop, 1))
-    if iters is None and max_evals is None:
-        raise ParameterError("give iters or max_evals (or both): an unbounded run never ends")
-    if iters is not None:
-        iters = _positive_int("iters", iters, 0)
-    if max_evals is not None:
-        max_evals = _positive_int("max_evals", max_evals, 1)
-    if stagnation is not None:
-        stagnation = _positive_int("stagnation", stagnation, 1)
+    if budget is None:
+        budget = Budget(iterations=iters, evaluations=max_evals, stagnation=stagnation, target=target)
+    elif not isinstance(budget, Budget):
+        raise ParameterError(f"budget must be an optplan Budget, got {type(budget).__name__}")
+    elif max_evals is not None or stagnation is not None or target is not None or iters not in (None, 500):
+        raise ParameterError("give either budget=Budget(...) or iters/max_evals/stagnation/target, not both")
     if archive_every is not None:
         archive_every = _positive_int("archive_every", archive_every, 1)
     lo, hi = _bounds(bounds, dim)
     algo = cls(**params)
     t0 = time.perf_counter()
     state, hist, hist_nfev, status, message, nit = run(
-        algo, Problem(f, lo, hi, repair), pop=pop, iters=iters, max_evals=max_evals, seed=seed, init=init,
-        callback=callback, progress=progress, stagnation=stagnation, target=target, archive_every=archive_every)
+        algo, Problem(f, lo, hi, repair), pop=pop, seed=seed, init=init, callback=callback, progress=progress,
+        archive_every=archive_every, budget=budget)
     return OptimizeResult(
         x=state.best_x, f=float(state.best_f), history=hist, history_nfev=hist_nfev, nfev=state.nfev, nit=nit,
         runtime_s=time.perf_counter() - t0, status=status, message=message, algorithm=cls.name,

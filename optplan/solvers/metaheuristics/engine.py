@@ -14,8 +14,10 @@ population (``init=array``) or an initialiser (``init=callable(n, rng) -> X``),
 and a ``repair`` hook applied to every population before it is evaluated (for
 discrete encodings). Bounds are enforced by clipping.
 
-Budgets. ``nfev`` counts rows passed to ``f``. With ``max_evals`` the run stops
-exactly when the budget is spent: a batch larger than what is left is cut, and
+Budgets. ``nfev`` counts rows passed to ``f``. The run obeys one
+:class:`~optplan.solvers.budget.Budget` (iterations, evaluations, stagnation,
+target), the same object ACO and the path GAs obey. With an evaluation budget the
+run stops exactly when it is spent: a batch larger than what is left is cut, and
 the rows that could not be evaluated are treated as infinitely bad.
 
 Archive. With ``archive_every=k`` the engine keeps a copy of the population
@@ -37,10 +39,9 @@ import numpy as np
 
 from ...errors import ParameterError
 from ...rng import as_generator
+from ..budget import Budget, BudgetExhausted
 
-
-class BudgetExhausted(Exception):
-    """Raised inside a step when no evaluations are left; the engine stops cleanly."""
+__all__ = ["Algorithm", "Budget", "BudgetExhausted", "Problem", "State", "better", "pooled_archive", "rank", "run"]
 
 
 @dataclass
@@ -94,11 +95,12 @@ class State:
     (velocities, personal bests, loudness, ...) as attributes of their instance."""
 
     def __init__(self, problem: Problem, pop: int, iters: int | None, max_evals: int | None,
-                 rng: np.random.Generator):
+                 rng: np.random.Generator, budget: Budget | None = None):
         self.problem = problem
         self.pop = pop
-        self.iters = iters
-        self.max_evals = max_evals
+        self.budget = budget if budget is not None else Budget(iterations=iters, evaluations=max_evals)
+        self.iters = self.budget.iterations
+        self.max_evals = self.budget.evaluations
         self.rng = rng
         self.lower, self.upper = problem.lower, problem.upper
         self.dim = problem.dim
@@ -120,24 +122,18 @@ class State:
     # ------------------------------------------------------------ budget
     @property
     def horizon(self) -> int:
-        """Iterations the schedule-driven rules (a(t), w(t), ...) plan for."""
-        if self.iters is not None:
-            return max(self.iters, 1)
-        # evaluation budget only: assume about one evaluation per individual per iteration
-        return max(int(np.ceil(self.max_evals / self.pop)) - 1, 1)
+        """Iterations the schedule-driven rules (a(t), w(t), ...) plan for (:meth:`Budget.horizon`)."""
+        return self.budget.horizon(self.pop)
 
     @property
     def progress(self) -> float:
-        """``t / T`` in [0, 1]: the fraction of the budget spent (iterations or evaluations)."""
-        if self.iters is not None and self.max_evals is None:
-            return min(self.it / max(self.iters, 1), 1.0)
-        frac_e = self.nfev / self.max_evals if self.max_evals else 0.0
-        frac_i = self.it / max(self.iters, 1) if self.iters is not None else 0.0
-        return float(min(max(frac_e, frac_i), 1.0))
+        """``t / T`` in [0, 1]: the fraction of the budget spent (:meth:`Budget.progress`)."""
+        return self.budget.progress(self.it, self.nfev)
 
     @property
     def evals_left(self) -> float:
-        return np.inf if self.max_evals is None else self.max_evals - self.nfev
+        """Evaluations still allowed (``inf`` without an evaluation budget)."""
+        return self.budget.evaluations_left(self.nfev)
 
     # -------------------------------------------------------- evaluation
     def clip(self, X: np.ndarray) -> np.ndarray:
@@ -150,10 +146,7 @@ class State:
         Raises :class:`BudgetExhausted` when no evaluation is left at all.
         """
         n = len(X)
-        left = self.evals_left
-        if left <= 0:
-            raise BudgetExhausted
-        k = n if n <= left else int(left)
+        k = self.budget.allowed(n, self.nfev)
         Xk = X if k == n else X[:k]
         out = self.problem.f(Xk)
         if isinstance(out, tuple):
@@ -244,16 +237,19 @@ class Algorithm:
         raise NotImplementedError
 
 
-def run(algorithm: Algorithm, problem: Problem, *, pop: int, iters: int | None, max_evals: int | None, seed,
-        init=None, callback=None, progress: bool = False, stagnation: int | None = None,
-        target: float | None = None, archive_every: int | None = None):
+def run(algorithm: Algorithm, problem: Problem, *, pop: int, iters: int | None = None, max_evals: int | None = None,
+        seed=0, init=None, callback=None, progress: bool = False, stagnation: int | None = None,
+        target: float | None = None, archive_every: int | None = None, budget: Budget | None = None):
     """Run ``algorithm`` on ``problem``; returns ``(state, history, history_nfev, status, message, nit)``.
 
+    The run obeys ``budget`` when given, else ``Budget(iters, max_evals, stagnation, target)``.
     ``archive_every``: keep population snapshots in ``state.snapshots`` (initial,
     every that many iterations, final); ``None`` keeps none.
     """
+    if budget is None:
+        budget = Budget(iterations=iters, evaluations=max_evals, stagnation=stagnation, target=target)
     rng = as_generator(seed)
-    state = State(problem, pop, iters, max_evals, rng)
+    state = State(problem, pop, budget.iterations, budget.evaluations, rng, budget=budget)
     if init is None:
         X0 = algorithm.initial_population(state, pop)
     elif callable(init):
@@ -276,10 +272,9 @@ def run(algorithm: Algorithm, problem: Problem, *, pop: int, iters: int | None, 
     last_improvement, last_best = 0, state.best_f
     t_report = time.perf_counter()
     while True:
-        if iters is not None and state.it >= iters:
-            break
-        if state.evals_left <= 0:
-            status, message = "max_evals", f"evaluation budget of {max_evals} spent"
+        why = budget.spent(state.it, state.nfev)
+        if why is not None:
+            status, message = why
             break
         state.it += 1
         try:
@@ -296,19 +291,15 @@ def run(algorithm: Algorithm, problem: Problem, *, pop: int, iters: int | None, 
             t_report = time.perf_counter()
             print(f"\r{algorithm.name}: iteration {state.it}, evaluations {state.nfev}, best {state.best_f:.6g}",
                   end="", file=sys.stderr, flush=True)
-        if target is not None and state.best_v == 0 and state.best_f <= target:
-            status, message = "target", f"reached the target value {target:g}"
-            break
-        if stagnation is not None and state.it - last_improvement >= stagnation:
-            status, message = "stagnation", f"no improvement in {stagnation} iterations"
+        why = budget.converged(state.it - last_improvement, state.best_f, state.best_v == 0)
+        if why is not None:
+            status, message = why
             break
         if callback is not None and callback(state) is False:
             status, message = "callback", "stopped by the callback"
             break
     if archive_every and state.it % archive_every != 0:
         state.snapshot()  # the final population
-    if state.evals_left <= 0 and status == "max_iters":
-        status, message = "max_evals", f"evaluation budget of {max_evals} spent"
     if progress:
         print(file=sys.stderr)
     if state.nan_seen:
