@@ -71,9 +71,9 @@ class GWO(Algorithm):
             return
         if not (V.any() or self.leader_v.any()):
             # unconstrained: only the new top three can displace a leader
-            top = np.argpartition(F, 2)[:3] if len(F) > 3 else np.arange(len(F))
-            if F[top].min() >= self.leader_f[2]:
+            if F.min() >= self.leader_f[2]:
                 return
+            top = np.argpartition(F, 2)[:3] if len(F) > 3 else np.arange(len(F))
             X, F, V = X[top], F[top], V[top]
         allX = np.vstack([self.leaders, X])
         allF = np.concatenate([self.leader_f, F])
