@@ -74,7 +74,10 @@ class GWO(Algorithm):
             if F.min() >= self.leader_f[2]:
                 return
             top = np.argpartition(F, 2)[:3] if len(F) > 3 else np.arange(len(F))
-            X, F, V = X[top], F[top], V[top]
+            allF = np.concatenate((self.leader_f, F[top]))
+            order = np.argsort(allF, kind="stable")[:3]   # = rank() when nothing is violated
+            self.leaders, self.leader_f = np.concatenate((self.leaders, X[top]))[order], allF[order]
+            return
         allX = np.vstack([self.leaders, X])
         allF = np.concatenate([self.leader_f, F])
         allV = np.concatenate([self.leader_v, V])
@@ -104,7 +107,9 @@ class GWO(Algorithm):
 
     def combine(self, state: State, pulled: np.ndarray) -> np.ndarray:
         """The mean of the three leader-pulled points (eq 7)."""
-        return pulled.mean(axis=-3)
+        total = np.add.reduce(pulled, axis=-3)     # what pulled.mean does, without its Python wrapper
+        total /= 3.0
+        return total
 
     def step(self, state: State) -> None:
         a = self.convergence_factor(state)
