@@ -265,3 +265,9 @@ def test_ssa_scrounger_steps():
     np.testing.assert_allclose(ratio, ratio[:, :1].repeat(4, axis=1))   # one normal draw times |X - X_p|
     with pytest.raises(op.ParameterError, match="scrounger_step"):
         get_algorithm("ssa")(scrounger_step="diagonal").scrounger_move(st, Xs, ranks, producer, worst)
+
+
+def test_ipso_keeps_clipping_and_bad_wall_rules_are_refused():
+    assert get_algorithm("ipso")().walls == "clip" and get_algorithm("pso")().walls == "absorb"
+    with pytest.raises(op.ParameterError, match="walls"):
+        op.optimize(SPHERE, SPHERE.bounds, algorithm="pso", pop=5, iters=2, walls="bounce")

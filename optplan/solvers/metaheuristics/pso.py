@@ -5,12 +5,13 @@ PSO (yang2023 eq 6-7): ``V = w V + c1 r1 (P_best - X) + c2 r2 (G_best - X)``,
 clamped to ``v_max_frac`` of the box; yang2023 §7.1 settings are the defaults
 (c1 = c2 = 1.5, w in [0.4, 0.9]).
 
-Bounds: absorbing walls. A particle whose move leaves the box is clipped to the
-wall and loses the velocity component that took it out. yang2023 does not say how
-bounds are handled; with clipping alone a particle keeps pushing outwards and
-stays stuck on the wall for many iterations, which is what stalled PSO on shifted
-functions whose optimum lies near a wall (``benchmarks/engine_speed.py`` shows the
-effect against mealpy's and niapy's PSO). IPSO shares the rule.
+Bounds: absorbing walls (``walls="absorb"``). A particle whose move leaves the box
+is clipped to the wall and loses the velocity component that took it out. yang2023
+does not say how bounds are handled; with clipping alone (``walls="clip"``) a
+particle keeps pushing outwards and stays stuck on the wall for many iterations,
+which is what stalled PSO on shifted functions whose optimum lies near a wall
+(``benchmarks/engine_speed.py`` shows the effect against mealpy's and niapy's PSO).
+IPSO keeps clipping, as before, so its paper reproduction is unchanged.
 
 IPSO changes, in the order of yang2023 §4:
 
@@ -47,6 +48,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ...errors import ParameterError
 from .engine import Algorithm, State, better, pick, rank
 
 
@@ -60,6 +62,7 @@ class PSO(Algorithm):
     w_max = 0.9
     w_min = 0.4
     v_max_frac = 0.2
+    walls = "absorb"           # or "clip" (see the module docstring)
 
     def setup(self, state: State) -> None:
         self.V = np.zeros_like(state.X)
@@ -87,8 +90,12 @@ class PSO(Algorithm):
         """Clamp the velocity, move, and absorb at the walls (see the module docstring)."""
         V = np.minimum(np.maximum(V, -self.v_max), self.v_max)
         X = state.X + V
-        outside = (X < state.lower) | (X > state.upper)
-        self.V = np.where(outside, 0.0, V)
+        if self.walls == "absorb":
+            self.V = np.where((X < state.lower) | (X > state.upper), 0.0, V)
+        elif self.walls == "clip":
+            self.V = V
+        else:
+            raise ParameterError(f"walls must be 'absorb' or 'clip', got {self.walls!r}")
         state.X, state.F, state.V = state.eval_new(X)
 
     def step(self, state: State) -> None:
@@ -100,6 +107,7 @@ class IPSO(PSO):
     """IPSO (yang2023 §4); states only what it changes from PSO."""
 
     name = "ipso"
+    walls = "clip"             # IPSO as before the wall rule (yang2023 gives none)
     reinit_fraction = 0.1
     stall = 10
 
