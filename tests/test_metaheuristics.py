@@ -214,3 +214,60 @@ def test_bat_velocity_pulls_towards_the_best():
     ba.step(st)
     step = captured[0] - X0
     assert np.all(np.einsum("ij,ij->i", step, st.best_x - X0) >= 0)
+
+
+# ---------------------------------------------------------------- issue 30: the standard versions
+def test_pso_particles_lose_the_velocity_that_takes_them_out_of_the_box():
+    """Absorbing walls: a particle pushed past a wall sits on it and keeps only the
+    velocity components that stayed inside."""
+    pso = get_algorithm("pso")()
+    st = _state(n=2, d=2)
+    st.X = np.array([[4.9, 0.0], [0.0, -4.0]])
+    st.F, st.V = st.problem.f(st.X), np.zeros(2)
+    pso.setup(st)
+    pso.move(st, np.array([[0.5, 0.3], [-0.2, -1.5]]))
+    np.testing.assert_allclose(st.X, [[5.0, 0.3], [-0.2, -5.0]])
+    np.testing.assert_allclose(pso.V, [[0.0, 0.3], [-0.2, 0.0]])
+
+
+def test_pso_no_longer_stalls_on_the_shifted_sphere():
+    """Before the wall rule PSO ended near 1.9e3 here (median of 5); now it converges."""
+    finals = [op.optimize(SPHERE, SPHERE.bounds, algorithm="pso", pop=30, iters=None, max_evals=15030, seed=s).f
+              for s in range(3)]
+    assert np.median(finals) < 1.0
+
+
+@pytest.mark.parametrize("algo", ["gwo", "woa"])
+def test_greedy_gwo_and_woa_never_lose_a_position(algo):
+    F = get_function("F9", shifted=True, dim=6)
+    seen = []
+    op.optimize(F, F.bounds, algorithm=algo, pop=10, iters=20, seed=2, callback=lambda st: seen.append(st.F.copy()))
+    assert all(np.all(b <= a) for a, b in zip(seen, seen[1:]))
+    seen.clear()
+    op.optimize(F, F.bounds, algorithm=algo, pop=10, iters=20, seed=2, greedy=False,
+                callback=lambda st: seen.append(st.F.copy()))
+    assert any(np.any(b > a) for a, b in zip(seen, seen[1:]))      # the replacement rule does
+
+
+def test_ssa_scrounger_steps():
+    """Default: each coordinate keeps its own distance to the producer; hou2024 eq 5 read
+    literally (``pseudo-inverse``) moves every coordinate of a fed scrounger by one number."""
+    st = _state(n=10, d=4)
+    st.X = st.rng.uniform(-5, 5, (10, 4))
+    Xs, producer, worst = st.X[3:], st.X[0], st.X[-1]
+    ranks = np.arange(3, 10)
+    fed = (ranks + 1) <= 5
+    lit = get_algorithm("ssa")(scrounger_step="pseudo-inverse").scrounger_move(st, Xs, ranks, producer, worst)
+    step = lit[fed] - producer
+    np.testing.assert_allclose(step, step[:, :1].repeat(4, axis=1))
+    std = get_algorithm("ssa")().scrounger_move(st, Xs, ranks, producer, worst)
+    ratio = (std[fed] - producer) / np.abs(Xs[fed] - producer)
+    np.testing.assert_allclose(ratio, ratio[:, :1].repeat(4, axis=1))   # one normal draw times |X - X_p|
+    with pytest.raises(op.ParameterError, match="scrounger_step"):
+        get_algorithm("ssa")(scrounger_step="diagonal").scrounger_move(st, Xs, ranks, producer, worst)
+
+
+def test_ipso_keeps_clipping_and_bad_wall_rules_are_refused():
+    assert get_algorithm("ipso")().walls == "clip" and get_algorithm("pso")().walls == "absorb"
+    with pytest.raises(op.ParameterError, match="walls"):
+        op.optimize(SPHERE, SPHERE.bounds, algorithm="pso", pop=5, iters=2, walls="bounce")

@@ -115,11 +115,13 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
     if name == "aco":  # an ant colony keeps pheromone, not a population of paths: no alternatives
         from .gridpath.aco import plan_aco
 
-        return plan_aco(world, s, g, seed=seed, pop=pop, iters=iters, clearance=clearance, **params)
+        return plan_aco(world, s, g, seed=seed, pop=pop, iters=iters, clearance=clearance, max_evals=max_evals,
+                        **params)
     if name == "iaco":
         from .gridpath.iaco import plan_iaco
 
-        return plan_iaco(world, s, g, seed=seed, pop=pop, iters=iters, clearance=clearance, **params)
+        return plan_iaco(world, s, g, seed=seed, pop=pop, iters=iters, clearance=clearance, max_evals=max_evals,
+                         **params)
     if name in ("ga", "iga") and hasattr(world, "occ") and encoding in (None, "columns"):
         from .gridpath.ga_path import plan_ga
 

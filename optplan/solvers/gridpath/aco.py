@@ -7,6 +7,10 @@ to the goal). Ants that reach a dead end are dropped for that iteration. After
 each iteration pheromone evaporates by ``rho`` and every successful ant adds
 ``Q / L`` to the moves it used. Defaults follow hou2024 Table 1: 60 ants, 300
 iterations, alpha = 2, beta = 6, rho = 0.1, Q = 5.
+
+Budget: one ant walk is one evaluation. The colony obeys the shared
+:class:`~optplan.solvers.budget.Budget`: with ``max_evals`` the last iteration sends
+out only the ants the budget has left, so ``nfev == max_evals`` exactly.
 """
 from __future__ import annotations
 
@@ -14,34 +18,32 @@ import time
 
 import numpy as np
 
-from ...errors import InfeasibleQueryError, ParameterError
+from ...checks import integer
+from ...errors import ParameterError
 from ...rng import as_generator
+from ..budget import Budget
 from ..result import make_plan_result
 from .moves import move_table
 
 
-def _check_positive_int(name: str, value, minimum: int = 1) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
-        raise ParameterError(f"{name} must be an integer >= {minimum}, got {value!r}")
-    return int(value)
-
-
-def aco_path(grid, start, goal, *, ants: int = 60, iters: int = 300, alpha: float = 2.0, beta: float = 6.0,
+def aco_path(grid, start, goal, *, ants: int = 60, iters: int | None = 300, alpha: float = 2.0, beta: float = 6.0,
              rho: float = 0.1, q: float = 5.0, tau0: float = 1.0, corner_cutting: bool = False,
-             seed=0, max_steps: int | None = None, callback=None, goal_distance: np.ndarray | None = None,
-             reward: float = 0.0, penalty: float = 0.0):
+             seed=0, max_steps: int | None = None, callback=None, max_evals: int | None = None,
+             goal_distance: np.ndarray | None = None, reward: float = 0.0, penalty: float = 0.0):
     """Run ACO; returns ``(best_path_in_metres, history_of_best_length, nfev)``.
 
-    ``nfev`` counts complete ant walks (one path evaluation each). The history
-    holds the best length (metres) after each iteration (``inf`` while none found).
+    ``nfev`` counts ant walks (one path evaluation each, whether or not the ant
+    arrives). ``iters`` caps the iterations and ``max_evals`` the walks, exactly (either
+    may be ``None``, not both). The history holds the best length (metres) after each
+    iteration (``inf`` while none found).
 
     Hooks for improved colonies (``iaco``; the defaults are plain ACO): ``goal_distance``
     replaces the straight-line distance of each flat cell to the goal in the heuristic;
     ``reward`` adds ``reward * Q / L`` more on the iteration-best walk and ``penalty`` takes
     that share of the pheromone off the moves of the iteration-worst walk.
     """
-    ants = _check_positive_int("ants", ants)
-    iters = _check_positive_int("iters", iters, 0)
+    ants = integer(1)("ants", ants)
+    budget = Budget(iterations=iters, evaluations=max_evals)
     for name, v in (("alpha", alpha), ("beta", beta), ("q", q), ("tau0", tau0)):
         if not np.isfinite(v) or v < 0:
             raise ParameterError(f"{name} must be a finite number >= 0, got {v!r}")
@@ -64,18 +66,20 @@ def aco_path(grid, start, goal, *, ants: int = 60, iters: int = 300, alpha: floa
     eta_nb = np.where(valid, eta[np.where(valid, nb, 0)], 0.0) ** beta
     tau = np.full((n_cells, 8), float(tau0))
     best_len, best_cells = np.inf, None
-    history = np.empty(iters + 1)
-    history[0] = np.inf
+    history = [np.inf]
     nfev = 0
-    rows = np.arange(ants)
-    for it in range(1, iters + 1):
-        cur = np.full(ants, s, dtype=np.int64)
-        alive = np.ones(ants, dtype=bool)
-        done = np.zeros(ants, dtype=bool)
-        visited = np.zeros((ants, n_cells), dtype=bool)
+    it = 0
+    while budget.spent(it, nfev) is None:
+        it += 1
+        ants_now = budget.allowed(ants, nfev)   # the last colony may be cut to the budget
+        rows = np.arange(ants_now)
+        cur = np.full(ants_now, s, dtype=np.int64)
+        alive = np.ones(ants_now, dtype=bool)
+        done = np.zeros(ants_now, dtype=bool)
+        visited = np.zeros((ants_now, n_cells), dtype=bool)
         visited[:, s] = True
-        moves = np.full((ants, max_steps), -1, dtype=np.int64)  # chosen move index per step
-        length = np.zeros(ants)
+        moves = np.full((ants_now, max_steps), -1, dtype=np.int64)  # chosen move index per step
+        length = np.zeros(ants_now)
         for step in range(max_steps):
             walking = alive & ~done
             if not walking.any():
@@ -89,7 +93,7 @@ def aco_path(grid, start, goal, *, ants: int = 60, iters: int = 300, alpha: floa
             alive &= ~stuck
             walking &= ~stuck
             cum = np.cumsum(w, axis=1)
-            r = rng.random(ants) * tot
+            r = rng.random(ants_now) * tot
             k = np.minimum((cum < r[:, None]).sum(axis=1), 7)
             k = np.where(walking, k, -1)
             idx = np.nonzero(walking)[0]
@@ -100,7 +104,7 @@ def aco_path(grid, start, goal, *, ants: int = 60, iters: int = 300, alpha: floa
             visited[idx, nxt] = True
             done |= walking & (cur == g)
         success = np.nonzero(done)[0]
-        nfev += ants
+        nfev += ants_now
         # evaporation, then deposits Q / L along each successful walk
         tau *= 1.0 - rho
         if success.size:
@@ -126,14 +130,13 @@ def aco_path(grid, start, goal, *, ants: int = 60, iters: int = 300, alpha: floa
                 b, w = np.argmin(L), np.argmax(L)
                 np.add.at(tau, (cells[b][sel[b]], m[b][sel[b]]), reward * q / L[b])
                 tau[cells[w][sel[w]], m[w][sel[w]]] *= 1.0 - penalty
-        history[it] = best_len * grid.resolution
+        history.append(best_len * grid.resolution)
         if callback is not None and callback(it, best_len) is False:
-            history = history[: it + 1]
             break
     path = None if best_cells is None else grid.cell_center(table.xy(best_cells))
     if path is not None:
         path[0], path[-1] = np.asarray(start, float), np.asarray(goal, float)
-    return path, history, nfev
+    return path, np.asarray(history), nfev
 
 
 def _replay(nb: np.ndarray, s: int, moves: np.ndarray) -> np.ndarray:
@@ -145,14 +148,16 @@ def _replay(nb: np.ndarray, s: int, moves: np.ndarray) -> np.ndarray:
     return np.asarray(cells)
 
 
-def plan_aco(grid, start, goal, *, seed=0, pop: int = 60, iters: int = 300, clearance: float = 0.0, **params):
-    """``op.plan(..., algorithm="aco")``: ACO on the grid graph; ``pop`` is the number of ants."""
+def plan_aco(grid, start, goal, *, seed=0, pop: int = 60, iters: int | None = 300, clearance: float = 0.0,
+             max_evals: int | None = None, **params):
+    """``op.plan(..., algorithm="aco")``: ACO on the grid graph; ``pop`` is the number of ants,
+    ``max_evals`` caps the ant walks exactly."""
     t0 = time.perf_counter()
     s = grid.check_query_point(start, "start")
     g = grid.check_query_point(goal, "goal")
     if clearance > 0:
         raise ParameterError("aco plans on the cell graph; use clearance=0 (inflate the map with GridMap.inflate)")
-    path, history, nfev = aco_path(grid, s, g, ants=pop, iters=iters, seed=seed, **params)
+    path, history, nfev = aco_path(grid, s, g, ants=pop, iters=iters, seed=seed, max_evals=max_evals, **params)
     msg = "" if path is not None else "no ant reached the goal; the goal may be unreachable or iters too small"
     return make_plan_result(grid, path, "aco", time.perf_counter() - t0, history=history,
                             seed=seed if isinstance(seed, int) else None, nfev=nfev, message=msg)

@@ -37,6 +37,7 @@ from ...formulations.problem import PathProblem
 from ...rng import as_generator
 from ...world.postprocess import key_points, remove_collinear
 from ..archive import ARCHIVE_EVERY, archive_alternatives
+from ..budget import Budget
 from ..metaheuristics.engine import pooled_archive
 from ..result import check_alternatives, make_plan_result
 
@@ -151,10 +152,12 @@ def ga_path(problem: PathProblem, *, pop: int = 50, iters: int | None = 200, see
     """Run the path GA on a column-node problem.
 
     ``iters`` caps the generations and ``max_evals`` the path evaluations (either may
-    be ``None``, not both). The evaluation budget is checked after each generation, so
-    a run may overshoot it by less than one generation's evaluations; ``nfev`` reports
-    what was spent. li2023 eq 5 grows the elite count with ``gen / T``; without an
-    iteration cap ``T`` is the number of generations the budget affords.
+    be ``None``, not both): the run obeys the shared :class:`~optplan.solvers.budget.Budget`,
+    so ``nfev == max_evals`` exactly when the evaluations run out (a batch larger than
+    what is left is cut; the rows beyond it count as infinitely bad). IGA's §4.5 stop
+    after ``params.stall`` generations without improvement is the budget's stagnation.
+    li2023 eq 5 grows the elite count with ``gen / T``; without an iteration cap ``T``
+    is the number of generations the budget affords.
 
     ``snapshots``: when a list is given, ``(X, f)`` of the initial population, of every
     ``archive_every``-th generation and of the final one are appended to it (the
@@ -174,6 +177,7 @@ def ga_path(problem: PathProblem, *, pop: int = 50, iters: int | None = 200, see
         raise ParameterError(f"max_evals must be an integer >= pop ({pop}) or None, got {max_evals!r}")
     if iters is None and max_evals is None:
         raise ParameterError("give iters, max_evals or both; the GA needs a budget")
+    budget = Budget(iterations=iters, evaluations=max_evals, stagnation=params.stall if params.improved else None)
     horizon = iters if iters is not None else max(1, max_evals // pop - 1)  # T of li2023 eq 5
     rng = as_generator(seed)
     first, inner, last = enc.feasible_transitions(problem.clearance)
@@ -184,9 +188,14 @@ def ga_path(problem: PathProblem, *, pop: int = 50, iters: int | None = 200, see
 
     def evaluate(X: np.ndarray) -> np.ndarray:
         nonlocal nfev
-        nfev += len(X)
-        f, v = problem.evaluate(X)
-        return np.where(v > 0, np.inf, f) if params.improved else f
+        n = len(X)
+        k = min(n, int(min(budget.evaluations_left(nfev), n)))   # rows the budget still allows
+        out = np.full(n, np.inf)
+        if k > 0:
+            nfev += k
+            f, v = problem.evaluate(X[:k])
+            out[:k] = np.where(v > 0, np.inf, f) if params.improved else f
+        return out
 
     if params.improved:
         half = pop // 2
@@ -201,10 +210,8 @@ def ga_path(problem: PathProblem, *, pop: int = 50, iters: int | None = 200, see
     history = [best_f]
     stalled = 0
     gen = 0
-    for gen in range(1, (iters if iters is not None else np.iinfo(np.int64).max) + 1):
-        if max_evals is not None and nfev >= max_evals:
-            gen -= 1
-            break
+    while budget.spent(gen, nfev) is None:
+        gen += 1
         rows = np.floor(X).astype(np.int64)
         finite = np.isfinite(f)
         fs = np.where(finite, f, f[finite].max() if finite.any() else 0.0)
@@ -244,7 +251,7 @@ def ga_path(problem: PathProblem, *, pop: int = 50, iters: int | None = 200, see
             snapshots.append((X.copy(), f.copy()))
         if callback is not None and callback(gen, best_f) is False:
             break
-        if params.improved and stalled >= params.stall:
+        if budget.converged(stalled, best_f) is not None:   # IGA §4.5
             break
     if snapshots is not None and gen % archive_every != 0:
         snapshots.append((X.copy(), f.copy()))  # the final population

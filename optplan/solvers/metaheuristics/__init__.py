@@ -11,9 +11,11 @@ from typing import Callable
 
 import numpy as np
 
+from ...checks import seed as checked_seed
 from ...errors import ParameterError, UnknownAlgorithmError
 from ...results import OptimizeResult
-from .engine import Algorithm, Problem, pooled_archive, run
+from ..budget import Budget
+from .engine import Algorithm, Problem, pooled_archive, run, run_batched
 
 # registry: name -> class (filled from the family modules)
 ALGORITHMS: dict[str, type[Algorithm]] = {}
@@ -75,8 +77,17 @@ def _bounds(bounds, dim: int | None) -> tuple[np.ndarray, np.ndarray]:
 def optimize(f: Callable, bounds, algorithm: str = "gwo", pop: int = 30, iters: int | None = 500,
              max_evals: int | None = None, seed=0, *, dim: int | None = None, init=None, repair=None,
              callback=None, progress: bool = False, stagnation: int | None = None, target: float | None = None,
-             archive_every: int | None = None, **params) -> OptimizeResult:
+             archive_every: int | None = None, budget: Budget | None = None, seeds=None,
+             **params) -> OptimizeResult | list[OptimizeResult]:
     """Minimise a batched objective with a registered metaheuristic.
+
+    With ``seeds`` (e.g. ``seeds=range(20)``) it makes one independent run per seed and
+    returns a list of results, in seed order, each equal to ``optimize(..., seed=s)``
+    number for number. Algorithms that declare ``BATCHABLE`` (``gwo``, ``pso``) run all
+    seeds as one vectorised population of ``R x pop`` rows, so ``f`` sees ``R * pop``
+    rows per call; the others (and runs with a callback, progress output, an archive,
+    a stagnation or a target stop) run the seeds one after the other. A batched
+    result's ``runtime_s`` is the batch's wall time divided by ``R``.
 
     Args:
         f: ``f(X)`` for ``X`` of shape ``(n, d)`` returning ``(n,)`` values, or a tuple
@@ -96,28 +107,66 @@ def optimize(f: Callable, bounds, algorithm: str = "gwo", pop: int = 30, iters: 
         archive_every: keep the population every that many iterations (and the initial
             and final ones) and return their distinct points in ``result.archive``
             (best first); ``None`` (default) keeps nothing. Costs no evaluations.
+        budget: a :class:`~optplan.solvers.budget.Budget` instead of ``iters``,
+            ``max_evals``, ``stagnation`` and ``target`` (leave those at their defaults).
+        seeds: an iterable of seeds for independent runs (then ``seed`` is not used);
+            returns a list of results.
         **params: the algorithm's own parameters (see its class for defaults).
     """
     cls = get_algorithm(algorithm)
     pop = _positive_int("pop", pop, max(cls.min_pop, 1))
-    if iters is None and max_evals is None:
-        raise ParameterError("give iters or max_evals (or both): an unbounded run never ends")
-    if iters is not None:
-        iters = _positive_int("iters", iters, 0)
-    if max_evals is not None:
-        max_evals = _positive_int("max_evals", max_evals, 1)
-    if stagnation is not None:
-        stagnation = _positive_int("stagnation", stagnation, 1)
+    if budget is None:
+        budget = Budget(iterations=iters, evaluations=max_evals, stagnation=stagnation, target=target)
+    elif not isinstance(budget, Budget):
+        raise ParameterError(f"budget must be an optplan Budget, got {type(budget).__name__}")
+    elif max_evals is not None or stagnation is not None or target is not None or iters not in (None, 500):
+        raise ParameterError("give either budget=Budget(...) or iters/max_evals/stagnation/target, not both")
     if archive_every is not None:
         archive_every = _positive_int("archive_every", archive_every, 1)
     lo, hi = _bounds(bounds, dim)
+    if seeds is not None:
+        return _optimize_seeds(cls, f, lo, hi, pop, budget, seeds, init=init, repair=repair, callback=callback,
+                               progress=progress, archive_every=archive_every, params=params)
     algo = cls(**params)
     t0 = time.perf_counter()
     state, hist, hist_nfev, status, message, nit = run(
-        algo, Problem(f, lo, hi, repair), pop=pop, iters=iters, max_evals=max_evals, seed=seed, init=init,
-        callback=callback, progress=progress, stagnation=stagnation, target=target, archive_every=archive_every)
+        algo, Problem(f, lo, hi, repair), pop=pop, seed=seed, init=init, callback=callback, progress=progress,
+        archive_every=archive_every, budget=budget)
     return OptimizeResult(
         x=state.best_x, f=float(state.best_f), history=hist, history_nfev=hist_nfev, nfev=state.nfev, nit=nit,
         runtime_s=time.perf_counter() - t0, status=status, message=message, algorithm=cls.name,
         seed=int(seed) if isinstance(seed, (int, np.integer)) else None,
         archive=pooled_archive(state.snapshots) if archive_every else None)
+
+
+def _optimize_seeds(cls, f, lo, hi, pop, budget, seeds, *, init, repair, callback, progress, archive_every,
+                    params) -> list[OptimizeResult]:
+    """``optimize(..., seeds=...)``: one result per seed, batched when the algorithm allows."""
+    if isinstance(seeds, (int, np.integer, np.random.Generator)) or not hasattr(seeds, "__iter__"):
+        raise ParameterError(f"seeds must be an iterable of seeds such as range(20), got {seeds!r}")
+    seeds = [checked_seed("seeds", s) for s in seeds]
+    if not seeds:
+        raise ParameterError("seeds is empty; give at least one seed")
+    per_run_control = (callback is not None or progress or archive_every is not None
+                       or budget.stagnation is not None or budget.target is not None)
+    if not cls.batchable() or per_run_control:
+        bounds = np.stack([lo, hi], axis=1)
+        return [optimize(f, bounds, algorithm=cls.name, pop=pop, iters=None, seed=s, init=init, repair=repair,
+                         callback=callback, progress=progress, archive_every=archive_every, budget=budget,
+                         **params) for s in seeds]
+    t0 = time.perf_counter()
+    state, hist, hist_nfev, status, message, nit = run_batched(
+        cls(**params), Problem(f, lo, hi, repair), pop=pop, seeds=seeds, budget=budget, init=init)
+    runtime = (time.perf_counter() - t0) / len(seeds)
+    results = []
+    for r, s in enumerate(seeds):
+        note = message
+        if state.nan_seen[r]:
+            note += "; the objective returned NaN for some points (treated as +inf)"
+        if state.best_v[r] > 0 and np.isfinite(state.best_v[r]):
+            note += f"; no feasible point found (least violation {state.best_v[r]:.3g})"
+        results.append(OptimizeResult(
+            x=state.best_x[r].copy(), f=float(state.best_f[r]), history=hist[:, r].copy(), history_nfev=hist_nfev.copy(),
+            nfev=state.nfev, nit=nit, runtime_s=runtime, status=status, message=note, algorithm=cls.name,
+            seed=int(s) if isinstance(s, (int, np.integer)) else None, archive=None))
+    return results

@@ -14,8 +14,10 @@ population (``init=array``) or an initialiser (``init=callable(n, rng) -> X``),
 and a ``repair`` hook applied to every population before it is evaluated (for
 discrete encodings). Bounds are enforced by clipping.
 
-Budgets. ``nfev`` counts rows passed to ``f``. With ``max_evals`` the run stops
-exactly when the budget is spent: a batch larger than what is left is cut, and
+Budgets. ``nfev`` counts rows passed to ``f``. The run obeys one
+:class:`~optplan.solvers.budget.Budget` (iterations, evaluations, stagnation,
+target), the same object ACO and the path GAs obey. With an evaluation budget the
+run stops exactly when it is spent: a batch larger than what is left is cut, and
 the rows that could not be evaluated are treated as infinitely bad.
 
 Archive. With ``archive_every=k`` the engine keeps a copy of the population
@@ -37,10 +39,9 @@ import numpy as np
 
 from ...errors import ParameterError
 from ...rng import as_generator
+from ..budget import Budget, BudgetExhausted
 
-
-class BudgetExhausted(Exception):
-    """Raised inside a step when no evaluations are left; the engine stops cleanly."""
+__all__ = ["Algorithm", "Budget", "BudgetExhausted", "Problem", "State", "better", "pooled_archive", "rank", "run"]
 
 
 @dataclass
@@ -67,8 +68,19 @@ def better(f1, v1, f2, v2) -> np.ndarray:
 
 
 def rank(f: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """Indices from best to worst under the feasibility rule (stable)."""
+    """Indices from best to worst under the feasibility rule (stable); along the last
+    axis, so ``(R, n)`` values of a batched run give one ranking per run."""
     return np.lexsort((f, v))
+
+
+def pick(A: np.ndarray, order: np.ndarray) -> np.ndarray:
+    """Rows ``order`` of a population array: ``A[order]`` for one run; for a batched run
+    (``order`` of shape ``(R, k)``) the rows of each run's own ``order``."""
+    if order.ndim == 1:
+        return A[order]
+    if A.ndim == order.ndim:
+        return np.take_along_axis(A, order, axis=-1)
+    return np.take_along_axis(A, order[..., None], axis=-2)
 
 
 def pooled_archive(snapshots) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -94,11 +106,12 @@ class State:
     (velocities, personal bests, loudness, ...) as attributes of their instance."""
 
     def __init__(self, problem: Problem, pop: int, iters: int | None, max_evals: int | None,
-                 rng: np.random.Generator):
+                 rng: np.random.Generator, budget: Budget | None = None):
         self.problem = problem
         self.pop = pop
-        self.iters = iters
-        self.max_evals = max_evals
+        self.budget = budget if budget is not None else Budget(iterations=iters, evaluations=max_evals)
+        self.iters = self.budget.iterations
+        self.max_evals = self.budget.evaluations
         self.rng = rng
         self.lower, self.upper = problem.lower, problem.upper
         self.dim = problem.dim
@@ -120,24 +133,18 @@ class State:
     # ------------------------------------------------------------ budget
     @property
     def horizon(self) -> int:
-        """Iterations the schedule-driven rules (a(t), w(t), ...) plan for."""
-        if self.iters is not None:
-            return max(self.iters, 1)
-        # evaluation budget only: assume about one evaluation per individual per iteration
-        return max(int(np.ceil(self.max_evals / self.pop)) - 1, 1)
+        """Iterations the schedule-driven rules (a(t), w(t), ...) plan for (:meth:`Budget.horizon`)."""
+        return self.budget.horizon(self.pop)
 
     @property
     def progress(self) -> float:
-        """``t / T`` in [0, 1]: the fraction of the budget spent (iterations or evaluations)."""
-        if self.iters is not None and self.max_evals is None:
-            return min(self.it / max(self.iters, 1), 1.0)
-        frac_e = self.nfev / self.max_evals if self.max_evals else 0.0
-        frac_i = self.it / max(self.iters, 1) if self.iters is not None else 0.0
-        return float(min(max(frac_e, frac_i), 1.0))
+        """``t / T`` in [0, 1]: the fraction of the budget spent (:meth:`Budget.progress`)."""
+        return self.budget.progress(self.it, self.nfev)
 
     @property
     def evals_left(self) -> float:
-        return np.inf if self.max_evals is None else self.max_evals - self.nfev
+        """Evaluations still allowed (``inf`` without an evaluation budget)."""
+        return self.budget.evaluations_left(self.nfev)
 
     # -------------------------------------------------------- evaluation
     def clip(self, X: np.ndarray) -> np.ndarray:
@@ -150,10 +157,7 @@ class State:
         Raises :class:`BudgetExhausted` when no evaluation is left at all.
         """
         n = len(X)
-        left = self.evals_left
-        if left <= 0:
-            raise BudgetExhausted
-        k = n if n <= left else int(left)
+        k = self.budget.allowed(n, self.nfev)
         Xk = X if k == n else X[:k]
         out = self.problem.f(Xk)
         if isinstance(out, tuple):
@@ -209,10 +213,21 @@ class State:
 
 class Algorithm:
     """Base class. Subclasses set ``name`` and implement ``step``; they may override
-    ``initial_population`` and ``setup`` (memory after the first evaluation)."""
+    ``initial_population`` and ``setup`` (memory after the first evaluation).
+
+    ``BATCHABLE = True`` in a class's own body declares that its rules also work on a
+    :class:`BatchState` (arrays with a leading run axis, draws from
+    :class:`SeedGenerators`), so that ``optimize(..., seeds=...)`` runs all seeds as one
+    population. It is not inherited (:meth:`batchable`): a subclass that changes the
+    rules is run seed by seed until it declares it itself."""
 
     name = "base"
     min_pop = 2
+
+    @classmethod
+    def batchable(cls) -> bool:
+        """Whether this very class declares ``BATCHABLE = True``."""
+        return bool(vars(cls).get("BATCHABLE", False))
 
     def __init__(self, **params) -> None:
         unknown = set(params) - set(self.defaults())
@@ -244,16 +259,19 @@ class Algorithm:
         raise NotImplementedError
 
 
-def run(algorithm: Algorithm, problem: Problem, *, pop: int, iters: int | None, max_evals: int | None, seed,
-        init=None, callback=None, progress: bool = False, stagnation: int | None = None,
-        target: float | None = None, archive_every: int | None = None):
+def run(algorithm: Algorithm, problem: Problem, *, pop: int, iters: int | None = None, max_evals: int | None = None,
+        seed=0, init=None, callback=None, progress: bool = False, stagnation: int | None = None,
+        target: float | None = None, archive_every: int | None = None, budget: Budget | None = None):
     """Run ``algorithm`` on ``problem``; returns ``(state, history, history_nfev, status, message, nit)``.
 
+    The run obeys ``budget`` when given, else ``Budget(iters, max_evals, stagnation, target)``.
     ``archive_every``: keep population snapshots in ``state.snapshots`` (initial,
     every that many iterations, final); ``None`` keeps none.
     """
+    if budget is None:
+        budget = Budget(iterations=iters, evaluations=max_evals, stagnation=stagnation, target=target)
     rng = as_generator(seed)
-    state = State(problem, pop, iters, max_evals, rng)
+    state = State(problem, pop, budget.iterations, budget.evaluations, rng, budget=budget)
     if init is None:
         X0 = algorithm.initial_population(state, pop)
     elif callable(init):
@@ -276,10 +294,9 @@ def run(algorithm: Algorithm, problem: Problem, *, pop: int, iters: int | None, 
     last_improvement, last_best = 0, state.best_f
     t_report = time.perf_counter()
     while True:
-        if iters is not None and state.it >= iters:
-            break
-        if state.evals_left <= 0:
-            status, message = "max_evals", f"evaluation budget of {max_evals} spent"
+        why = budget.spent(state.it, state.nfev)
+        if why is not None:
+            status, message = why
             break
         state.it += 1
         try:
@@ -296,23 +313,183 @@ def run(algorithm: Algorithm, problem: Problem, *, pop: int, iters: int | None, 
             t_report = time.perf_counter()
             print(f"\r{algorithm.name}: iteration {state.it}, evaluations {state.nfev}, best {state.best_f:.6g}",
                   end="", file=sys.stderr, flush=True)
-        if target is not None and state.best_v == 0 and state.best_f <= target:
-            status, message = "target", f"reached the target value {target:g}"
-            break
-        if stagnation is not None and state.it - last_improvement >= stagnation:
-            status, message = "stagnation", f"no improvement in {stagnation} iterations"
+        why = budget.converged(state.it - last_improvement, state.best_f, state.best_v == 0)
+        if why is not None:
+            status, message = why
             break
         if callback is not None and callback(state) is False:
             status, message = "callback", "stopped by the callback"
             break
     if archive_every and state.it % archive_every != 0:
         state.snapshot()  # the final population
-    if state.evals_left <= 0 and status == "max_iters":
-        status, message = "max_evals", f"evaluation budget of {max_evals} spent"
     if progress:
         print(file=sys.stderr)
     if state.nan_seen:
         message += "; the objective returned NaN for some points (treated as +inf)"
     if state.best_v > 0 and np.isfinite(state.best_v):
         message += f"; no feasible point found (least violation {state.best_v:.3g})"
+    return state, np.asarray(history), np.asarray(history_nfev, dtype=np.int64), status, message, state.it
+
+
+# ------------------------------------------------------------------ batched independent runs
+class SeedGenerators:
+    """One ``numpy.random.Generator`` per seed behind one draw call.
+
+    ``random(shape)``, ``normal`` and ``uniform`` draw ``shape`` from every seed's own
+    generator, in seed order, and stack them on a leading run axis:
+    ``random((2, 3, n, d))`` gives ``(R, 2, 3, n, d)``. Each seed's generator sees
+    exactly the calls of a single run, so its numbers are the same. Batchable rules
+    index draws from the right (``r[..., 0, :, :, :]``) so that they read the same with
+    and without the run axis.
+    """
+
+    def __init__(self, seeds) -> None:
+        self.generators = [as_generator(s) for s in seeds]
+
+    def __len__(self) -> int:
+        return len(self.generators)
+
+    def _draw(self, method: str, shape, *args) -> np.ndarray:
+        shape = tuple(shape) if isinstance(shape, (tuple, list)) else (int(shape),)
+        out = np.empty((len(self.generators),) + shape)
+        if method == "random":
+            for g, o in zip(self.generators, out):
+                g.random(out=o)
+        else:
+            for i, g in enumerate(self.generators):
+                out[i] = getattr(g, method)(*args, size=shape)
+        return out
+
+    def random(self, shape) -> np.ndarray:
+        """Uniform [0, 1) draws of ``shape`` per seed: ``(R, *shape)``."""
+        return self._draw("random", shape)
+
+    def normal(self, loc: float = 0.0, scale: float = 1.0, size=()) -> np.ndarray:
+        """Normal draws (``Generator.normal``) per seed: ``(R, *size)``."""
+        return self._draw("normal", size, loc, scale)
+
+    def uniform(self, low: float = 0.0, high: float = 1.0, size=()) -> np.ndarray:
+        """Uniform draws on ``[low, high)`` (``Generator.uniform``) per seed: ``(R, *size)``."""
+        return self._draw("uniform", size, low, high)
+
+
+class BatchState(State):
+    """A :class:`State` holding R independent runs of one algorithm as one population.
+
+    ``X`` is ``(R, n, d)``, ``F`` and ``V`` are ``(R, n)``, ``best_x`` is ``(R, d)`` and
+    ``best_f``/``best_v`` are ``(R,)``; ``rng`` is a :class:`SeedGenerators`. Every run
+    spends its evaluations in step with the others (the same algorithm on the same
+    budget), so ``nfev`` and ``it`` are shared; the objective sees all ``R * n`` rows
+    of an iteration in one call.
+    """
+
+    def __init__(self, problem: Problem, pop: int, rng: SeedGenerators, budget: Budget):
+        super().__init__(problem, pop, budget.iterations, budget.evaluations, None, budget=budget)
+        self.rng = rng
+        R = len(rng)
+        self.runs = R
+        self.X = np.empty((R, 0, self.dim))
+        self.F = np.empty((R, 0))
+        self.V = np.empty((R, 0))
+        self.best_x = np.full((R, self.dim), np.nan)
+        self.best_f = np.full(R, np.inf)
+        self.best_v = np.full(R, np.inf)
+        self.nan_seen = np.zeros(R, dtype=bool)
+
+    def snapshot(self) -> None:  # pragma: no cover - refused by optimize(seeds=...)
+        raise ParameterError("archive_every is not available with seeds=...; run the seeds one by one")
+
+    def prepare(self, X: np.ndarray) -> np.ndarray:
+        """Clip to the bounds and apply the repair hook (on all ``R * n`` rows at once)."""
+        X = self.clip(X)
+        if self.problem.repair is not None:
+            shape = X.shape
+            X = self.clip(np.asarray(self.problem.repair(X.reshape(-1, self.dim)), dtype=float).reshape(shape))
+        return X
+
+    def evaluate(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Evaluate ``(R, n, d)`` rows in one objective call; returns ``(R, n)`` values and
+        violations. The budget is per run: each run may evaluate ``allowed(n)`` rows."""
+        R, n, d = X.shape
+        k = self.budget.allowed(n, self.nfev)
+        Xk = X if k == n else X[:, :k]
+        out = self.problem.f(Xk.reshape(R * k, d))
+        if isinstance(out, tuple):
+            fk = np.asarray(out[0], dtype=float).reshape(-1)
+            vk = np.asarray(out[1], dtype=float).reshape(-1)
+            vk = np.where(np.isnan(vk), np.inf, vk)
+        else:
+            fk, vk = np.asarray(out, dtype=float).reshape(-1), np.zeros(R * k)
+        if fk.shape != (R * k,) or vk.shape != (R * k,):
+            raise ParameterError(f"the objective must return shape ({R * k},) for {R * k} rows, got {fk.shape}")
+        fk, vk = fk.reshape(R, k), vk.reshape(R, k)
+        if not np.isfinite(fk).all():
+            self.nan_seen = self.nan_seen | np.isnan(fk).any(axis=1)   # per run
+            fk = np.where(np.isfinite(fk), fk, np.inf)
+        self.nfev += k
+        self._offer(Xk, fk, vk)
+        if k == n:
+            return fk, vk
+        pad = np.full((R, n - k), np.inf)
+        return np.concatenate([fk, pad], axis=1), np.concatenate([vk, pad], axis=1)
+
+    def _offer(self, X, f, v) -> None:
+        i = np.lexsort((f, v), axis=-1)[:, 0]
+        rows = np.arange(len(f))
+        fi, vi = f[rows, i], v[rows, i]
+        win = better(fi, vi, self.best_f, self.best_v)
+        self.best_x[win] = X[rows[win], i[win]]
+        self.best_f[win], self.best_v[win] = fi[win], vi[win]
+
+    def greedy(self, Xnew, Fnew, Vnew, idx=None) -> np.ndarray:
+        """Replace rows of every run by the new ones where those are better (all rows only)."""
+        if idx is not None:  # pragma: no cover - batchable algorithms use whole-population greedy
+            raise ParameterError("greedy(idx=...) is not available in a batched run")
+        win = better(Fnew, Vnew, self.F, self.V)
+        self.X[win], self.F[win], self.V[win] = Xnew[win], Fnew[win], Vnew[win]
+        return win
+
+
+def run_batched(algorithm: Algorithm, problem: Problem, *, pop: int, seeds, budget: Budget, init=None):
+    """Run ``algorithm`` once per seed, all seeds as one ``(R, pop, d)`` population.
+
+    For algorithms with ``batchable = True`` (their rules are written for an optional
+    leading run axis). Returns ``(state, history, history_nfev, status, message, nit)``
+    with ``history`` of shape ``(iterations + 1, R)``; each run's numbers equal those of
+    :func:`run` with its seed. Stagnation and target stops, callbacks and archives need
+    per-run control and are refused (``optimize`` runs such seeds one by one).
+    """
+    if budget.stagnation is not None or budget.target is not None:
+        raise ParameterError("a batched run stops every seed together: give no stagnation or target")
+    rng = SeedGenerators(seeds)
+    state = BatchState(problem, pop, rng, budget)
+    R = len(rng)
+    if init is None:
+        X0 = algorithm.initial_population(state, pop)
+    elif callable(init):
+        X0 = np.stack([np.asarray(init(pop, g), dtype=float) for g in rng.generators])
+    else:
+        X0 = np.broadcast_to(np.asarray(init, dtype=float), (R, pop, problem.dim)).copy()
+    if X0.shape != (R, pop, problem.dim):
+        raise ParameterError(f"initial population must have shape ({pop}, {problem.dim}), got {X0.shape[1:]}")
+    history, history_nfev = [], []
+    try:
+        state.X, state.F, state.V = state.eval_new(X0)
+        algorithm.setup(state)
+    except BudgetExhausted:
+        pass
+    history.append(state.best_f.copy())
+    history_nfev.append(state.nfev)
+    while True:
+        why = budget.spent(state.it, state.nfev)
+        if why is not None:
+            status, message = why
+            break
+        state.it += 1
+        try:
+            algorithm.step(state)
+        except BudgetExhausted:
+            pass
+        history.append(state.best_f.copy())
+        history_nfev.append(state.nfev)
     return state, np.asarray(history), np.asarray(history_nfev, dtype=np.int64), status, message, state.it

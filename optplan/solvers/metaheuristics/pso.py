@@ -5,6 +5,14 @@ PSO (yang2023 eq 6-7): ``V = w V + c1 r1 (P_best - X) + c2 r2 (G_best - X)``,
 clamped to ``v_max_frac`` of the box; yang2023 §7.1 settings are the defaults
 (c1 = c2 = 1.5, w in [0.4, 0.9]).
 
+Bounds: absorbing walls (``walls="absorb"``). A particle whose move leaves the box
+is clipped to the wall and loses the velocity component that took it out. yang2023
+does not say how bounds are handled; with clipping alone (``walls="clip"``) a
+particle keeps pushing outwards and stays stuck on the wall for many iterations,
+which is what stalled PSO on shifted functions whose optimum lies near a wall
+(``benchmarks/engine_speed.py`` shows the effect against mealpy's and niapy's PSO).
+IPSO keeps clipping, as before, so its paper reproduction is unchanged.
+
 IPSO changes, in the order of yang2023 §4:
 
 * eq 8, adaptive inertia per particle, read as the text of §4.1 says (poor
@@ -40,18 +48,21 @@ from __future__ import annotations
 
 import numpy as np
 
-from .engine import Algorithm, State, better, rank
+from ...errors import ParameterError
+from .engine import Algorithm, State, better, pick, rank
 
 
 class PSO(Algorithm):
     """Standard PSO with linearly decreasing inertia."""
 
     name = "pso"
+    BATCHABLE = True           # every rule below also takes a leading run axis
     c1 = 1.5
     c2 = 1.5
     w_max = 0.9
     w_min = 0.4
     v_max_frac = 0.2
+    walls = "absorb"           # or "clip" (see the module docstring)
 
     def setup(self, state: State) -> None:
         self.V = np.zeros_like(state.X)
@@ -59,23 +70,33 @@ class PSO(Algorithm):
         self.v_max = self.v_max_frac * (state.upper - state.lower)
 
     def gbest(self) -> np.ndarray:
-        return self.P[rank(self.PF, self.PV)[0]]
+        """The best personal best, shape ``([R,] 1, d)``."""
+        return pick(self.P, rank(self.PF, self.PV)[..., :1])
 
     def inertia(self, state: State) -> np.ndarray | float:
         return self.w_max - (self.w_max - self.w_min) * state.progress
 
     def velocity(self, state: State, w) -> np.ndarray:
-        n, d = state.X.shape
-        r = state.rng.random((2, n, d))
-        return w * self.V + self.c1 * r[0] * (self.P - state.X) + self.c2 * r[1] * (self.gbest() - state.X)
+        n, d = state.X.shape[-2:]
+        r = state.rng.random((2, n, d))                       # ([R,] 2, n, d)
+        return (w * self.V + self.c1 * r[..., 0, :, :] * (self.P - state.X)
+                + self.c2 * r[..., 1, :, :] * (self.gbest() - state.X))
 
     def remember(self, state: State) -> None:
         win = better(state.F, state.V, self.PF, self.PV)
         self.P[win], self.PF[win], self.PV[win] = state.X[win], state.F[win], state.V[win]
 
     def move(self, state: State, V: np.ndarray) -> None:
-        self.V = np.clip(V, -self.v_max, self.v_max)
-        state.X, state.F, state.V = state.eval_new(state.X + self.V)
+        """Clamp the velocity, move, and absorb at the walls (see the module docstring)."""
+        V = np.minimum(np.maximum(V, -self.v_max), self.v_max)
+        X = state.X + V
+        if self.walls == "absorb":
+            self.V = np.where((X < state.lower) | (X > state.upper), 0.0, V)
+        elif self.walls == "clip":
+            self.V = V
+        else:
+            raise ParameterError(f"walls must be 'absorb' or 'clip', got {self.walls!r}")
+        state.X, state.F, state.V = state.eval_new(X)
 
     def step(self, state: State) -> None:
         self.move(state, self.velocity(state, self.inertia(state)))
@@ -86,6 +107,7 @@ class IPSO(PSO):
     """IPSO (yang2023 §4); states only what it changes from PSO."""
 
     name = "ipso"
+    walls = "clip"             # IPSO as before the wall rule (yang2023 gives none)
     reinit_fraction = 0.1
     stall = 10
 

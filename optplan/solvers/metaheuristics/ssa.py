@@ -7,7 +7,15 @@ and safety threshold ``ST`` (hou2024 eq 4-6):
 
 * producers: ``X exp(-i / (alpha T))`` when ``R2 < ST``, else ``X + Q L``;
 * scroungers: the worse half ``Q exp((X_worst - X) / i^2)``, the others
-  ``X_p + |X - X_p| A+ L`` (``A+ L`` spreads the mean of ``|X - X_p|`` with random signs);
+  ``X_p + |X - X_p| A+ L``. Read literally (``A`` a 1 x d row of random signs, ``A+`` its
+  pseudo-inverse, ``L`` a row of ones) the step is one number, the signed mean of
+  ``|X - X_p|``, added to every coordinate (``scrounger_step="pseudo-inverse"``).
+  Where the standard version differs: by default (``"per-dimension"``, as mealpy's
+  OriginalSSA) the step is ``|X - X_p|`` times one normal draw, so each coordinate
+  keeps its own distance to the producer. With the literal step every scrounger
+  moves along the diagonal, and SSA stalled on shifted 30-d functions far behind
+  mealpy's SSA (``benchmarks/engine_speed.py``). MISSA replaces this move (eq 17)
+  and is not affected;
 * scouts: ``X_best + beta |X - X_best|`` if not the best, else
   ``X + k |X - X_worst| / (f_i - f_w + eps)``.
 Each sparrow keeps the better of its old and new position. Defaults follow
@@ -42,6 +50,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ...errors import ParameterError
 from .engine import Algorithm, State, better, rank
 from .operators import levy, logistic_tent
 
@@ -53,6 +62,7 @@ class SSA(Algorithm):
     safety_threshold = 0.8
     producers = 0.3
     scouts = 0.2
+    scrounger_step = "per-dimension"     # or "pseudo-inverse": hou2024 eq 5 read literally
 
     def roles(self, state: State):
         n = len(state.X)
@@ -78,8 +88,14 @@ class SSA(Algorithm):
         k, d = Xs.shape
         hungry = (ranks + 1) > n / 2
         far = rng.normal(size=(k, 1)) * np.exp((worst - Xs) / ((ranks[:, None] + 1.0) ** 2))
-        signs = rng.choice([-1.0, 1.0], size=(k, d))
-        near = best_producer + (np.abs(Xs - best_producer) * signs).mean(axis=1, keepdims=True)
+        if self.scrounger_step == "per-dimension":
+            near = best_producer + np.abs(Xs - best_producer) * rng.normal(size=(k, 1))
+        elif self.scrounger_step == "pseudo-inverse":
+            signs = rng.choice([-1.0, 1.0], size=(k, d))
+            near = best_producer + (np.abs(Xs - best_producer) * signs).mean(axis=1, keepdims=True)
+        else:
+            raise ParameterError(f"scrounger_step must be 'per-dimension' or 'pseudo-inverse', "
+                                 f"got {self.scrounger_step!r}")
         return np.where(hungry[:, None], far, near)
 
     def scout_move(self, state: State, idx: np.ndarray, best: np.ndarray, worst: np.ndarray,

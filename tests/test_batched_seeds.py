@@ -1,0 +1,77 @@
+"""``op.optimize(..., seeds=...)``: R independent runs, batched as one R x pop population
+where the algorithm allows, each identical to its single run bit for bit (issue 30)."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import optplan as op
+from optplan.formulations.functions import get_function
+from optplan.solvers.metaheuristics import get_algorithm
+
+RASTRIGIN = get_function("F9", shifted=True, dim=8)
+
+
+def assert_same_run(batched, single):
+    np.testing.assert_array_equal(batched.history, single.history)
+    np.testing.assert_array_equal(batched.history_nfev, single.history_nfev)
+    np.testing.assert_array_equal(batched.x, single.x)
+    assert batched.f == single.f and batched.nfev == single.nfev and batched.nit == single.nit
+    assert batched.status == single.status and batched.message == single.message
+    assert batched.seed == single.seed
+
+
+@pytest.mark.parametrize("algorithm", ["gwo", "pso"])
+@pytest.mark.parametrize("budget", [dict(iters=40), dict(iters=None, max_evals=1111), dict(iters=25, max_evals=500)])
+def test_batched_seeds_equal_separate_runs_bit_for_bit(algorithm, budget):
+    assert get_algorithm(algorithm).batchable()
+    calls = []
+
+    def f(X):
+        calls.append(len(X))
+        return RASTRIGIN(X)
+
+    runs = op.optimize(f, RASTRIGIN.bounds, algorithm=algorithm, pop=12, seeds=range(6), **budget)
+    assert isinstance(runs, list) and len(runs) == 6
+    assert max(calls) == 6 * 12                     # one objective call holds every run's rows
+    for s, r in enumerate(runs):
+        assert_same_run(r, op.optimize(RASTRIGIN, RASTRIGIN.bounds, algorithm=algorithm, pop=12, seed=s, **budget))
+    assert len({r.f for r in runs}) == 6            # the runs are independent
+
+
+def test_batched_runs_keep_constraints_repair_and_initialisers():
+    def f(X):
+        return RASTRIGIN(X), np.maximum(X[:, 0] - 1.0, 0.0)     # feasible when x0 <= 1
+
+    def repair(X):
+        return np.round(X, 1)
+
+    def init(n, rng):
+        return rng.uniform(-2, 2, (n, RASTRIGIN.dim))
+
+    kw = dict(algorithm="gwo", pop=10, iters=30, repair=repair, init=init)
+    runs = op.optimize(f, RASTRIGIN.bounds, seeds=[3, 1, 4], **kw)
+    for s, r in zip([3, 1, 4], runs):
+        assert_same_run(r, op.optimize(f, RASTRIGIN.bounds, seed=s, **kw))
+        assert r.x[0] <= 1.0
+
+
+@pytest.mark.parametrize("algorithm", ["ssa", "msiar-gwo", "ipso"])
+def test_other_algorithms_run_the_seeds_one_by_one_with_the_same_numbers(algorithm):
+    assert not get_algorithm(algorithm).batchable()       # BATCHABLE is not inherited
+    runs = op.optimize(RASTRIGIN, RASTRIGIN.bounds, algorithm=algorithm, pop=10, iters=15, seeds=range(3))
+    for s, r in enumerate(runs):
+        assert_same_run(r, op.optimize(RASTRIGIN, RASTRIGIN.bounds, algorithm=algorithm, pop=10, iters=15, seed=s))
+
+
+def test_per_run_stops_fall_back_to_separate_runs():
+    kw = dict(algorithm="gwo", pop=10, iters=200, stagnation=5)
+    runs = op.optimize(RASTRIGIN, RASTRIGIN.bounds, seeds=range(3), **kw)
+    for s, r in enumerate(runs):
+        assert_same_run(r, op.optimize(RASTRIGIN, RASTRIGIN.bounds, seed=s, **kw))
+
+
+@pytest.mark.parametrize("seeds, match", [(5, "iterable"), ([], "empty"), ([0, -1], "seed")])
+def test_bad_seeds_raise_parameter_errors(seeds, match):
+    with pytest.raises(op.ParameterError, match=match):
+        op.optimize(RASTRIGIN, RASTRIGIN.bounds, algorithm="gwo", pop=10, iters=5, seeds=seeds)
