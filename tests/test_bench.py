@@ -209,7 +209,8 @@ def test_summary_tables_have_gap_reference_and_tally():
 
 
 def test_plots_are_written(tmp_path):
-    from optplan.bench import experiment_plots, render_report, run_experiment
+    from optplan.bench import render_report, run_experiment
+    from optplan.viz.experiment_plots import experiment_plots
 
     res = run_experiment({**SMALL, "algorithms": ["gwo", "msiar-gwo"]}, workers=1, progress=False)
     assert len(res.rows) == 6 and res.missing == 0

@@ -13,7 +13,7 @@ import pytest
 from matplotlib.figure import Figure
 
 import optplan
-from optplan.bench.plots import box_plot
+from optplan.viz.experiment_plots import box_plot
 from optplan.viz.convergence import plot_convergence
 from optplan.viz.plots import plot_paths
 from optplan.world.loaders import load_map

@@ -5,7 +5,7 @@
 * :mod:`~optplan.bench.store` — the SQLite results database (one row per run, resume by key);
 * :mod:`~optplan.bench.summary`, :mod:`~optplan.bench.stats`, :mod:`~optplan.bench.tables` —
   grouping, min/mean/max/std, Wilcoxon rank-sum with +/=/-, markdown and LaTeX tables;
-* :mod:`~optplan.bench.reports` — the papers' table layouts; :mod:`~optplan.bench.plots` — figures;
+* :mod:`~optplan.bench.reports` — the papers' table layouts (figures: :mod:`optplan.viz.experiment_plots`);
 * :mod:`~optplan.bench.global_runs` — the in-process loops of the example scripts;
 * :mod:`~optplan.bench.command` — ``optplan bench`` and ``optplan reproduce``.
 
@@ -23,7 +23,6 @@ _LAZY = {
     "ResultStore": "optplan.bench.store",
     "load_results": "optplan.bench.summary",
     "render_report": "optplan.bench.reports",
-    "experiment_plots": "optplan.bench.plots",
     "run_experiment": "optplan.bench.experiment",
 }
 

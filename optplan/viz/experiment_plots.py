@@ -13,7 +13,7 @@ from typing import Mapping, Sequence
 
 import numpy as np
 
-from .summary import ExperimentResults
+from ..bench.summary import ExperimentResults
 
 
 def _safe(name: str) -> str:
@@ -25,7 +25,7 @@ def box_plot(groups: Mapping[str, Sequence[float]], filename: str | Path | None 
     """One box per group (median, quartiles, 1.5 IQR whiskers, outliers) with the runs jittered on top;
     empty groups are shown by name with no box. ``reference_line`` draws e.g. the exact optimum.
     Returns the Figure, after writing it as a PNG to ``filename`` when one is given."""
-    from ..viz.plots import finish_figure, new_figure
+    from .plots import finish_figure, new_figure
 
     names = list(groups)
     fig, ax = new_figure((max(4.0, 0.9 * len(names) + 2), 4.2))
@@ -50,7 +50,7 @@ def box_plot(groups: Mapping[str, Sequence[float]], filename: str | Path | None 
 def experiment_plots(res: ExperimentResults, out_dir: str | Path, metric: str | None = None) -> list[Path]:
     """Per target: a box plot of ``metric`` (successful runs), convergence curves (when runs have a
     history) and an overlay of each group's best path (plan, program) or last trajectory (simulate)."""
-    from ..viz.convergence import plot_convergence
+    from .convergence import plot_convergence
 
     out_dir = Path(out_dir)
     spec = res.spec
@@ -61,7 +61,7 @@ def experiment_plots(res: ExperimentResults, out_dir: str | Path, metric: str | 
         names = {g: res.group_name(*g) for g in groups}
         ref_line = None
         if spec.kind == "plan" and metric == "length":
-            from .summary import exact_optimum_of
+            from ..bench.summary import exact_optimum_of
 
             ref_line = exact_optimum_of(t.spec)
         vals = {names[g]: res.values(recs, metric) for g, recs in groups.items()}
@@ -92,7 +92,7 @@ def experiment_plots(res: ExperimentResults, out_dir: str | Path, metric: str | 
         if paths:
             world = _world_of(spec.kind, t.spec)
             if world is not None:
-                from ..viz.plots import plot_paths
+                from .plots import plot_paths
 
                 files.append(out_dir / f"{_safe(spec.name)}_{_safe(t.name)}_paths.png")
                 ends = _query_of(spec.kind, t.spec)  # a trajectory ends where the robot stopped
@@ -105,7 +105,7 @@ def _query_of(kind: str, target_spec: Mapping) -> tuple:
     """``(start, goal)`` of a target (``(None, None)`` when it has none to draw)."""
     try:
         if kind in ("plan", "program"):
-            from .runner import plan_target
+            from ..bench.runner import plan_target
 
             _, s, g = plan_target(json.dumps(dict(target_spec), sort_keys=True))
             return s, g
@@ -119,7 +119,7 @@ def _query_of(kind: str, target_spec: Mapping) -> tuple:
 
 def _world_of(kind: str, target_spec: Mapping):
     if kind in ("plan", "program"):
-        from .runner import plan_target
+        from ..bench.runner import plan_target
 
         return plan_target(json.dumps(dict(target_spec), sort_keys=True))[0]
     try:
@@ -129,3 +129,36 @@ def _world_of(kind: str, target_spec: Mapping):
     except Exception:  # no scenario layer or no drawable map: skip the overlay, keep the other plots
         return None
     return getattr(sc, "grid", None) or getattr(sc, "world", None) or getattr(sc, "map", None)
+
+
+def function_convergence_plots(res: ExperimentResults, out_dir: str | Path) -> list[Path]:
+    """chen2025 Figs 3-14 analog: convergence curves of every algorithm on each benchmark
+    function (``convergence_F<n>[ _unshifted].png``, so shifted and unshifted runs can share a
+    folder)."""
+    from .convergence import plot_convergence
+
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    files = []
+    for t in res.spec.targets:
+        h = {}
+        for (label, _, _), recs in res.groups(t.name).items():
+            tr = res.traces([r.key for r in recs if r.key in res.rows])
+            h[label] = [np.asarray(tr[k]["history"], float) for k in tr if "history" in tr[k]]
+        if not h or not all(len(v) for v in h.values()):
+            continue
+        shifted = bool(t.spec.get("shifted"))
+        f = out_dir / f"convergence_{t.name}{'' if shifted else '_unshifted'}.png"
+        plot_convergence(h, f, title=f"{t.name} ({'shifted where applicable' if shifted else 'unshifted'})",
+                         log=t.name not in ("F8", "F17", "F18"))
+        files.append(f)
+    return files
+
+
+def write_figures(res: ExperimentResults, out_dir: str | Path) -> list[str]:
+    """Every figure of a report into ``out_dir``; returns the lines the report prints about them."""
+    if res.spec.kind == "optimize":
+        files = function_convergence_plots(res, out_dir)
+        return [f"convergence plots in {out_dir}/"] if files else []
+    files = experiment_plots(res, out_dir)
+    return [f"plots: {len(files)} files in {out_dir}/"] if files else []
