@@ -7,7 +7,7 @@ import pytest
 import optplan as op
 from optplan.errors import ParameterError
 from optplan.nav import Navigator, VirtualPointGraph, make_strategy, velocity_obstacle_hits
-from optplan.nav.navigator import segment_distance
+from optplan.world.polyline import point_segment_distances as segment_distance
 from optplan.world.robot import RobotSpec
 
 

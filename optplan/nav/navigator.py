@@ -38,6 +38,7 @@ import numpy as np
 from ..errors import InfeasibleQueryError, OptplanError, ParameterError
 from ..papers import LOCAL_GUIDANCE, PAPERS, local_guidance
 from ..planning import plan
+from ..world.polyline import point_segment_distances
 from ..results import PlanResult
 from .subgoals import SubgoalStrategy, make_strategy
 
@@ -46,14 +47,6 @@ from .subgoals import SubgoalStrategy, make_strategy
 PRESET_DEFAULTS = {**{p.local_preset: (p.subgoals, p.on_blocked) for p in PAPERS.values() if p.local_preset},
                    **LOCAL_GUIDANCE}
 ON_BLOCKED = ("switch", "replan", "ignore")
-
-
-def segment_distance(points: np.ndarray, a, b) -> np.ndarray:
-    """Distance (m) from each point ``(n, 2)`` to the segment ``a``-``b``."""
-    a, b = np.asarray(a, float), np.asarray(b, float)
-    ab = b - a
-    t = np.clip((points - a) @ ab / max(float(ab @ ab), 1e-12), 0.0, 1.0)
-    return np.hypot(*(points - (a + t[:, None] * ab)).T)
 
 
 def preset_defaults(local_name: str) -> tuple[str, str]:
@@ -269,7 +262,7 @@ class Navigator:
         rest = self._rest_of_path(position)
         dense = np.vstack([np.linspace(a, b, max(2, int(np.hypot(*(b - a)) / 0.05) + 1))
                            for a, b in zip(rest[:-1], rest[1:])])
-        near = [segment_distance(dense, row[:2], row[2:4]).min() < row[4] + self.robot.radius + 0.1 for row in sweeps]
+        near = [point_segment_distances(dense, row[:2], row[2:4]).min() < row[4] + self.robot.radius + 0.1 for row in sweeps]
         if not any(near):
             return False
         around = self._without_sweeps(believed_world, sweeps, position)

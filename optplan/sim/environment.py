@@ -49,15 +49,6 @@ def box_distance(points: np.ndarray, lo: np.ndarray, size: float, chunk: int = 6
     return out
 
 
-def _segment_point_distance(a: np.ndarray, b: np.ndarray, q: np.ndarray) -> np.ndarray:
-    """Distance from the segment ``a -> b`` ``(2,)`` to each point ``q`` ``(k, 2)``."""
-    ab = b - a
-    L2 = float(ab @ ab)
-    t = np.zeros(len(q)) if L2 == 0 else np.clip((q - a) @ ab / L2, 0.0, 1.0)
-    c = a + t[:, None] * ab
-    return np.hypot(q[:, 0] - c[:, 0], q[:, 1] - c[:, 1])
-
-
 def _require_finite(what: str, *arrays) -> None:
     """Refuse NaN or infinite positions before a collision test: every comparison with NaN is
     false, so a non-finite centre would silently count as no contact."""

@@ -42,6 +42,7 @@ from ..errors import InfeasibleQueryError, ParameterError
 from ..world.geometry import validate_path
 from ..world.grid import GridMap
 from ..world.metrics import path_length
+from ..world.polyline import densify
 from .graph import visibility_path
 
 # default tube radius in widths of the widest obstacle (see default_tube_radius)
@@ -146,16 +147,6 @@ def distance_to_polyline(points, polyline) -> np.ndarray:
         r = q - t[..., None] * D[None]
         out[a:a + step] = np.sqrt(np.einsum("msj,msj->ms", r, r).min(axis=1))
     return out
-
-
-def densify(polyline: np.ndarray, step: float) -> np.ndarray:
-    """Points along a polyline no more than ``step`` apart (its vertices included)."""
-    P = np.asarray(polyline, float)
-    seg = np.hypot(*np.diff(P, axis=0).T)
-    k = np.maximum(np.ceil(seg / step).astype(int), 1)
-    owner = np.repeat(np.arange(len(seg)), k)
-    frac = (np.arange(k.sum()) - np.repeat(np.cumsum(k) - k, k)) / np.repeat(k, k)
-    return np.vstack([P[owner] + frac[:, None] * (P[owner + 1] - P[owner]), P[-1:]])
 
 
 def cells_within(width: int, height: int, resolution: float, origin, seed: np.ndarray, radius: float) -> np.ndarray:

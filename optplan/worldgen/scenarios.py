@@ -17,7 +17,10 @@ import numpy as np
 
 from ..errors import OptplanError, ScenarioError
 from ..rng import as_generator
+from ..world.polyline import densify, point_segment_distances
 from ..world.scenario import DynamicObstacle, Scenario, validate
+
+DENSE_STEP = 0.25   # metres between the points of a reference path
 
 
 def realize(sc: Scenario, seed=0, path=None) -> Scenario:
@@ -40,7 +43,7 @@ def realize(sc: Scenario, seed=0, path=None) -> Scenario:
     if sc.timing_jitter:
         dynamic = _jitter_movers(sc, rng)
     if sc.random_obstacles or sc.random_dynamic:
-        path = reference_path(sc) if path is None else _densify(np.asarray(path, dtype=float).reshape(-1, 2))
+        path = reference_path(sc) if path is None else densify(np.asarray(path, dtype=float).reshape(-1, 2), DENSE_STEP)
     if sc.random_obstacles:
         new_cells, new_circles = _draw_random_obstacles(sc, sc.random_obstacles, rng, path)
         cells = np.vstack([cells, new_cells]) if len(new_cells) else cells
@@ -60,17 +63,7 @@ def reference_path(sc: Scenario) -> np.ndarray:
         res = shortest_path(sc.world, sc.start[:2], sc.goal, method=method, clearance=sc.robot.radius)
     except OptplanError:
         res = shortest_path(sc.world, sc.start[:2], sc.goal, method=method)
-    return _densify(np.vstack([sc.start[:2], res.path, sc.goal]))
-
-
-def _densify(P: np.ndarray, step: float = 0.25) -> np.ndarray:
-    """Points every ``step`` metres (or closer) along the polyline ``P``."""
-    if len(P) < 2:
-        return P.copy()
-    seg = np.diff(P, axis=0)
-    n = np.maximum(np.ceil(np.hypot(seg[:, 0], seg[:, 1]) / step).astype(int), 1)
-    dense = [P[i] + seg[i] * (np.arange(n[i])[:, None] / n[i]) for i in range(len(seg))]
-    return np.vstack(dense + [P[-1:]])
+    return densify(np.vstack([sc.start[:2], res.path, sc.goal]), DENSE_STEP)
 
 
 def _reachable(sc: Scenario, cells: np.ndarray, circles: np.ndarray) -> bool:
@@ -162,21 +155,6 @@ def _jitter_movers(sc: Scenario, rng) -> list[DynamicObstacle]:
     return out
 
 
-def _segment_points_distance(a, b, P: np.ndarray) -> np.ndarray:
-    """Distance from each point of ``P`` ``(n, 2)`` to the segment ``a -> b``."""
-    ab = b - a
-    L2 = float(ab @ ab)
-    t = np.zeros(len(P)) if L2 == 0 else np.clip((P - a) @ ab / L2, 0.0, 1.0)
-    return np.hypot(*(P - (a + t[:, None] * ab)).T)
-
-
-def _point_segment_distance(p, a, b) -> float:
-    ab = b - a
-    L2 = float(ab @ ab)
-    t = 0.0 if L2 == 0 else float(np.clip((p - a) @ ab / L2, 0.0, 1.0))
-    return float(np.hypot(*(p - (a + t * ab))))
-
-
 def _segments_distance(a, b, c, d) -> float:
     """Distance between the segments ``a -> b`` and ``c -> d`` (0 when they cross)."""
     def cross(o, p, q) -> float:
@@ -185,8 +163,8 @@ def _segments_distance(a, b, c, d) -> float:
     if d1 * d2 < 0 and d3 * d4 < 0:
         return 0.0
     # otherwise the closest pair has an end point of one segment
-    return float(min(_segment_points_distance(c, d, np.array([a, b])).min(),
-                     _segment_points_distance(a, b, np.array([c, d])).min()))
+    return float(min(point_segment_distances(np.array([a, b]), c, d).min(),
+                     point_segment_distances(np.array([c, d]), a, b).min()))
 
 
 def _draw_random_movers(sc: Scenario, spec: dict, rng, path: np.ndarray) -> list[DynamicObstacle]:
@@ -225,11 +203,11 @@ def _draw_random_movers(sc: Scenario, spec: dict, rng, path: np.ndarray) -> list
             continue
         # the mover must never touch the robot waiting at the start or arrived at the goal
         near = radius + sc.robot.radius + 0.5
-        if min(_point_segment_distance(sc.start[:2], a, b), _point_segment_distance(sc.goal, a, b)) < near:
+        if point_segment_distances(np.stack([sc.start[:2], sc.goal]), a, b).min() < near:
             continue
         # it must *cross* the path once, not run along it (say, up and down a corridor the path
         # follows), so that a robot that cannot reverse can always wait before its sweep
-        swept = np.nonzero(_segment_points_distance(a, b, path) < near)[0]
+        swept = np.nonzero(point_segment_distances(path, a, b) < near)[0]
         crossing = 2 * near / math.sin(math.radians(60)) + 0.5
         if not len(swept) or swept[-1] - swept[0] + 1 != len(swept) or \
                 float(np.hypot(*np.diff(path[swept], axis=0).T).sum()) > crossing:
