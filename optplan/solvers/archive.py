@@ -8,10 +8,8 @@ from __future__ import annotations
 
 import numpy as np
 
-# iterations between the population snapshots that ``alternatives`` are drawn from.
-# Measured on the paper maps (issue 5 multi-start): the final population alone has
-# lost the better corridor on li2023_90 in most runs, snapshots every 10 iterations
-# still hold it; finer snapshots add near-copies, not corridors.
+# iterations between the population snapshots that ``alternatives`` are drawn from
+# (the final population alone often has lost the better corridor; docs/measurements.md)
 ARCHIVE_EVERY = 10
 
 

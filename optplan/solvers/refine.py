@@ -27,15 +27,11 @@ the tube of the best path and of the earlier ones) and keeps the shortest valid
 refined path. Nothing is evaluated again and the planner's own result is
 unchanged; the choice is by refined length only. ``op.plan`` asks the planner for
 the alternatives. Defaults (:data:`DEFAULT_STARTS`): ``casadi`` 3, ``qp`` 1;
-``starts=1`` is the single-start refinement exactly. Measured at the papers'
-budgets, 10 seeds + A* (``python examples/refined_vs_pure.py --runs 10``): 12 of
-the 14 paper maps reach 1 % of the optimum in >= 90 % of runs with 3 starts, 10
-with one. Where the planner ended in a longer corridor but its population had
-held the shorter one during the run (hou2024_env1: 6/10 -> 10/10 runs,
-li2023_90: 5/10 -> 10/10), 3 starts reach 1 % in every run; where no individual
-ever came within a tube radius of the optimal corridor (hou2024_base50,
-li2023_30) no number of starts helps. Cost: one more refinement per start used
-(median +9 to +460 ms per run on the paper maps, noisy machine).
+``starts=1`` is the single-start refinement exactly. More starts help where the
+planner ended in a longer corridor but its population had held the shorter one
+during the run, and cannot help where no individual came near the optimal
+corridor (``python examples/refined_vs_pure.py --runs 10``; the figures are in
+``docs/measurements.md``).
 
 The refined path replaces the seed only when it passed the exact check;
 otherwise the seed is returned with ``refined=False`` and the reason in
@@ -56,10 +52,7 @@ METHODS = ("casadi", "qp")
 # refine method -> tube radius when none is given: "default" = default_tube_radius(world)
 DEFAULT_TUBE = {"casadi": "default", "qp": 0.0}
 # refine method -> refinement starts when none are given (the best path + starts - 1
-# alternatives from the planner's population). casadi: 3, measured (step 1 of the
-# multi-start study, 10 seeds at the papers' budgets): 3 starts chosen among paths
-# that leave each other's tube bring hou2024_env1 from 6/10 to 10/10 and li2023_90
-# from 5/10 to 10/10 runs within 1 %; 5 starts add nothing there and cost more.
+# alternatives from the planner's population); why 3 for casadi: docs/measurements.md.
 # qp is the fast, purely local option: one start.
 DEFAULT_STARTS = {"casadi": 3, "qp": 1}
 MAX_STARTS = 50

@@ -3,9 +3,8 @@
 Both smoothers (:mod:`optplan.solvers.nlp`, :mod:`optplan.solvers.qp`) are local:
 they pull a seed taut around the obstacles it already passes, on the side it
 already passes them. The papers' planners often return seeds that wrap an
-obstacle on the long side (measured on the shipped stand-in maps with
-``examples/refined_vs_pure.py``: with a local smoother alone only 2 of the 14
-maps reach 1 % of the optimum in 90 % of runs), so the detour stays.
+obstacle on the long side, so the detour stays (``examples/refined_vs_pure.py``;
+the figures are in ``docs/measurements.md``).
 
 The tube stage looks for a shorter way *near* the seed:
 
@@ -112,19 +111,10 @@ def default_tube_radius(world) -> float:
     Why the widest obstacle: a seed that passes an obstacle on the long side
     reaches the short side by moving about one obstacle width; a tube twice as
     wide also holds the way round it. The obstacle scale, not the map size, sets
-    the radius, so the stage stays a neighbourhood of the seed on large maps
-    (on the shipped maps: 3.7-14 cells on grids, 4.6-5.5 m on the 10-15 m
-    circle worlds).
-
-    Measured with ``benchmarks/refine_tube.py`` (the papers' planners at their
-    papers' populations and iterations, 10 seeds per map, and A*): 0, 1, 1.5, 2
-    and 3 widths bring 2, 3, 4, 10 and 12 of the 14 paper maps to 1 % of the
-    optimum in >= 90 % of runs. 2 is the step that
-    adds most (both circle worlds among them); 3 widths is 9 cells on a 20-cell
-    map, nearly half of it, which is a re-plan rather than a refinement. Pass a
-    larger ``tube_radius`` to trade locality for more repaired seeds. Cost: the
-    tube search and a second smoothing, about +40-190 ms per refinement on the
-    grid maps and +70-100 ms on the circle worlds (whose raster search dominates).
+    the radius, so the stage stays a neighbourhood of the seed on large maps.
+    Two widths is where ``benchmarks/refine_tube.py`` shows the largest gain
+    (``docs/measurements.md``); pass a larger ``tube_radius`` to trade locality
+    for more repaired seeds.
     """
     return DEFAULT_WIDTHS * obstacle_width(world)
 

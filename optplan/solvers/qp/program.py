@@ -34,7 +34,7 @@ OSQP_SETTINGS = {
     "verbose": False,
     "eps_abs": 1e-5,
     "eps_rel": 1e-5,
-    "rho": 1.0,             # measured on the paper maps: 2-3x fewer iterations than the default 0.1
+    "rho": 1.0,             # fewer iterations than OSQP's 0.1 on the paper maps (docs/measurements.md)
     "polishing": True,      # an active-set polish makes touching constraints exact to ~1e-10
     "max_iter": 20000,
     "warm_starting": True,
