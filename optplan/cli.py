@@ -52,14 +52,21 @@ def _cmd_plan(args) -> int:
         if refine is None:
             raise OptplanError("--refine-starts only applies to a refinement; add --refine casadi or --refine qp")
         refine_options["starts"] = args.refine_starts
+    extra = {} if args.encoding is None else {"encoding": args.encoding}
     res = plan(world, tuple(args.start), tuple(args.goal), algorithm=args.algo, refine=refine, seed=args.seed,
-               pop=args.pop, iters=args.iters, clearance=args.clearance, refine_options=refine_options)
+               pop=args.pop, iters=args.iters, clearance=args.clearance, refine_options=refine_options, **extra)
     if args.plot:
         from .viz.plots import plot_paths
 
         plot_paths(world, {args.algo: res.path}, args.plot, title=f"{args.algo} on {Path(args.map).name}")
     if args.json:
-        print(json.dumps(res.to_json_dict()))
+        from .solvers.gaps import class_gaps
+
+        # the gap to the exact optimum, split into the corridor (class) and the shape (in class)
+        out = res.to_json_dict()
+        out.update(class_gaps(world, res.path[0] if len(res.path) else args.start,
+                              res.path[-1] if len(res.path) else args.goal, res.path, clearance=args.clearance))
+        print(json.dumps(out))
     else:
         d = res.to_dict()
         print(format_table([d], [("algorithm", "algorithm", ""), ("length", "length [m]", ".4f"),
@@ -165,6 +172,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--refine-starts", type=int, default=None, metavar="K",
                    help="refine the planner's best path and up to K-1 other distinct paths of its population, "
                         "keep the shortest (1: best path only; default: casadi 3, qp 1)")
+    p.add_argument("--encoding", default=None, choices=["columns", "waypoints", "spline", "general"],
+                   help="path encoding of a metaheuristic (default: the paper's; 'general' represents every "
+                        "path class on every map, and is used automatically when the paper's cannot)")
     p.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     p.add_argument("--pop", type=int, default=30, help="population size of metaheuristics")
     p.add_argument("--iters", type=int, default=500, help="iterations of metaheuristics")

@@ -13,7 +13,7 @@ import time
 import numpy as np
 
 from ..errors import ParameterError, UnknownAlgorithmError
-from ..formulations.encodings import ColumnNodes, FreeWaypoints, SplinePath
+from ..formulations.encodings import ColumnNodes, FreeWaypoints, GeneralPath, SplinePath
 from ..formulations.problem import PathProblem
 from ..world.postprocess import key_points, prune_direct, remove_collinear
 from .archive import ARCHIVE_EVERY, archive_alternatives
@@ -35,6 +35,7 @@ GRAPH_PLANNERS = ("aco", "ga", "iga")  # grid-graph / cell-sequence planners of 
 # always plans a cubic spline through free points (eq 1-4, obstacles as their outer
 # circles, §2.2), also in its 25x25 fusion world (§7.3); the other papers use grid nodes
 GRID_ENCODING = {"yang2023": "spline"}
+ENCODINGS = ("columns", "waypoints", "spline", "general")
 
 
 def algorithm_names() -> list[str]:
@@ -61,8 +62,10 @@ def make_problem(world, start, goal, *, preset: str, encoding: str | None = None
         enc = FreeWaypoints(world, s, g, m=waypoints)
     elif encoding == "spline":
         enc = SplinePath(world, s, g, m=waypoints, samples=samples)
+    elif encoding == "general":
+        enc = GeneralPath(world, s, g, m=waypoints, clearance=clearance)
     else:
-        raise ParameterError(f"encoding must be 'columns', 'waypoints' or 'spline', got {encoding!r}")
+        raise ParameterError(f"encoding must be one of {', '.join(ENCODINGS)}, got {encoding!r}")
     return PathProblem(enc, preset, clearance=clearance, constraint=constraint)
 
 
@@ -95,7 +98,12 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
 
     ``encoding`` defaults to one node per column on grids (spline handles for the
     yang2023 planners ``pso``/``ipso``, :data:`GRID_ENCODING`) and spline handles on
-    circle worlds.
+    circle worlds. ``"general"`` (:class:`GeneralPath`: ``waypoints`` via points joined by
+    geodesic roadmap legs) represents every path class on every map. When the default
+    (paper) encoding cannot represent a solution — no collision-free path with one node
+    per column exists, or the paper encoding's best path is infeasible — the run is done
+    again with the general encoding (same budget) and the result says so (``encoding``,
+    ``message``); an explicitly requested encoding is never replaced.
 
     ``init``: ``"feasible"`` starts from collision-free random paths (column nodes
     only; it stands in for the papers' obstacle-free decoders and gives every
@@ -126,13 +134,25 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
                        alternatives=alternatives, alternative_separation=alternative_separation, **params)
     from . import metaheuristics
 
+    if name == "iga" and encoding is not None:
+        raise ParameterError(f"iga evolves sequences of grid cells (li2023 §3), which already represent every "
+                             f"path class on a grid; it takes no encoding={encoding!r}. Use 'ga' (the vector "
+                             "GA) for other encodings")
     if name not in _metaheuristic_names():
         raise UnknownAlgorithmError(f"unknown path planner {algorithm!r}; known: {', '.join(algorithm_names())}")
     paper = PAPER_OF.get(name, "length")
     preset = preset or paper
     t0 = time.perf_counter()
-    if encoding is None and hasattr(world, "occ"):
-        encoding = GRID_ENCODING.get(paper, "columns")
+    chosen = encoding is not None
+    if encoding is None:
+        encoding = GRID_ENCODING.get(paper, "columns") if hasattr(world, "occ") else "spline"
+    if encoding not in ENCODINGS:
+        raise ParameterError(f"encoding must be one of {', '.join(ENCODINGS)}, got {encoding!r}")
+    note = ""
+    if encoding == "columns" and not chosen and not _columns_represent(world, s, g, clearance):
+        encoding = "general"
+        note = ("no collision-free path with one node per column exists between start and goal: planned with "
+                "encoding='general' instead")
     problem = make_problem(world, s, g, preset=preset, encoding=encoding, clearance=clearance,
                            constraint=constraint, waypoints=waypoints)
     if problem.encoding.dim == 0:
@@ -168,4 +188,27 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
                               seed=seed if isinstance(seed, int) else None, nfev=opt.nfev,
                               message=opt.message)
     result.alternatives = others
+    result.encoding = encoding
+    if note:
+        result.message = "; ".join(m for m in (note, result.message) if m)
+    if not result.feasible and not chosen and encoding != "general":
+        # the paper's encoding found no collision-free path: plan again where every class is representable
+        again = plan_path(world, s, g, algorithm=name, seed=seed, pop=pop, iters=iters, clearance=clearance,
+                          preset=preset, encoding="general", constraint=constraint, postprocess=postprocess,
+                          max_evals=max_evals, waypoints=waypoints, init="auto", alternatives=alternatives,
+                          alternative_separation=alternative_separation, **params)
+        again.message = "; ".join(m for m in (f"encoding={encoding!r} gave an infeasible path "
+                                             f"({result.message or 'collision'}): planned again with "
+                                             "encoding='general'", again.message) if m)
+        again.nfev += result.nfev
+        again.runtime_s += result.runtime_s
+        return again
     return result
+
+
+def _columns_represent(world, s, g, clearance: float) -> bool:
+    """Whether some collision-free path with one node per column joins start and goal."""
+    enc = ColumnNodes(world, s, g)
+    if enc.dim == 0:
+        return bool(world.segments_free(s[None], g[None], clearance)[0])
+    return bool(enc.feasible_transitions(clearance)[0].any())
