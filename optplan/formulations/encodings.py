@@ -530,13 +530,36 @@ class GeneralPath(PathEncoding):
 
         return walk_legs(self.succ, i, j)
 
-    def decode(self, X: np.ndarray) -> np.ndarray:
+    def decode(self, X: np.ndarray, n_points: int | None = None) -> np.ndarray:
+        """Paths ``(n, N, 2)``; ``N`` fits the batch's longest leg, or is ``n_points`` when given
+        (at least :meth:`points_bound`); short paths end in repeated goal points."""
         idx = self.nodes_of(X)
         n = len(idx)
         legs = self._walk(idx[:, :-1].ravel(), idx[:, 1:].ravel())       # (n * (m+1), L)
+        if n_points is not None:
+            L = (n_points - 1) // (self.m + 1) + 1
+            if legs.shape[1] > L:
+                raise ParameterError(f"n_points={n_points} is shorter than a decoded leg ({legs.shape[1]} nodes)")
+            legs = np.concatenate([legs, np.repeat(legs[:, -1:], L - legs.shape[1], axis=1)], axis=1)
         seq = legs[:, :-1].reshape(n, -1)                                 # each leg without its end
         seq = np.concatenate([seq, idx[:, -1:]], axis=1)
+        if n_points is not None and seq.shape[1] < n_points:
+            seq = np.concatenate([seq, np.repeat(seq[:, -1:], n_points - seq.shape[1], axis=1)], axis=1)
         return self.points[seq]
+
+    def points_bound(self) -> int:
+        """Points enough for any decoded path: ``(m + 1) * most_edges_per_leg + 1``, the most
+        edges found by walking every pair of reachable nodes at once (once per encoding)."""
+        bound = getattr(self, "_points_bound", None)
+        if bound is None:
+            r = self.reachable
+            hops = 1
+            for k in range(0, len(r), 256):  # blocks of start nodes: memory stays (256 x M)
+                i = np.repeat(r[k:k + 256], len(r))
+                j = np.tile(r, len(r[k:k + 256]))
+                hops = max(hops, self._walk(i, j).shape[1] - 1)
+            bound = self._points_bound = (self.m + 1) * hops + 1
+        return bound
 
     def waypoints(self, x: np.ndarray) -> np.ndarray:
         """The decoded path of one individual without repeated points."""
