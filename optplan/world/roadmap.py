@@ -37,7 +37,7 @@ from ..errors import ParameterError
 # segments checked per segments_free call (bounds the work arrays of the exact rule)
 EDGE_CHUNK = 20_000
 # circle worlds: polygon vertices per grown circle
-DEFAULT_RING = 24
+DEFAULT_RING = 32
 
 
 def _grid_corners(grid, clearance: float) -> tuple[np.ndarray, np.ndarray]:
