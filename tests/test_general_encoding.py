@@ -112,3 +112,18 @@ def test_map_generator_is_seeded_and_checks_its_arguments():
         generate_map("forest", 32)
     with pytest.raises(ParameterError, match="size"):
         generate_map("maze", 4)
+
+
+def test_corridor_start_decodes_to_the_geodesic_through_its_node(rooms):
+    grid, s, g = rooms
+    enc = GeneralPath(grid, s, g, m=4)
+    X = enc.sample_corridors(25, np.random.default_rng(3))
+    L = enc.leg_length(X)
+    S, G = len(enc.points) - 2, len(enc.points) - 1
+    # each individual is start -> v -> goal along geodesics: its length is D[S, v] + D[v, G] for its
+    # corridor node v, and no via node lies off that path (which would make it longer still)
+    idx = enc.nodes_of(X)
+    through = enc.table[S, idx[:, 1:-1]] + enc.table[idx[:, 1:-1], G]
+    assert np.allclose(L, through.max(axis=1))
+    assert np.all(through <= L[:, None] + 1e-9)
+    assert np.array_equal(X, enc.sample_corridors(25, np.random.default_rng(3)))

@@ -567,6 +567,29 @@ class GeneralPath(PathEncoding):
         keep = np.r_[True, np.any(np.diff(P, axis=0) != 0, axis=1)]
         return P[keep]
 
+    def sample_corridors(self, n: int, rng: np.random.Generator) -> np.ndarray:
+        """``n`` individuals, one corridor each: for a node ``v`` drawn uniformly among the
+        reachable ones, the ``m`` via points lie on the nodes of the geodesic start -> v -> goal
+        (equally spaced by node count), so the individual decodes to exactly that path.
+
+        A population drawn this way holds ``n`` corridors (the classes of the geodesics
+        through ``n`` random nodes) instead of ``n`` mostly detouring random chains; it is the
+        general encoding's stand-in for the column encoding's collision-free random start."""
+        S, G = len(self.points) - 2, len(self.points) - 1
+        v = self.reachable[rng.integers(len(self.reachable), size=n)]
+        a = self._walk(np.full(n, S), v)                       # (n, La), padded with v
+        b = self._walk(v, np.full(n, G))                       # (n, Lb), padded with G
+        la = (a != v[:, None]).sum(axis=1) + 1                 # nodes on start -> v, v included
+        lb = (b != G).sum(axis=1) + 1                          # nodes on v -> goal, goal included
+        seq = np.concatenate([a, b[:, 1:]], axis=1)            # may hold padding in the middle
+        # position k of the real sequence: k < la in a, else b[k - la + 1]
+        total = la + lb - 1
+        t = (np.arange(1, self.m + 1) / (self.m + 1))[None, :] * (total - 1)[:, None]
+        k = np.rint(t).astype(np.int64)
+        col = np.where(k < la[:, None], k, a.shape[1] + k - la[:, None])
+        nodes = np.take_along_axis(seq, col, axis=1)
+        return self.points[nodes].reshape(n, -1)
+
     def from_path(self, path: np.ndarray) -> np.ndarray:
         """Via points for a path: ``m`` of its points equally spaced by index (interior ones)."""
         P = np.asarray(path, float)

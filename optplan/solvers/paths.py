@@ -105,11 +105,12 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
     again with the general encoding (same budget) and the result says so (``encoding``,
     ``message``); an explicitly requested encoding is never replaced.
 
-    ``init``: ``"feasible"`` starts from collision-free random paths (column nodes
-    only; it stands in for the papers' obstacle-free decoders and gives every
-    algorithm the same start), ``"own"`` uses the algorithm's initialiser (e.g.
-    MISSA's chaotic map), ``"auto"`` (default) is ``"feasible"`` for column nodes
-    and ``"own"`` otherwise.
+    ``init``: ``"feasible"`` starts from collision-free random paths (column nodes;
+    it stands in for the papers' obstacle-free decoders and gives every algorithm the
+    same start) or, with the general encoding, from one random corridor per individual
+    (:meth:`GeneralPath.sample_corridors`), ``"own"`` uses the algorithm's initialiser
+    (e.g. MISSA's chaotic map), ``"auto"`` (default) is ``"feasible"`` for column nodes
+    and the general encoding and ``"own"`` otherwise.
 
     ``alternatives``: also return up to that many other valid paths of the run's
     population (snapshots every :data:`ARCHIVE_EVERY` iterations and the final one,
@@ -162,11 +163,14 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
     bounds = np.stack([problem.lower, problem.upper], axis=1)
     repair = getattr(problem.encoding, "repair", None)
     if init == "auto":
-        init = "feasible" if isinstance(problem.encoding, ColumnNodes) else "own"
+        init = "feasible" if isinstance(problem.encoding, (ColumnNodes, GeneralPath)) else "own"
     if init == "feasible":
-        if not isinstance(problem.encoding, ColumnNodes):
-            raise ParameterError("init='feasible' needs the column-node encoding")
-        init = lambda n, rng: problem.encoding.sample_feasible(n, rng, clearance)  # noqa: E731
+        if isinstance(problem.encoding, GeneralPath):
+            init = problem.encoding.sample_corridors
+        elif not isinstance(problem.encoding, ColumnNodes):
+            raise ParameterError("init='feasible' needs the column-node or the general encoding")
+        else:
+            init = lambda n, rng: problem.encoding.sample_feasible(n, rng, clearance)  # noqa: E731
     elif init == "own":
         init = None
     else:
