@@ -581,13 +581,13 @@ class GeneralPath(PathEncoding):
         b = self._walk(v, np.full(n, G))                       # (n, Lb), padded with G
         la = (a != v[:, None]).sum(axis=1) + 1                 # nodes on start -> v, v included
         lb = (b != G).sum(axis=1) + 1                          # nodes on v -> goal, goal included
-        seq = np.concatenate([a, b[:, 1:]], axis=1)            # may hold padding in the middle
-        # position k of the real sequence: k < la in a, else b[k - la + 1]
-        total = la + lb - 1
-        t = (np.arange(1, self.m + 1) / (self.m + 1))[None, :] * (total - 1)[:, None]
-        k = np.rint(t).astype(np.int64)
-        col = np.where(k < la[:, None], k, a.shape[1] + k - la[:, None])
-        nodes = np.take_along_axis(seq, col, axis=1)
+        # v itself takes the middle slot; the others spread evenly over either part (by node count)
+        m1 = (self.m - 1) // 2
+        m2 = self.m - 1 - m1
+        ka = np.rint(np.arange(1, m1 + 1)[None, :] / (m1 + 1) * (la - 1)[:, None]).astype(np.int64)
+        kb = np.rint(np.arange(1, m2 + 1)[None, :] / (m2 + 1) * (lb - 1)[:, None]).astype(np.int64)
+        nodes = np.concatenate([np.take_along_axis(a, ka, axis=1), v[:, None],
+                                np.take_along_axis(b, kb, axis=1)], axis=1)
         return self.points[nodes].reshape(n, -1)
 
     def from_path(self, path: np.ndarray) -> np.ndarray:
