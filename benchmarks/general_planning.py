@@ -30,6 +30,7 @@ import numpy as np
 
 import optplan as op
 from optplan.solvers.gaps import class_gaps
+from optplan.solvers.refine import refine_result
 from optplan.worldgen.maps import generate_map, map_query
 
 ALGORITHMS = ["ssa", "missa", "pso", "ipso", "ba", "iba", "ga", "gwo", "msiar-gwo", "woa", "aro", "dbo", "igwo"]
@@ -110,8 +111,7 @@ def part_refine(split: str, maps: int, runs: int, evals: int) -> None:
                     continue
                 feas += 1
                 before = class_gaps(grid, s, g, pure.path, exact)
-                ref = op.plan(grid, s, g, algorithm=algo, max_evals=evals, seed=seed, refine="casadi",
-                              refine_options={"tube_radius": 0.0, "starts": 1})
+                ref = refine_result(grid, pure, method="casadi", tube_radius=0.0, starts=1)
                 q = ref.length / before["class_length"] - 1 if ref.feasible else np.inf
                 ratio.append(q)
                 seed_in.append(before["in_class_gap"])
