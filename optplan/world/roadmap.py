@@ -56,16 +56,20 @@ def _grid_corners(grid, clearance: float) -> tuple[np.ndarray, np.ndarray]:
     return P[keep], quad[keep]
 
 
-def _circle_ring(world, clearance: float, ring: int) -> np.ndarray:
+def _circle_ring(world, clearance: float, ring: int) -> tuple[np.ndarray, np.ndarray]:
+    """Vertices of the circumscribed polygons that are free, and their outward unit normals."""
     C = world.circles[:, :2]
     R = (world.circles[:, 2] + world.safety + clearance) / np.cos(np.pi / ring) * (1 + 1e-9)
     ang = 2 * np.pi * (np.arange(ring) + 0.5) / ring
-    P = (C[:, None, :] + R[:, None, None] * np.stack([np.cos(ang), np.sin(ang)], axis=1)[None]).reshape(-1, 2)
-    return P[world.is_free(P, clearance)] if hasattr(world, "is_free") else P[_circle_free(world, P, clearance)]
+    u = np.stack([np.cos(ang), np.sin(ang)], axis=1)
+    P = (C[:, None, :] + R[:, None, None] * u[None]).reshape(-1, 2)
+    N = np.broadcast_to(u[None], (len(C), ring, 2)).reshape(-1, 2)
+    keep = world.is_free(P, clearance)
+    return P[keep], N[keep]
 
 
-def _circle_free(world, P: np.ndarray, clearance: float) -> np.ndarray:
-    return world.segments_free(P, P, clearance)
+# node pairs whose tautness is tested at once (bounds the pair arrays)
+PAIR_BLOCK = 2_000_000
 
 
 def _components(world, clearance: float) -> np.ndarray:
@@ -150,59 +154,102 @@ class Roadmap:
     Attributes:
         nodes: ``(M, 2)`` node positions, metres.
         edges: ``(E, 2)`` node index pairs that see each other (``i < j``).
-        dist: ``(M, M)`` geodesic distance over the edges (``inf``: not connected).
-        succ: ``(M, M)`` next node after ``i`` on a shortest way from ``i`` to ``j``.
+        dist, succ: all-pairs geodesics and next hops (properties, built on first use).
         rays: ``(K, 2)`` representative points of the interior obstacle components.
     """
 
     def __init__(self, world, clearance: float = 0.0, ring: int = DEFAULT_RING) -> None:
-        from scipy.sparse import coo_matrix
-        from scipy.sparse.csgraph import dijkstra
-
         self.world, self.clearance = world, float(clearance)
         if hasattr(world, "occ"):
             self.nodes, self.quadrants = _grid_corners(world, self.clearance)
+            self.ring = None
         else:
             if ring < 4:
                 raise ParameterError(f"ring must be >= 4 polygon vertices per circle, got {ring}")
-            self.nodes, self.quadrants = _circle_ring(world, self.clearance, ring), None
+            self.nodes, self.normals = _circle_ring(world, self.clearance, ring)
+            self.quadrants, self.ring = None, int(ring)
         self.rays = _components(world, self.clearance)
+        self.edges = self._visible_taut_edges()
+        self._dist = self._succ = None
+        self._tree = None
+
+    @classmethod
+    def of(cls, world, clearance: float = 0.0, ring: int | None = None) -> "Roadmap":
+        """The world's roadmap for ``clearance`` (and ``ring`` on circle worlds, default
+        :data:`DEFAULT_RING`), built once and kept in the world's cache."""
+        ring = DEFAULT_RING if ring is None or hasattr(world, "occ") else int(ring)
+        key = ("roadmap", float(clearance), ring)
+        rm = world._cache.get(key)
+        if rm is None:
+            rm = world._cache[key] = cls(world, clearance, ring)
+        return rm
+
+    def _all_pairs(self) -> None:
+        """All-pairs geodesics over the edges (only the general encoding needs them: built on
+        first use, ``M x M`` floats and ints)."""
+        from scipy.sparse import coo_matrix
+        from scipy.sparse.csgraph import dijkstra
+
         M = len(self.nodes)
-        I, J = np.triu_indices(M, 1)
-        if self.quadrants is not None and M:
-            I, J = self._taut_pairs(I, J)
-        keep = self.visible(self.nodes[I], self.nodes[J])
-        self.edges = np.stack([I[keep], J[keep]], axis=1)
+        if M == 0:
+            self._dist, self._succ = np.zeros((0, 0)), np.zeros((0, 0), dtype=np.int64)
+            return
         w = np.hypot(*(self.nodes[self.edges[:, 1]] - self.nodes[self.edges[:, 0]]).T)
         # a zero-length edge would vanish from the sparse matrix: give it a tiny weight
         w = np.maximum(w, 1e-12)
         G = coo_matrix((w, (self.edges[:, 0], self.edges[:, 1])), shape=(M, M)).tocsr()
-        if M:
-            self.dist, pred = dijkstra(G, directed=False, return_predecessors=True)
-            # undirected: the node before i on the way from j is i's next node towards j
-            self.succ = pred.T.copy()
-            np.fill_diagonal(self.succ, np.arange(M))
-        else:
-            self.dist, self.succ = np.zeros((0, 0)), np.zeros((0, 0), dtype=np.int64)
-        self.succ = self.succ.astype(np.int64)
-        self._tree = None
+        self._dist, pred = dijkstra(G, directed=False, return_predecessors=True)
+        # undirected: the node before i on the way from j is i's next node towards j
+        succ = pred.T.astype(np.int64)
+        np.fill_diagonal(succ, np.arange(M))
+        self._succ = succ
 
-    @classmethod
-    def of(cls, world, clearance: float = 0.0) -> "Roadmap":
-        """The world's roadmap for ``clearance``, built once and kept in the world's cache."""
-        key = ("roadmap", float(clearance))
-        rm = world._cache.get(key)
-        if rm is None:
-            rm = world._cache[key] = cls(world, clearance)
-        return rm
+    @property
+    def dist(self) -> np.ndarray:
+        """``(M, M)`` geodesic distance over the edges (``inf``: not connected)."""
+        if self._dist is None:
+            self._all_pairs()
+        return self._dist
 
-    def _taut_pairs(self, I: np.ndarray, J: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    @property
+    def succ(self) -> np.ndarray:
+        """``(M, M)`` next node after ``i`` on a shortest way from ``i`` to ``j``."""
+        if self._succ is None:
+            self._all_pairs()
+        return self._succ
+
+    def _visible_taut_edges(self) -> np.ndarray:
+        """Pairs ``i < j`` whose line is taut at both ends and whose segment is free, built in
+        blocks of rows so that memory stays bounded on large maps."""
+        M = len(self.nodes)
+        out = []
+        rows = max(1, PAIR_BLOCK // max(M, 1))
+        for a in range(0, M, rows):
+            I = np.repeat(np.arange(a, min(a + rows, M)), M)
+            J = np.tile(np.arange(M), min(a + rows, M) - a)
+            up = J > I
+            I, J = I[up], J[up]
+            ok = self._taut(I, J)
+            I, J = I[ok], J[ok]
+            keep = self.visible(self.nodes[I], self.nodes[J])
+            out.append(np.stack([I[keep], J[keep]], axis=1))
+        return np.concatenate(out) if out else np.zeros((0, 2), dtype=np.int64)
+
+    def _taut(self, I: np.ndarray, J: np.ndarray) -> np.ndarray:
+        """Whether the line through nodes ``I`` and ``J`` misses the obstacle each one wraps."""
         d = self.nodes[J] - self.nodes[I]
-        qi, qj = self.quadrants[I], self.quadrants[J]
-        # the line misses the inside of the blocked quadrant at both ends
-        ok = (d[:, 0] * qi[:, 0]) * (d[:, 1] * qi[:, 1]) <= 0
-        ok &= (d[:, 0] * qj[:, 0]) * (d[:, 1] * qj[:, 1]) <= 0
-        return I[ok], J[ok]
+        if self.quadrants is not None:
+            qi, qj = self.quadrants[I], self.quadrants[J]
+            # the line misses the inside of the blocked quadrant at both ends
+            ok = (d[:, 0] * qi[:, 0]) * (d[:, 1] * qi[:, 1]) <= 0
+            return ok & ((d[:, 0] * qj[:, 0]) * (d[:, 1] * qj[:, 1]) <= 0)
+        # polygon vertex: the line stays outside the vertex's interior angle (pi - 2 pi / ring)
+        # when its direction is within sin(pi / ring) of the tangent
+        lim = np.sin(np.pi / self.ring) * (1 + 1e-9)
+        L = np.maximum(np.hypot(d[:, 0], d[:, 1]), 1e-300)
+        ci = np.abs((d * self.normals[I]).sum(axis=1)) / L
+        cj = np.abs((d * self.normals[J]).sum(axis=1)) / L
+        return (ci <= lim) & (cj <= lim)
 
     def visible(self, A: np.ndarray, B: np.ndarray) -> np.ndarray:
         """Exact segment rule for many segments, in chunks."""
