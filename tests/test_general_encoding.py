@@ -127,3 +127,12 @@ def test_corridor_start_decodes_to_the_geodesic_through_its_node(rooms):
     assert np.allclose(L, through.max(axis=1))
     assert np.all(through <= L[:, None] + 1e-9)
     assert np.array_equal(X, enc.sample_corridors(25, np.random.default_rng(3)))
+
+
+def test_general_encoding_on_a_circle_world():
+    world = op.CircleWorld(bounds=(0, 0, 10, 10), circles=[(5, 5, 1.5), (2.5, 7, 0.8), (7.5, 3, 1.0)])
+    s, g = (0.5, 5.0), (9.5, 5.0)
+    r = op.plan(world, s, g, algorithm="pso", encoding="general", max_evals=2000, seed=0)
+    exact = op.shortest_path(world, s, g, method="visibility").length
+    assert r.feasible and r.encoding == "general"
+    assert exact - 1e-6 <= r.length <= exact * (1 / np.cos(np.pi / 32)) + 1e-6   # polygon sides, not arcs
