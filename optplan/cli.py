@@ -73,6 +73,8 @@ def _cmd_plan(args) -> int:
                                  ("turn_angle_deg", "total turn [deg]", ".1f"), ("n_turns", "turns", "d"),
                                  ("min_clearance", "min clearance [m]", ".3f"), ("runtime_s", "time [s]", ".4f"),
                                  ("feasible", "feasible", "")]))
+        if res.encoding:
+            print(f"encoding: {res.encoding}")
         if res.message:
             print(res.message)
         if args.plot:
