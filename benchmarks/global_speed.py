@@ -69,6 +69,7 @@ def city_general_speed(repeats: int = 3, seed: int = 7001, evals: int = 15000) -
     s, g = map_query(grid, seed=seed)
     t = time.perf_counter()
     rm = Roadmap.of(grid)
+    rm.dist  # the all-pairs tables the general encoding reads are part of the once-per-map build
     build = time.perf_counter() - t
     exact = op.shortest_path(grid, s, g, method="visibility")
     astar = op.shortest_path(grid, s, g, method="astar")
