@@ -43,6 +43,7 @@ _LAZY = {
     "BSpline": "optplan.programs",
     "ColumnNodes": "optplan.programs",
     "CellSequence": "optplan.programs",
+    "GeneralVias": "optplan.programs",
     "paper_program": "optplan.programs",
     "smoothing_program": "optplan.programs",
     "show_options": "optplan.programs",

@@ -55,6 +55,8 @@ def _cmd_plan(args) -> int:
         if refine is None:
             raise OptplanError("--refine-starts only applies to a refinement; add --refine casadi or --refine qp")
         refine_options["starts"] = args.refine_starts
+    if args.encoding is not None:
+        extra["encoding"] = args.encoding
     iters = extra.pop("iters", args.iters)
     res = plan(world, start, goal, algorithm=args.algo, refine=refine, seed=args.seed,
                pop=args.pop, iters=iters, clearance=args.clearance, refine_options=refine_options, **extra)
@@ -64,13 +66,21 @@ def _cmd_plan(args) -> int:
 
         plot_paths(world, {args.algo: res.path}, args.plot, title=f"{args.algo} on {Path(args.map).name}")
     if args.json:
-        print(json.dumps(res.to_json_dict()))
+        from .solvers.gaps import class_gaps
+
+        # the gap to the exact optimum, split into the corridor (class) and the shape (in class)
+        out = res.to_json_dict()
+        out.update(class_gaps(world, res.path[0] if len(res.path) else args.start,
+                              res.path[-1] if len(res.path) else args.goal, res.path, clearance=args.clearance))
+        print(json.dumps(out))
     else:
         d = res.to_dict()
         print(format_table([d], [("algorithm", "algorithm", ""), ("length", "length [m]", ".4f"),
                                  ("turn_angle_deg", "total turn [deg]", ".1f"), ("n_turns", "turns", "d"),
                                  ("min_clearance", "min clearance [m]", ".3f"), ("runtime_s", "time [s]", ".4f"),
                                  ("feasible", "feasible", "")]))
+        if res.encoding:
+            print(f"encoding: {res.encoding}")
         if res.message:
             print(res.message)
         if args.plot:
@@ -260,6 +270,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--refine-starts", type=int, default=None, metavar="K",
                    help="refine the planner's best path and up to K-1 other distinct paths of its population, "
                         "keep the shortest (1: best path only; default: casadi 3, qp 1)")
+    p.add_argument("--encoding", default=None, choices=["columns", "waypoints", "spline", "general"],
+                   help="path encoding of a metaheuristic (default: the paper's; 'general' represents every "
+                        "path class on every map, and is used automatically when the paper's cannot)")
     p.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     p.add_argument("--pop", type=int, default=30, help="population size of metaheuristics")
     p.add_argument("--iters", type=int, default=500, help="iterations of metaheuristics")

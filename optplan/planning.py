@@ -120,7 +120,10 @@ def plan(world, start, goal, algorithm: str = "astar", refine: str | None = None
             planner's own fitness (default ``"keep"``: keep it and say so in
             ``message`` and ``stages``), or smoother options such as ``n_points``.
             Ignored without ``refine``.
-        **params: extra keyword arguments for the chosen planner.
+        **params: extra keyword arguments for the chosen planner, e.g. ``encoding="general"``
+            for a metaheuristic (every path class on every map; ``op.plan`` also falls back to
+            it when the paper's encoding cannot represent a solution, and says so in
+            ``result.encoding`` and ``message``; see :func:`optplan.solvers.paths.plan_path`).
 
     Returns:
         A :class:`PlanResult`; ``feasible`` is the verdict of the exact ``validate_path``.
@@ -173,6 +176,7 @@ def plan(world, start, goal, algorithm: str = "astar", refine: str | None = None
                                  f"planner's path), got {if_worse!r}")
         seed_result = result
         result = refine_result(world, result, method=refine, clearance=clearance, seed=seed, **refine_options)
+        result.encoding = seed_result.encoding  # the refinement keeps the planner's encoding on record
         result = _judge_stages(world, start, goal, clearance, name, params.get("preset"), seed_result, result,
                                refine, if_worse)
     if result.seed is None and name not in GRAPH_METHODS and isinstance(seed, (int, np.integer)):

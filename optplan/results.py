@@ -113,6 +113,9 @@ class PlanResult(_ToDict):
             the planner optimised, ``op.paper_program``), ``length`` and ``feasible``; the
             refinement's record also has the values before it and ``worse`` (its fitness
             rose). Empty without refinement.
+        encoding: the path encoding a metaheuristic searched (``columns``, ``waypoints``,
+            ``spline``, ``general``; ``general`` also when ``op.plan`` fell back to it because
+            the paper's encoding could not represent a solution); empty for graph search.
     """
 
     algorithm: str
@@ -130,10 +133,11 @@ class PlanResult(_ToDict):
     nfev: int = 0
     alternatives: list[np.ndarray] = field(default_factory=list, repr=False)
     stages: list = field(default_factory=list)
+    encoding: str = ""
 
     NOT_IN_DICT = ("alternatives",)
     JSON_KEYS = ("algorithm", "feasible", "path", "length", "turn_angle_deg", "n_turns",
-                 "min_clearance", "runtime_s", "refined", "seed")
+                 "min_clearance", "runtime_s", "refined", "seed", "encoding")
 
 
 @dataclass

@@ -197,6 +197,13 @@ def test_summary_tables_have_gap_reference_and_tally():
     per_map, tally = summary_tables(res)
     md = per_map.markdown()
     assert "best gap [%]" in md and "exact optimum (any-angle, same start/goal): 27.5990 m" in md
+    # issue 26: the gap split into the class gap and the in-class gap, and the optimal-class share
+    col = {h: i for i, h in enumerate(per_map.header)}
+    for r in per_map.rows:
+        if r[col["mean gap [%]"]] != "-":
+            split = float(r[col["mean class gap [%]"]]) + float(r[col["mean in-class gap [%]"]])
+            assert split == pytest.approx(float(r[col["mean gap [%]"]]), abs=0.02)
+            assert "/" in r[col["optimal class"]]
     row = {r[0]: r for r in per_map.rows}
     assert row["msiar-gwo"][-1] == "ref" and row["pso-broken"][1:4] == ["5/5", "5", "0/5"]
     assert row["gwo"][-1] in "+=-"

@@ -12,7 +12,9 @@ import optplan as op
 from optplan.cli import main
 
 PLAN_KEYS = {"algorithm", "feasible", "path", "length", "turn_angle_deg", "n_turns", "min_clearance",
-             "runtime_s", "refined", "seed"}
+             "runtime_s", "refined", "seed", "encoding",
+             # issue 26: the gap to the exact optimum split into the class gap and the in-class gap
+             "exact_length", "class_length", "gap", "class_gap", "in_class_gap", "optimal_class"}
 
 
 def run_cli(*args):

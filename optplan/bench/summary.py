@@ -185,7 +185,7 @@ def summary_tables(res: ExperimentResults, metric: str | None = None) -> list[Ta
         optimum = None
         if with_gap:
             optimum = exact_optimum_of(target.spec)
-            head += ["best gap [%]", "mean gap [%]"]
+            head += ["best gap [%]", "mean gap [%]", "mean class gap [%]", "mean in-class gap [%]", "optimal class"]
         if spec.reference is not None:
             head += ["p vs reference", "sign"]
         table = Table(head, caption=f"{spec.name}: {target.name}")
@@ -202,12 +202,15 @@ def summary_tables(res: ExperimentResults, metric: str | None = None) -> list[Ta
             if with_gap:
                 cells += ([f"{100 * (vals.min() / optimum - 1):.2f}", f"{100 * (vals.mean() / optimum - 1):.2f}"]
                           if len(vals) else ["-", "-"])
+                cells += _split_cells(res, recs)
             ref_cells, few = _reference_cells(res, groups, g, name, vals, metric, spec.alpha, tally)
             cells += ref_cells
             too_few |= few
             table.rows.append(cells)
         if optimum is not None:
-            table.notes.append(f"exact optimum (any-angle, same start/goal): {optimum:.4f} m")
+            table.notes.append(f"exact optimum (any-angle, same start/goal): {optimum:.4f} m; gap = class gap (the "
+                               "corridor: the run's h-signature class optimum vs the optimum) + in-class gap (the "
+                               "shape: the path vs its class optimum)")
         if spec.kind == "optimize":
             from .runner import function_target
 
@@ -219,6 +222,15 @@ def summary_tables(res: ExperimentResults, metric: str | None = None) -> list[Ta
     if tally:
         tables.append(_tally_table(res, tally, metric))
     return tables
+
+
+def _split_cells(res: ExperimentResults, recs) -> list[str]:
+    """Mean class gap and in-class gap (%) and the share of runs in the optimum's class, from
+    the split every plan run stores (runs stored before it existed show ``-``)."""
+    cg, ig = res.values(recs, "class_gap"), res.values(recs, "in_class_gap")
+    best = res.values(recs, "optimal_class")
+    return [f"{100 * cg.mean():.2f}" if len(cg) else "-", f"{100 * ig.mean():.2f}" if len(ig) else "-",
+            f"{int(best.sum())}/{len(best)}" if len(best) else "-"]
 
 
 def _tally_table(res: ExperimentResults, tally: dict[str, dict[str, int]], metric: str) -> Table:

@@ -9,6 +9,8 @@ array operations over the population.
 * :class:`FreeWaypoints` — ``m`` free 2-D waypoints between start and goal.
 * :class:`SplinePath` — ``m`` handle points; the path is the cubic spline through
   start, handles and goal, sampled densely (yang2023 eq 3-4).
+* :class:`GeneralPath` — ``m`` via points joined by geodesic legs over the world's roadmap:
+  every path class on every grid map and circle world, always collision-free.
 """
 from __future__ import annotations
 
@@ -438,3 +440,166 @@ class SplinePath(FreeWaypoints):
 
     def waypoints(self, x: np.ndarray) -> np.ndarray:
         return self.decode(np.asarray(x, dtype=float)[None, :])[0]
+
+
+@dataclass
+class GeneralPath(PathEncoding):
+    """Any path class on any map: ``m`` via points joined by geodesic legs through the roadmap.
+
+    ``x = (x1, y1, ..., xm, ym)`` in metres inside the world bounds. Each via point is snapped
+    to the nearest node of the world's :class:`~optplan.world.roadmap.Roadmap` that the start
+    can reach (start and goal count as nodes: a via point snapped to either adds nothing),
+    and consecutive nodes are joined by their shortest way over the roadmap's visible edges.
+    So every individual decodes to a collision-free path (no repair, no penalty), the
+    metaheuristic chooses the corridor by where it puts the via points, and with ``m`` via
+    points every class whose shortest path wraps around at most ``m`` chosen corners in
+    sequence is reachable (more ``m``, more windings). The roadmap (corners, edges, all-pairs
+    distances) is built once per world and clearance and kept in the world's cache; the
+    start and goal rows are built once per encoding.
+
+    On circle worlds with many discs the roadmap uses coarser polygons (8-32 vertices per disc,
+    about 2000 nodes in all), so decoded paths are up to ``1/cos(pi/ring) - 1`` longer around
+    discs than the arcs; refinement or the class search then closes that in-class gap.
+
+    Length is a table sum (``leg_length``), exact for the decoded polyline; :meth:`decode`
+    gives fixed-size paths ``(n, N, 2)`` (repeated points pad short ones) for other terms.
+    """
+
+    m: int = 3
+    clearance: float = 0.0
+    penetration_samples = 1
+
+    def __post_init__(self) -> None:
+        from ..errors import InfeasibleQueryError
+        from ..world.roadmap import Roadmap
+
+        if int(self.m) < 1:
+            raise ParameterError(f"number of via points m must be >= 1, got {self.m}")
+        self.m = int(self.m)
+        xmin, ymin, xmax, ymax = self.world.bounds
+        self.lower = np.tile([xmin, ymin], self.m).astype(float)
+        self.upper = np.tile([xmax, ymax], self.m).astype(float)
+        # circle worlds: fewer polygon vertices per disc when there are many discs, so the
+        # all-pairs tables stay near 2000 nodes (paths around discs get a little longer)
+        ring = None if hasattr(self.world, "occ") else int(np.clip(2000 // max(len(self.world.circles), 1), 8, 32))
+        rm = self.roadmap = Roadmap.of(self.world, self.clearance, ring)
+        M = len(rm.nodes)
+        ds, es = rm.attach(self.start)
+        dg, eg = rm.attach(self.goal)
+        direct = bool(rm.visible(self.start[None], self.goal[None])[0])
+        via = ds + dg
+        k = int(via.argmin()) if M else -1
+        sg = float(np.hypot(*(self.goal - self.start))) if direct else (float(via[k]) if M else np.inf)
+        if not np.isfinite(sg):
+            raise InfeasibleQueryError("the goal is not reachable from the start through free space "
+                                       "(no chain of visible obstacle corners joins them)")
+        S, G = M, M + 1
+        D = np.full((M + 2, M + 2), np.inf)
+        D[:M, :M] = rm.dist
+        D[S, :M], D[:M, S] = ds, ds
+        D[G, :M], D[:M, G] = dg, dg
+        D[S, G] = D[G, S] = sg
+        D[S, S] = D[G, G] = 0.0
+        succ = np.full((M + 2, M + 2), -1, dtype=np.int64)
+        succ[:M, :M] = rm.succ
+        ar = np.arange(M)
+        for e, (d, ent) in ((S, (ds, es)), (G, (dg, eg))):
+            ok = ent >= 0
+            succ[e, :M] = np.where(ok, ent, -1)
+            # from node i towards the end: along the roadmap to the node the end enters by, then to it
+            succ[:M, e] = np.where(ok, np.where(ent == ar, e, rm.succ[ar, np.maximum(ent, 0)]), -1)
+        succ[S, S], succ[G, G] = S, G
+        succ[S, G] = G if direct else es[k]
+        succ[G, S] = S if direct else eg[k]
+        self.table, self.succ = D, succ
+        self.points = np.vstack([rm.nodes, self.start[None], self.goal[None]]) if M else np.stack([self.start, self.goal])
+        # via points snap only to nodes the start reaches
+        self.reachable = np.nonzero(np.isfinite(D[S]))[0]
+        from scipy.spatial import cKDTree
+
+        self._tree = cKDTree(self.points[self.reachable])
+
+    def nodes_of(self, X: np.ndarray) -> np.ndarray:
+        """Roadmap node sequence ``(n, m + 2)`` of each individual: start, snapped vias, goal."""
+        X = np.asarray(X, dtype=float).reshape(-1, self.dim)
+        n = len(X)
+        snapped = self.reachable[self._tree.query(X.reshape(-1, 2))[1]].reshape(n, self.m)
+        S, G = len(self.points) - 2, len(self.points) - 1
+        return np.concatenate([np.full((n, 1), S), snapped, np.full((n, 1), G)], axis=1)
+
+    def leg_length(self, X: np.ndarray) -> np.ndarray:
+        """Length in metres of each individual's decoded path, ``(n,)`` (table sums only)."""
+        idx = self.nodes_of(X)
+        return self.table[idx[:, :-1], idx[:, 1:]].sum(axis=1)
+
+    def _walk(self, i: np.ndarray, j: np.ndarray) -> np.ndarray:
+        from ..world.roadmap import walk_legs
+
+        return walk_legs(self.succ, i, j)
+
+    def decode(self, X: np.ndarray, n_points: int | None = None) -> np.ndarray:
+        """Paths ``(n, N, 2)``; ``N`` fits the batch's longest leg, or is ``n_points`` when given
+        (at least :meth:`points_bound`); short paths end in repeated goal points."""
+        idx = self.nodes_of(X)
+        n = len(idx)
+        legs = self._walk(idx[:, :-1].ravel(), idx[:, 1:].ravel())       # (n * (m+1), L)
+        if n_points is not None:
+            L = (n_points - 1) // (self.m + 1) + 1
+            if legs.shape[1] > L:
+                raise ParameterError(f"n_points={n_points} is shorter than a decoded leg ({legs.shape[1]} nodes)")
+            legs = np.concatenate([legs, np.repeat(legs[:, -1:], L - legs.shape[1], axis=1)], axis=1)
+        seq = legs[:, :-1].reshape(n, -1)                                 # each leg without its end
+        seq = np.concatenate([seq, idx[:, -1:]], axis=1)
+        if n_points is not None and seq.shape[1] < n_points:
+            seq = np.concatenate([seq, np.repeat(seq[:, -1:], n_points - seq.shape[1], axis=1)], axis=1)
+        return self.points[seq]
+
+    def points_bound(self) -> int:
+        """Points enough for any decoded path: ``(m + 1) * most_edges_per_leg + 1``, the most
+        edges found by walking every pair of reachable nodes at once (once per encoding)."""
+        bound = getattr(self, "_points_bound", None)
+        if bound is None:
+            r = self.reachable
+            hops = 1
+            for k in range(0, len(r), 256):  # blocks of start nodes: memory stays (256 x M)
+                i = np.repeat(r[k:k + 256], len(r))
+                j = np.tile(r, len(r[k:k + 256]))
+                hops = max(hops, self._walk(i, j).shape[1] - 1)
+            bound = self._points_bound = (self.m + 1) * hops + 1
+        return bound
+
+    def waypoints(self, x: np.ndarray) -> np.ndarray:
+        """The decoded path of one individual without repeated points."""
+        P = self.decode(np.asarray(x, dtype=float)[None, :])[0]
+        keep = np.r_[True, np.any(np.diff(P, axis=0) != 0, axis=1)]
+        return P[keep]
+
+    def sample_corridors(self, n: int, rng: np.random.Generator) -> np.ndarray:
+        """``n`` individuals, one corridor each: for a node ``v`` drawn uniformly among the
+        reachable ones, the ``m`` via points lie on the nodes of the geodesic start -> v -> goal
+        (equally spaced by node count), so the individual decodes to exactly that path.
+
+        A population drawn this way holds ``n`` corridors (the classes of the geodesics
+        through ``n`` random nodes) instead of ``n`` mostly detouring random chains; it is the
+        general encoding's stand-in for the column encoding's collision-free random start."""
+        S, G = len(self.points) - 2, len(self.points) - 1
+        v = self.reachable[rng.integers(len(self.reachable), size=n)]
+        a = self._walk(np.full(n, S), v)                       # (n, La), padded with v
+        b = self._walk(v, np.full(n, G))                       # (n, Lb), padded with G
+        la = (a != v[:, None]).sum(axis=1) + 1                 # nodes on start -> v, v included
+        lb = (b != G).sum(axis=1) + 1                          # nodes on v -> goal, goal included
+        # v itself takes the middle slot; the others spread evenly over either part (by node count)
+        m1 = (self.m - 1) // 2
+        m2 = self.m - 1 - m1
+        ka = np.rint(np.arange(1, m1 + 1)[None, :] / (m1 + 1) * (la - 1)[:, None]).astype(np.int64)
+        kb = np.rint(np.arange(1, m2 + 1)[None, :] / (m2 + 1) * (lb - 1)[:, None]).astype(np.int64)
+        nodes = np.concatenate([np.take_along_axis(a, ka, axis=1), v[:, None],
+                                np.take_along_axis(b, kb, axis=1)], axis=1)
+        return self.points[nodes].reshape(n, -1)
+
+    def from_path(self, path: np.ndarray) -> np.ndarray:
+        """Via points for a path: ``m`` of its points equally spaced by index (interior ones)."""
+        P = np.asarray(path, float)
+        inner = P[1:-1] if len(P) > 2 else P[[0]]
+        pick = inner[np.linspace(0, len(inner) - 1, self.m).round().astype(int)]
+        return np.clip(pick.ravel(), self.lower, self.upper)

@@ -179,6 +179,13 @@ class PathProblem:
                 # segment headings are tabulated too: turn terms without decoding paths
                 f = f + self._weighted_turns(terms.heading_changes_deg(enc.segment_headings().take(idx)))
             return f, v
+        enc = self.encoding
+        if hasattr(enc, "leg_length") and not self._has_turn_terms:
+            # general encoding: legs are visible roadmap edges, so the path is collision-free by
+            # construction and its length is a table sum
+            X = X.reshape(-1, enc.dim)
+            self.nfev += len(X)
+            return self.preset.length * enc.leg_length(X), np.zeros(len(X))
         paths = self.decode(X)
         self.nfev += len(paths)
         cost = self.cost_terms(paths)

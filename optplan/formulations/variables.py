@@ -15,6 +15,9 @@ fixed and never variables.
   (:meth:`Variables.relaxed`), and say so.
 * :class:`CellSequence` — li2023's cell sequence: ``via`` cells joined by 8-connected
   grid lines, so the path is a chain of adjacent cells (discrete: swarms only).
+* :class:`GeneralVias` — the general encoding: ``m`` via points joined by geodesic legs
+  over the world's roadmap; every path class on every grid and circle world, always
+  collision-free (discrete: swarms; gradient solvers get dense points through its path).
 """
 from __future__ import annotations
 
@@ -316,11 +319,48 @@ class CellSequence(Variables):
         return np.clip(X.reshape(n, -1), self.lower, self.upper)
 
 
+class GeneralVias(Variables):
+    """The general encoding (:class:`optplan.formulations.encodings.GeneralPath`) as program
+    variables: ``x = (x1, y1, ..., xm, ym)`` via points, each snapped to the nearest roadmap
+    node the start reaches, joined by shortest roadmap legs. ``clearance`` (metres) is the
+    distance the roadmap keeps from obstacles. Decoded paths have a fixed number of points
+    (the encoding's bound; short ones repeat the goal). Gradient solvers optimise dense
+    points through the decoded path instead (:meth:`relaxed`), and say so."""
+
+    smooth = False
+    affine = False
+    relax_note = "dense free points through the decoded path (snapping to roadmap nodes has no gradient)"
+
+    def __init__(self, m: int = 3, clearance: float = 0.0) -> None:
+        from ..checks import number
+
+        self.m = _count(m, "GeneralVias(m)")
+        self.clearance = number(0.0)("GeneralVias(clearance)", clearance)
+        self.name = f"GeneralVias({self.m})" if not self.clearance else f"GeneralVias({self.m}, clearance={self.clearance:g})"
+
+    def _setup(self) -> None:
+        from .encodings import GeneralPath
+
+        self.encoding = GeneralPath(self.ctx.world, self.ctx.start, self.ctx.goal, m=self.m, clearance=self.clearance)
+        self.dim = self.encoding.dim
+        self.lower, self.upper = self.encoding.lower, self.encoding.upper
+        self.n_points = self.encoding.points_bound()
+
+    def decode(self, X):
+        return self.encoding.decode(X, self.n_points)
+
+    def relaxed(self):
+        return Points(max(8, 4 * (self.m + 1))).bind(self.ctx)
+
+    def from_path(self, path):
+        return self.encoding.from_path(path)
+
+
 def as_variables(v) -> Variables:
     """``v`` when it is a variable set, else a ParameterError naming the choices."""
     if isinstance(v, Variables):
         return v
     raise ParameterError(f"variables must be op.Waypoints(k), op.Points(n), op.BSpline(ctrl, samples), "
-                         f"op.ColumnNodes() or op.CellSequence(via), got {v!r}")
+                         f"op.ColumnNodes(), op.CellSequence(via) or op.GeneralVias(m), got {v!r}")
 
 

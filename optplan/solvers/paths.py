@@ -14,7 +14,7 @@ import numpy as np
 
 from ..errors import ParameterError, UnknownAlgorithmError
 from ..papers import LENGTH, PAPERS
-from ..formulations.encodings import ColumnNodes, FreeWaypoints, SplinePath
+from ..formulations.encodings import ColumnNodes, FreeWaypoints, GeneralPath, SplinePath
 from ..formulations.problem import PathProblem
 from ..formulations.pruned import PrunedColumnFitness, check_fitness_on
 from ..world.postprocess import key_points, prune_direct, remove_collinear
@@ -28,6 +28,7 @@ GRAPH_PLANNERS = ("aco", "iaco", "ga", "iga")  # grid-graph / cell-sequence plan
 # the path model a paper's planners use on grid maps when no encoding is given
 # (yang2023: a cubic spline through free points, eq 1-4, §2.2, also in §7.3)
 GRID_ENCODING = {k: p.grid_encoding for k, p in PAPERS.items() if p.grid_encoding != "columns"}
+ENCODINGS = ("columns", "waypoints", "spline", "general")
 
 
 def algorithm_names() -> list[str]:
@@ -54,8 +55,10 @@ def make_problem(world, start, goal, *, preset: str, encoding: str | None = None
         enc = FreeWaypoints(world, s, g, m=waypoints)
     elif encoding == "spline":
         enc = SplinePath(world, s, g, m=waypoints, samples=samples)
+    elif encoding == "general":
+        enc = GeneralPath(world, s, g, m=waypoints, clearance=clearance)
     else:
-        raise ParameterError(f"encoding must be 'columns', 'waypoints' or 'spline', got {encoding!r}")
+        raise ParameterError(f"encoding must be one of {', '.join(ENCODINGS)}, got {encoding!r}")
     return PathProblem(enc, preset, clearance=clearance, constraint=constraint)
 
 
@@ -88,13 +91,19 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
 
     ``encoding`` defaults to one node per column on grids (spline handles for the
     yang2023 planners ``pso``/``ipso``, :data:`GRID_ENCODING`) and spline handles on
-    circle worlds.
+    circle worlds. ``"general"`` (:class:`GeneralPath`: ``waypoints`` via points joined by
+    geodesic roadmap legs) represents every path class on every map. When the default
+    (paper) encoding cannot represent a solution — no collision-free path with one node
+    per column exists, or the paper encoding's best path is infeasible — the run is done
+    again with the general encoding (same budget) and the result says so (``encoding``,
+    ``message``); an explicitly requested encoding is never replaced.
 
-    ``init``: ``"feasible"`` starts from collision-free random paths (column nodes
-    only; it stands in for the papers' obstacle-free decoders and gives every
-    algorithm the same start), ``"own"`` uses the algorithm's initialiser (e.g.
-    MISSA's chaotic map), ``"auto"`` (default) is ``"feasible"`` for column nodes
-    and ``"own"`` otherwise.
+    ``init``: ``"feasible"`` starts from collision-free random paths (column nodes;
+    it stands in for the papers' obstacle-free decoders and gives every algorithm the
+    same start) or, with the general encoding, from one random corridor per individual
+    (:meth:`GeneralPath.sample_corridors`), ``"own"`` uses the algorithm's initialiser
+    (e.g. MISSA's chaotic map), ``"auto"`` (default) is ``"feasible"`` for column nodes
+    and the general encoding and ``"own"`` otherwise.
 
     ``fitness_on``: ``"nodes"`` (default) scores the raw column-node path; ``"pruned"``
     scores the path after the direct-connection test, the order of chen2025 §4.3.1 (nodes,
@@ -130,13 +139,25 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
                        alternatives=alternatives, alternative_separation=alternative_separation, **params)
     from . import metaheuristics
 
+    if name == "iga" and encoding is not None:
+        raise ParameterError(f"iga evolves sequences of grid cells (li2023 §3), which already represent every "
+                             f"path class on a grid; it takes no encoding={encoding!r}. Use 'ga' (the vector "
+                             "GA) for other encodings")
     if name not in _metaheuristic_names():
         raise UnknownAlgorithmError(f"unknown path planner {algorithm!r}; known: {', '.join(algorithm_names())}")
     paper = PAPER_OF.get(name, "length")
     preset = preset or paper
     t0 = time.perf_counter()
-    if encoding is None and hasattr(world, "occ"):
-        encoding = GRID_ENCODING.get(paper, "columns")
+    chosen = encoding is not None
+    if encoding is None:
+        encoding = GRID_ENCODING.get(paper, "columns") if hasattr(world, "occ") else "spline"
+    if encoding not in ENCODINGS:
+        raise ParameterError(f"encoding must be one of {', '.join(ENCODINGS)}, got {encoding!r}")
+    note = ""
+    if encoding == "columns" and not chosen and not _columns_represent(world, s, g, clearance):
+        encoding = "general"
+        note = ("no collision-free path with one node per column exists between start and goal: planned with "
+                "encoding='general' instead")
     problem = make_problem(world, s, g, preset=preset, encoding=encoding, clearance=clearance,
                            constraint=constraint, waypoints=waypoints)
     if problem.encoding.dim == 0:
@@ -152,11 +173,14 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
                                  "refine_options={'starts': 1})")
         pruned = PrunedColumnFitness(problem)
     if init == "auto":
-        init = "feasible" if isinstance(problem.encoding, ColumnNodes) else "own"
+        init = "feasible" if isinstance(problem.encoding, (ColumnNodes, GeneralPath)) else "own"
     if init == "feasible":
-        if not isinstance(problem.encoding, ColumnNodes):
-            raise ParameterError("init='feasible' needs the column-node encoding")
-        init = lambda n, rng: problem.encoding.sample_feasible(n, rng, clearance)  # noqa: E731
+        if isinstance(problem.encoding, GeneralPath):
+            init = problem.encoding.sample_corridors
+        elif not isinstance(problem.encoding, ColumnNodes):
+            raise ParameterError("init='feasible' needs the column-node or the general encoding")
+        else:
+            init = lambda n, rng: problem.encoding.sample_feasible(n, rng, clearance)  # noqa: E731
     elif init == "own":
         init = None
     else:
@@ -182,4 +206,27 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
                               seed=seed if isinstance(seed, int) else None, nfev=opt.nfev,
                               message=opt.message)
     result.alternatives = others
+    result.encoding = encoding
+    if note:
+        result.message = "; ".join(m for m in (note, result.message) if m)
+    if not result.feasible and not chosen and encoding != "general":
+        # the paper's encoding found no collision-free path: plan again where every class is representable
+        again = plan_path(world, s, g, algorithm=name, seed=seed, pop=pop, iters=iters, clearance=clearance,
+                          preset=preset, encoding="general", constraint=constraint, postprocess=postprocess,
+                          max_evals=max_evals, waypoints=waypoints, init="auto", alternatives=alternatives,
+                          alternative_separation=alternative_separation, **params)
+        again.message = "; ".join(m for m in (f"encoding={encoding!r} gave an infeasible path "
+                                             f"({result.message or 'collision'}): planned again with "
+                                             "encoding='general'", again.message) if m)
+        again.nfev += result.nfev
+        again.runtime_s += result.runtime_s
+        return again
     return result
+
+
+def _columns_represent(world, s, g, clearance: float) -> bool:
+    """Whether some collision-free path with one node per column joins start and goal."""
+    enc = ColumnNodes(world, s, g)
+    if enc.dim == 0:
+        return bool(world.segments_free(s[None], g[None], clearance)[0])
+    return bool(enc.feasible_transitions(clearance)[0].any())

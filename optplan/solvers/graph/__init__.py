@@ -25,7 +25,7 @@ __all__ = ["METHODS", "CellPath", "cell_path", "convex_corners", "grid_search", 
 
 
 def shortest_path(world, start, goal, method: str = "astar", *, corner_cutting: bool = False,
-                  points: str = "exact", clearance: float = 0.0) -> PlanResult:
+                  points: str = "exact", clearance: float = 0.0, homotopy=None) -> PlanResult:
     """Shortest path by graph search.
 
     Args:
@@ -47,6 +47,10 @@ def shortest_path(world, start, goal, method: str = "astar", *, corner_cutting: 
             blocked cells grown by it as squares, every edge checked by the exact rule
             with the clearance (conservative: the result is feasible but may be a little
             longer than necessary, see :func:`visibility_path`).
+        homotopy: an ``(N, 2)`` feasible path from start to goal (``method="visibility"``
+            only): return the exact shortest path with the same h-signature (the same
+            winding about every obstacle component that does not touch the border;
+            :mod:`optplan.solvers.homotopy`), never longer than ``homotopy``.
 
     Raises:
         InfeasibleQueryError: start/goal outside the map, blocked, equal, or unreachable
@@ -56,6 +60,13 @@ def shortest_path(world, start, goal, method: str = "astar", *, corner_cutting: 
     if method not in METHODS:
         raise UnknownAlgorithmError(f"unknown graph method {method!r}; known: {', '.join(METHODS)}")
     t0 = time.perf_counter()
+    if homotopy is not None:
+        if method != "visibility":
+            raise ParameterError(f"homotopy= needs method='visibility' (the class search runs on the visibility "
+                                 f"roadmap), got method={method!r}")
+        from ..homotopy import homotopy_shortest_path
+
+        return homotopy_shortest_path(world, start, goal, homotopy, clearance)
     if not hasattr(world, "occ"):
         if method != "visibility":
             raise ParameterError(f"method {method!r} needs a grid map; use 'visibility' on circle worlds")

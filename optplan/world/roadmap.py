@@ -1,0 +1,295 @@
+"""A sparse roadmap of a world: geodesic distances between obstacle corners, and h-signatures.
+
+One :class:`Roadmap` per world and clearance, built on first use and kept in the world's
+own cache (``Roadmap.of(world, clearance)``), serves two things:
+
+* the general path encoding (:mod:`optplan.formulations.encodings`): any path is a chain of
+  geodesic legs between roadmap nodes, so a continuous vector of via points decodes to a
+  collision-free path in any corridor of any map;
+* the shortest path in a homotopy (h-signature) class (:mod:`optplan.solvers.homotopy`).
+
+Nodes. On a grid they are the convex obstacle corners (lattice vertices with exactly one
+blocked cell around them, the map outside counting as blocked), moved ``clearance`` away
+from their blocked cell along both axes, as the exact visibility planner uses them
+(``solvers/graph/visibility.py``); a shortest path under the segment rule bends only there.
+On a circle world they are the vertices of a regular polygon circumscribed about every
+grown circle (``ring`` per circle), so the edge between two neighbouring vertices only
+touches the circle; lengths are then at most ``1/cos(pi/ring) - 1`` longer than around the
+true arc.
+
+Edges join nodes that see each other under the one exact segment rule
+(``world.segments_free``). On grids an edge is kept only when its line is tangent to the
+blocked cell at both ends (a taut path never cuts into the corner it wraps), which keeps
+every locally shortest path.
+
+H-signature (Bhattacharya, Kumar, Likhachev 2012, §III): every obstacle component that does
+not touch the border gets a representative point and a ray from it straight up (distinct x,
+so rays never meet). The signature of a path is the vector of signed crossings of each ray
+(+1 crossing left to right). Two paths with the same ends have the same signature exactly
+when they wind the same way about every such component (the same homology class).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import ParameterError
+
+# segments checked per segments_free call (bounds the work arrays of the exact rule)
+EDGE_CHUNK = 20_000
+# circle worlds: polygon vertices per grown circle
+DEFAULT_RING = 32
+
+
+def _grid_corners(grid, clearance: float) -> tuple[np.ndarray, np.ndarray]:
+    """Convex corners in metres and their blocked quadrant ``(sx, sy)``."""
+    pad = grid.padded
+    bl, br, tl, tr = pad[:-1, :-1], pad[:-1, 1:], pad[1:, :-1], pad[1:, 1:]
+    count = bl.astype(np.int8) + br + tl + tr
+    Y, X = np.nonzero(count == 1)
+    sx = np.where(br[Y, X] | tr[Y, X], 1, -1)
+    sy = np.where(tl[Y, X] | tr[Y, X], 1, -1)
+    quad = np.stack([sx, sy], axis=1)
+    nodes = np.stack([X, Y], axis=1).astype(float) - quad * (clearance / grid.resolution)
+    P = grid.to_world(nodes)
+    keep = grid.is_free(P, clearance) if clearance > 0 else np.ones(len(P), bool)
+    # nodes on the map border are never on a shortest path (nothing to wrap around)
+    return P[keep], quad[keep]
+
+
+def _circle_ring(world, clearance: float, ring: int) -> tuple[np.ndarray, np.ndarray]:
+    """Vertices of the circumscribed polygons that are free, and their outward unit normals."""
+    C = world.circles[:, :2]
+    R = (world.circles[:, 2] + world.safety + clearance) / np.cos(np.pi / ring) * (1 + 1e-9)
+    ang = 2 * np.pi * (np.arange(ring) + 0.5) / ring
+    u = np.stack([np.cos(ang), np.sin(ang)], axis=1)
+    P = (C[:, None, :] + R[:, None, None] * u[None]).reshape(-1, 2)
+    N = np.broadcast_to(u[None], (len(C), ring, 2)).reshape(-1, 2)
+    keep = world.is_free(P, clearance)
+    return P[keep], N[keep]
+
+
+# node pairs whose tautness is tested at once (bounds the pair arrays)
+PAIR_BLOCK = 2_000_000
+
+
+def _components(world, clearance: float) -> np.ndarray:
+    """Representative points ``(K, 2)`` of the obstacle components that do not touch the border."""
+    if hasattr(world, "occ"):
+        from scipy import ndimage
+
+        occ = world.occ
+        if clearance > 0:  # cells closer than twice the clearance act as one obstacle
+            grow = int(np.ceil(clearance / world.resolution))
+            occ = ndimage.binary_dilation(occ, np.ones((2 * grow + 1,) * 2, bool))
+        labels, n = ndimage.label(occ, np.ones((3, 3), bool))  # diagonal contact joins (segment rule)
+        if n == 0:
+            return np.zeros((0, 2))
+        edge = np.unique(np.concatenate([labels[0], labels[-1], labels[:, 0], labels[:, -1]]))
+        reps = []
+        iy, ix = np.nonzero(labels)
+        lab = labels[iy, ix]
+        order = np.lexsort((iy, ix, lab))
+        first = order[np.r_[0, np.nonzero(np.diff(lab[order]))[0] + 1]]
+        for k in first:
+            if lab[k] in edge:
+                continue
+            reps.append((ix[k] + 0.5, iy[k] + 0.5))
+        pts = world.to_world(np.asarray(reps, float).reshape(-1, 2))
+    else:
+        c = world.circles
+        if not len(c):
+            return np.zeros((0, 2))
+        R = c[:, 2] + world.safety + clearance
+        D = np.hypot(*(c[:, None, :2] - c[None, :, :2]).transpose(2, 0, 1))
+        from scipy.sparse.csgraph import connected_components
+
+        n, lab = connected_components(D <= R[:, None] + R[None, :], directed=False)
+        xmin, ymin, xmax, ymax = world.bounds
+        touches = (c[:, 0] - R <= xmin + clearance) | (c[:, 0] + R >= xmax - clearance) | \
+                  (c[:, 1] - R <= ymin + clearance) | (c[:, 1] + R >= ymax - clearance)
+        bad = set(lab[touches].tolist())
+        pts = np.asarray([c[np.nonzero(lab == k)[0][0], :2] for k in range(n) if k not in bad], float).reshape(-1, 2)
+    # distinct abscissae, so that no two rays overlap
+    span = world.bounds[2] - world.bounds[0]
+    return pts + np.stack([(1 + np.arange(len(pts))) * 1e-7 * span, np.zeros(len(pts))], axis=1)
+
+
+def ray_crossings(A: np.ndarray, B: np.ndarray, rays: np.ndarray) -> np.ndarray:
+    """Signed crossings ``(n, K)`` of segments ``A[i] -> B[i]`` with the upward rays from ``rays``.
+
+    +1 when the segment crosses a ray from left to right, -1 right to left, 0 otherwise; the
+    ray's own abscissa counts as its right side, so a path that touches a ray and turns back
+    does not cross it."""
+    A, B = np.asarray(A, float).reshape(-1, 2), np.asarray(B, float).reshape(-1, 2)
+    rx, ry = rays[None, :, 0], rays[None, :, 1]
+    ax, ay, bx, by = A[:, :1], A[:, 1:], B[:, :1], B[:, 1:]
+    right = (ax < rx) & (bx >= rx)
+    left = (bx < rx) & (ax >= rx)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = (rx - ax) / (bx - ax)
+    y = ay + t * (by - ay)
+    above = y > ry
+    return (right & above).astype(np.int64) - (left & above)
+
+
+def walk_legs(succ: np.ndarray, i: np.ndarray, j: np.ndarray) -> np.ndarray:
+    """Node sequences ``(n, L)`` of the shortest ways ``i[r] -> j[r]`` in a successor table,
+    each padded with ``j[r]`` (vectorised over legs: one step of every leg at a time)."""
+    cur = np.asarray(i, dtype=np.int64).ravel().copy()
+    j = np.asarray(j, dtype=np.int64).ravel()
+    seq = [cur.copy()]
+    while np.any(cur != j):
+        cur = succ[cur, j]
+        if np.any(cur < 0):
+            raise ParameterError("roadmap leg between unconnected nodes")
+        seq.append(cur.copy())
+    return np.stack(seq, axis=1)
+
+
+class Roadmap:
+    """Nodes, visibility edges, all-pairs geodesic distances and h-signature rays of one world.
+
+    Use :meth:`of` (cached on the world); the constructor always builds anew.
+
+    Attributes:
+        nodes: ``(M, 2)`` node positions, metres.
+        edges: ``(E, 2)`` node index pairs that see each other (``i < j``).
+        dist, succ: all-pairs geodesics and next hops (properties, built on first use).
+        rays: ``(K, 2)`` representative points of the interior obstacle components.
+    """
+
+    def __init__(self, world, clearance: float = 0.0, ring: int = DEFAULT_RING) -> None:
+        self.world, self.clearance = world, float(clearance)
+        if hasattr(world, "occ"):
+            self.nodes, self.quadrants = _grid_corners(world, self.clearance)
+            self.ring = None
+        else:
+            if ring < 4:
+                raise ParameterError(f"ring must be >= 4 polygon vertices per circle, got {ring}")
+            self.nodes, self.normals = _circle_ring(world, self.clearance, ring)
+            self.quadrants, self.ring = None, int(ring)
+        self.rays = _components(world, self.clearance)
+        self.edges = self._visible_taut_edges()
+        self._dist = self._succ = None
+        self._tree = None
+
+    @classmethod
+    def of(cls, world, clearance: float = 0.0, ring: int | None = None) -> "Roadmap":
+        """The world's roadmap for ``clearance`` (and ``ring`` on circle worlds, default
+        :data:`DEFAULT_RING`), built once and kept in the world's cache."""
+        ring = DEFAULT_RING if ring is None or hasattr(world, "occ") else int(ring)
+        key = ("roadmap", float(clearance), ring)
+        rm = world._cache.get(key)
+        if rm is None:
+            rm = world._cache[key] = cls(world, clearance, ring)
+        return rm
+
+    def _all_pairs(self) -> None:
+        """All-pairs geodesics over the edges (only the general encoding needs them: built on
+        first use, ``M x M`` floats and ints)."""
+        from scipy.sparse import coo_matrix
+        from scipy.sparse.csgraph import dijkstra
+
+        M = len(self.nodes)
+        if M == 0:
+            self._dist, self._succ = np.zeros((0, 0)), np.zeros((0, 0), dtype=np.int64)
+            return
+        w = np.hypot(*(self.nodes[self.edges[:, 1]] - self.nodes[self.edges[:, 0]]).T)
+        # a zero-length edge would vanish from the sparse matrix: give it a tiny weight
+        w = np.maximum(w, 1e-12)
+        G = coo_matrix((w, (self.edges[:, 0], self.edges[:, 1])), shape=(M, M)).tocsr()
+        self._dist, pred = dijkstra(G, directed=False, return_predecessors=True)
+        # undirected: the node before i on the way from j is i's next node towards j
+        succ = pred.T.astype(np.int64)
+        np.fill_diagonal(succ, np.arange(M))
+        self._succ = succ
+
+    @property
+    def dist(self) -> np.ndarray:
+        """``(M, M)`` geodesic distance over the edges (``inf``: not connected)."""
+        if self._dist is None:
+            self._all_pairs()
+        return self._dist
+
+    @property
+    def succ(self) -> np.ndarray:
+        """``(M, M)`` next node after ``i`` on a shortest way from ``i`` to ``j``."""
+        if self._succ is None:
+            self._all_pairs()
+        return self._succ
+
+    def _visible_taut_edges(self) -> np.ndarray:
+        """Pairs ``i < j`` whose line is taut at both ends and whose segment is free, built in
+        blocks of rows so that memory stays bounded on large maps."""
+        M = len(self.nodes)
+        out = []
+        rows = max(1, PAIR_BLOCK // max(M, 1))
+        for a in range(0, M, rows):
+            I = np.repeat(np.arange(a, min(a + rows, M)), M)
+            J = np.tile(np.arange(M), min(a + rows, M) - a)
+            up = J > I
+            I, J = I[up], J[up]
+            ok = self._taut(I, J)
+            I, J = I[ok], J[ok]
+            keep = self.visible(self.nodes[I], self.nodes[J])
+            out.append(np.stack([I[keep], J[keep]], axis=1))
+        return np.concatenate(out) if out else np.zeros((0, 2), dtype=np.int64)
+
+    def _taut(self, I: np.ndarray, J: np.ndarray) -> np.ndarray:
+        """Whether the line through nodes ``I`` and ``J`` misses the obstacle each one wraps."""
+        d = self.nodes[J] - self.nodes[I]
+        if self.quadrants is not None:
+            qi, qj = self.quadrants[I], self.quadrants[J]
+            # the line misses the inside of the blocked quadrant at both ends
+            ok = (d[:, 0] * qi[:, 0]) * (d[:, 1] * qi[:, 1]) <= 0
+            return ok & ((d[:, 0] * qj[:, 0]) * (d[:, 1] * qj[:, 1]) <= 0)
+        # polygon vertex: the line stays outside the vertex's interior angle (pi - 2 pi / ring)
+        # when its direction is within sin(pi / ring) of the tangent
+        lim = np.sin(np.pi / self.ring) * (1 + 1e-9)
+        L = np.maximum(np.hypot(d[:, 0], d[:, 1]), 1e-300)
+        ci = np.abs((d * self.normals[I]).sum(axis=1)) / L
+        cj = np.abs((d * self.normals[J]).sum(axis=1)) / L
+        return (ci <= lim) & (cj <= lim)
+
+    def visible(self, A: np.ndarray, B: np.ndarray) -> np.ndarray:
+        """Exact segment rule for many segments, in chunks."""
+        out = np.zeros(len(A), dtype=bool)
+        for k in range(0, len(A), EDGE_CHUNK):
+            out[k:k + EDGE_CHUNK] = self.world.segments_free(A[k:k + EDGE_CHUNK], B[k:k + EDGE_CHUNK], self.clearance)
+        return out
+
+    def nearest(self, P: np.ndarray) -> np.ndarray:
+        """Index of the nearest node to each point ``(..., 2)`` (Euclidean, not geodesic)."""
+        if self._tree is None:
+            from scipy.spatial import cKDTree
+
+            self._tree = cKDTree(self.nodes)
+        P = np.asarray(P, float)
+        return self._tree.query(P.reshape(-1, 2))[1].reshape(P.shape[:-1])
+
+    def attach(self, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Geodesic distance from point ``p`` to every node ``(M,)`` and the node it enters the
+        roadmap by on that way ``(M,)`` (``-1``: unreachable)."""
+        p = np.asarray(p, float)
+        M = len(self.nodes)
+        if M == 0:
+            return np.zeros(0), np.zeros(0, dtype=np.int64)
+        seen = np.nonzero(self.visible(np.broadcast_to(p, (M, 2)), self.nodes))[0]
+        if seen.size == 0:
+            return np.full(M, np.inf), np.full(M, -1, dtype=np.int64)
+        hop = np.hypot(*(self.nodes[seen] - p).T)
+        total = hop[:, None] + self.dist[seen]
+        k = total.argmin(axis=0)
+        d = total[k, np.arange(M)]
+        return d, np.where(np.isfinite(d), seen[k], -1)
+
+    def leg_nodes(self, i: np.ndarray, j: np.ndarray) -> np.ndarray:
+        """Node sequences of the shortest ways ``i[r] -> j[r]`` (see :func:`walk_legs`)."""
+        return walk_legs(self.succ, i, j)
+
+    def signature(self, path: np.ndarray) -> np.ndarray:
+        """H-signature of a polyline: signed crossings of every component's ray, ``(K,)``."""
+        P = np.asarray(path, float)
+        if len(self.rays) == 0 or len(P) < 2:
+            return np.zeros(len(self.rays), dtype=np.int64)
+        return ray_crossings(P[:-1], P[1:], self.rays).sum(axis=0)
