@@ -77,7 +77,8 @@ def test_raw_node_penalty_runs_stay_infeasible_on_hou2024_env1():
     """The diagnosis: scored on the raw nodes, SSA's pull towards row 0 (eq 4's X exp(-i / (alpha T)))
     leaves the swarm on the bottom row with one blocked jump to the goal."""
     world, s, g = paper_map("hou2024_env1")
-    r = op.plan(world, s, g, algorithm="missa", seed=0, pop=60, iters=100, constraint="penalty", init="own")
+    r = op.plan(world, s, g, algorithm="missa", seed=0, pop=60, iters=100, constraint="penalty", init="own",
+                encoding="columns")
     assert not r.feasible and "collides" in r.message
 
 

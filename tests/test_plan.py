@@ -82,7 +82,7 @@ def test_column_planners_cannot_beat_the_encodings_exact_optimum():
 
 # ---------------------------------------------------------------- option checks (issue 25)
 @pytest.mark.parametrize("kwargs, names", [
-    (dict(algorithm="astar", preset="li2023"), ["'preset'", "astar takes: corner_cutting, points", "gwo"]),
+    (dict(algorithm="astar", preset="li2023"), ["'preset'", "astar takes: corner_cutting", "gwo"]),
     (dict(algorithm="iga", lambda1=2.0), ["'lambda1'", "msiar-gwo", "iga takes:"]),
     (dict(algorithm="aco", encoding="waypoints"), ["'encoding'", "aco takes:"]),
     (dict(algorithm="missa", max_evals=60, refine="qp", refine_options={"k_nearest": 3}), ["'k_nearest'", "refine='casadi'"]),

@@ -40,8 +40,8 @@ def planner_kind(name: str, world, encoding=None) -> str:
         return "graph"
     if name in ("aco", "iaco"):
         return "aco"
-    if name in ("ga", "iga") and world.is_grid and encoding in (None, "columns"):
-        return "cell-ga"
+    if name == "iga" or (name == "ga" and world.is_grid and encoding in (None, "columns")):
+        return "cell-ga"   # iga exists only on its cell chromosome; ga also runs as a swarm
     return "swarm"
 
 

@@ -96,7 +96,9 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
     (paper) encoding cannot represent a solution — no collision-free path with one node
     per column exists, or the paper encoding's best path is infeasible — the run is done
     again with the general encoding (same budget) and the result says so (``encoding``,
-    ``message``); an explicitly requested encoding is never replaced.
+    ``message``); an explicitly requested encoding is never replaced. Under ``max_evals``
+    (a hard cap on evaluations) an infeasible result is not re-planned; its message
+    names the general encoding instead.
 
     ``init``: ``"feasible"`` starts from collision-free random paths (column nodes;
     it stands in for the papers' obstacle-free decoders and gives every algorithm the
@@ -209,8 +211,12 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
     result.encoding = encoding
     if note:
         result.message = "; ".join(m for m in (note, result.message) if m)
-    if not result.feasible and not chosen and encoding != "general":
-        # the paper's encoding found no collision-free path: plan again where every class is representable
+    if not result.feasible and not chosen and encoding != "general" and max_evals is not None:
+        result.message = "; ".join(m for m in (result.message, f"encoding={encoding!r} found no collision-free path "
+                                   "within max_evals; encoding='general' represents every path class") if m)
+    elif not result.feasible and not chosen and encoding != "general":
+        # the paper's encoding found no collision-free path: plan again where every class is
+        # representable (only under an iteration budget: max_evals is a hard cap on evaluations)
         again = plan_path(world, s, g, algorithm=name, seed=seed, pop=pop, iters=iters, clearance=clearance,
                           preset=preset, encoding="general", constraint=constraint, postprocess=postprocess,
                           max_evals=max_evals, waypoints=waypoints, init="auto", alternatives=alternatives,
