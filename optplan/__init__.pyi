@@ -9,6 +9,7 @@ from optplan.planning import plan as plan
 from optplan.programs import BSpline as BSpline
 from optplan.programs import CellSequence as CellSequence
 from optplan.programs import ColumnNodes as ColumnNodes
+from optplan.programs import GeneralVias as GeneralVias
 from optplan.programs import PathProgram as PathProgram
 from optplan.programs import Points as Points
 from optplan.programs import Waypoints as Waypoints
@@ -33,4 +34,4 @@ from optplan.world.scenario import Scenario as Scenario
 from optplan.world.scenario import load_scenario as load_scenario
 
 __version__: str
-__all__ = ['BSpline', 'CellSequence', 'CircleWorld', 'ColumnNodes', 'GridMap', 'InfeasibleQueryError', 'MapFormatError', 'OptimizeResult', 'OptplanError', 'ParameterError', 'PathProgram', 'PlanResult', 'Points', 'ProgramResult', 'RobotSpec', 'Scenario', 'ScenarioError', 'SimResult', 'UnknownAlgorithmError', 'Waypoints', 'algorithms', 'compare', 'export_path', 'export_trajectory', 'load_map', 'load_scen', 'load_scenario', 'optimize', 'paper_program', 'path_metrics', 'plan', 'save_map', 'shortest_path', 'show_options', 'simulate', 'smoothing_program', 'validate_path']
+__all__ = ['BSpline', 'CellSequence', 'CircleWorld', 'ColumnNodes', 'GeneralVias', 'GridMap', 'InfeasibleQueryError', 'MapFormatError', 'OptimizeResult', 'OptplanError', 'ParameterError', 'PathProgram', 'PlanResult', 'Points', 'ProgramResult', 'RobotSpec', 'Scenario', 'ScenarioError', 'SimResult', 'UnknownAlgorithmError', 'Waypoints', 'algorithms', 'compare', 'export_path', 'export_trajectory', 'load_map', 'load_scen', 'load_scenario', 'optimize', 'paper_program', 'path_metrics', 'plan', 'save_map', 'shortest_path', 'show_options', 'simulate', 'smoothing_program', 'validate_path']
