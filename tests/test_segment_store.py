@@ -44,7 +44,7 @@ def test_every_segment_value_and_move_mask_equals_the_full_tables(clearance):
         H = world.height
         for j in range(enc.dim - 1):
             np.testing.assert_array_equal(lazy.moves(j, np.arange(H)), pruned[j])
-        # the reachability pass tests a small share of the segments
+        # the reachability pass and the band decide a small share of the segments
         assert (lazy.state != 0).mean() < 0.5
 
 

@@ -154,7 +154,8 @@ class PathProblem:
                 pen_fn = lambda seg: terms.penetration(enc.world, seg, self.clearance, enc.penetration_samples, distance=self._distance)  # noqa: E731
             store = column_segments(enc, self.clearance, pen_fn)
             cache[key] = SegmentCosts(store, self.preset.length, self._collision_penalty,
-                                      self.preset.penetration_penalty, self.preset.constraint == "penalty")
+                                      self.preset.penetration_penalty, self.preset.constraint == "penalty",
+                                      penetration=pen_fn is not None)
         self._fused = cache[key]
         return self._fused
 

@@ -27,6 +27,9 @@ from __future__ import annotations
 import numpy as np
 
 FREE, BLOCKED = 1, 2
+# inner segments changing row by at most this many rows are decided in one batch on first
+# use (ColumnSegments.prefetch_band): a run asks for most of them, one at a time otherwise
+BAND = 8
 
 
 def _free_runs(occ: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -50,7 +53,7 @@ class ColumnSegments:
     """
 
     def __init__(self, enc, clearance: float, penetration_fn=None) -> None:
-        self.enc, self.clearance, self.penetration_fn = enc, float(clearance), penetration_fn
+        self.enc, self.clearance = enc, float(clearance)
         grid = enc.world
         self.H, self.d = grid.height, enc.dim
         H, d = self.H, self.d
@@ -58,11 +61,22 @@ class ColumnSegments:
         self.size = 2 * H + self.n_inner
         # np.zeros maps untouched pages lazily: memory grows with the segments computed
         self.state = np.zeros(self.size, dtype=np.int8)
-        self.pen = np.zeros(self.size) if penetration_fn is not None else None
+        self.penetration_fn, self.pen, self.pen_known = None, None, None
+        if penetration_fn is not None:
+            self.attach_penetration(penetration_fn)
         occ = grid.occ[:, enc.columns]
         self.bottom, self.top = _free_runs(occ)
         self.free = ~occ.T                                                      # (d, H)
         self._alive = None
+        self._band_done = False
+
+    def attach_penetration(self, penetration_fn) -> None:
+        """Also keep penetration values (computed from now on for new segments, and on
+        demand for segments known before); the first function attached stays."""
+        if self.penetration_fn is None:
+            self.penetration_fn = penetration_fn
+            self.pen = np.zeros(self.size)
+            self.pen_known = np.zeros(self.size, dtype=bool)
 
     # ------------------------------------------------------------ segments
     def _ends(self, idx: np.ndarray, kind: str) -> tuple[np.ndarray, np.ndarray]:
@@ -98,6 +112,8 @@ class ColumnSegments:
     def fill(self, idx) -> None:
         """Compute the values of the segments ``idx`` (flat indices) not known yet."""
         idx = np.asarray(idx, dtype=np.int64).ravel()
+        if not self._band_done:
+            self.prefetch_band()
         todo = idx[self.state[idx] == 0]
         if todo.size == 0:
             return
@@ -121,6 +137,25 @@ class ColumnSegments:
             self.state[k] = np.where(free, FREE, BLOCKED)
             if self.pen is not None:
                 self.pen[k] = self.penetration_fn(np.stack([A, B], axis=1))
+                self.pen_known[k] = True
+
+    def prefetch_band(self, rows: int = BAND, chunk: int = 200_000) -> None:
+        """Decide at once every inner segment that changes row by at most ``rows`` and
+        that :meth:`may_be_free` does not rule out (the others are blocked without a
+        check): the moves of paths that wander, which a run asks for most. One exact
+        check per chunk instead of one per evaluation that meets a new segment."""
+        self._band_done = True
+        H, d = self.H, self.d
+        if d < 2:
+            return
+        j, r1, off = np.meshgrid(np.arange(d - 1), np.arange(H), np.arange(-rows, rows + 1), indexing="ij")
+        r2 = r1 + off
+        inside = (r2 >= 0) & (r2 < H)
+        j, r1, r2 = j[inside], r1[inside], r2[inside]
+        keep = self.may_be_free(j, r1, r2)
+        idx = self._inner_index(j[keep], r1[keep], r2[keep])
+        for a in range(0, len(idx), chunk):
+            self.fill(idx[a:a + chunk])
 
     def collisions(self, idx: np.ndarray) -> np.ndarray:
         """1.0 for blocked, 0.0 for free segments ``idx`` (computed when unknown)."""
@@ -128,8 +163,21 @@ class ColumnSegments:
         return (self.state.take(idx) == BLOCKED).astype(float)
 
     def penetration(self, idx: np.ndarray) -> np.ndarray:
-        """Penetration values of the segments ``idx`` (computed when unknown)."""
+        """Penetration values of the segments ``idx`` (computed when unknown; needs
+        :meth:`attach_penetration`)."""
         self.fill(idx)
+        missing = idx[~self.pen_known.take(idx)]
+        if missing.size:
+            missing = np.unique(missing)
+            H = self.H
+            for kind, k in (("first", missing[missing < H]),
+                            ("inner", missing[(missing >= H) & (missing < H + self.n_inner)]),
+                            ("last", missing[missing >= H + self.n_inner])):
+                if k.size:
+                    a, b = self._ends(k, kind)
+                    grid = self.enc.world
+                    self.pen[k] = self.penetration_fn(np.stack([grid.to_world(a), grid.to_world(b)], axis=1))
+                    self.pen_known[k] = True
         return self.pen.take(idx)
 
     def deltas(self, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -216,13 +264,15 @@ class ColumnSegments:
 
 def column_segments(enc, clearance: float, penetration_fn=None) -> ColumnSegments:
     """The :class:`ColumnSegments` of ``enc`` (its columns, start and goal) for
-    ``clearance``, with or without penetration values, cached on the map."""
-    key = ("column_segments", float(clearance), penetration_fn is not None, enc.columns.tobytes(),
-           np.concatenate([enc.start, enc.goal]).tobytes())
+    ``clearance``, cached on the map (one for the sampler and every program), with
+    penetration values once a ``penetration_fn`` is given."""
+    key = ("column_segments", float(clearance), enc.columns.tobytes(), np.concatenate([enc.start, enc.goal]).tobytes())
     cache = enc.world._cache
     store = cache.get(key)
     if store is None:
-        store = cache[key] = ColumnSegments(enc, clearance, penetration_fn)
+        store = cache[key] = ColumnSegments(enc, clearance)
+    if penetration_fn is not None:
+        store.attach_penetration(penetration_fn)
     return store
 
 
@@ -231,14 +281,15 @@ class SegmentCosts:
     over a :class:`ColumnSegments`, computed for the segments asked for.
 
     ``cost = length_weight * length + collision_weight * collision + penetration_weight *
-    penetration`` and ``violation = collision + penetration`` per segment (the weights
-    of the penalty terms are 0 in feasibility mode), the same element-wise operations as
-    the full tables, so a population's sums are the same numbers.
+    penetration`` (the penalty terms only when ``penalised``) and ``violation = collision
+    + penetration`` per segment (penetration 0 unless ``penetration``), the same
+    element-wise operations as the full tables, so a population's sums are the same
+    numbers.
     """
 
     def __init__(self, store: ColumnSegments, length_weight: float, collision_weight: float = 0.0,
-                 penetration_weight: float = 0.0, penalised: bool = False) -> None:
-        self.store = store
+                 penetration_weight: float = 0.0, penalised: bool = False, penetration: bool = False) -> None:
+        self.store, self.uses_penetration = store, penetration
         self.weights = (length_weight, collision_weight, penetration_weight, penalised)
         self.cost = np.zeros(store.size)
         self.violation = np.zeros(store.size)
@@ -253,7 +304,7 @@ class SegmentCosts:
         new = np.unique(idx[need])
         store = self.store
         coll = store.collisions(new)
-        pen = store.penetration(new) if store.pen is not None else np.zeros(len(new))
+        pen = store.penetration(new) if self.uses_penetration else np.zeros(len(new))
         dx, dy = store.deltas(new)
         w_len, w_coll, w_pen, penalised = self.weights
         cost = w_len * np.hypot(dx, dy)
