@@ -70,12 +70,12 @@ def _city_queries(grid):
     return {"far": far, "60 m": (grid.cell_center((ix[c], iy[c])), grid.cell_center((ix[d], iy[d])))}
 
 
-def _scale_case(case: str, size: int, query: str, conn) -> None:
+def _scale_case(case: str, size: int, query: str, conn, city_seed: int = 0) -> None:
     """One case in a fresh (spawned) process: ``(seconds, peak growth in bytes, note)``."""
     import optplan as op
     from optplan.worldgen.city import city_map
 
-    grid = city_map(size, seed=0)
+    grid = city_map(size, seed=city_seed)
     s, g = _city_queries(grid)[query]
     rss0, _ = _peak_kib()
     t0 = time.perf_counter()
@@ -127,11 +127,11 @@ SCALE_CASES = [  # (case, map size, query)
 ]
 
 
-def scale_table(timeout: float = 600.0) -> None:
+def scale_table(timeout: float = 600.0, city_seed: int = 0) -> None:
     """The cold-start table on the city maps (each case a fresh spawned process)."""
     import multiprocessing as mp
 
-    print("\n## Cold starts on a seeded city map (optplan.worldgen.city, seed 0)\n")
+    print(f"\n## Cold starts on a seeded city map (optplan.worldgen.city, seed {city_seed})\n")
     print("each case in a fresh process; memory = growth of its peak resident set over the start of the timed part. "
           "Anchors from issue 30 on a 256x256 city map: cold refine 521 s; segment tables 147 s and 14 GB. "
           "Times on a shared 2-core machine: compare rows of one run\n")
@@ -140,7 +140,7 @@ def scale_table(timeout: float = 600.0) -> None:
     ctx = mp.get_context("spawn")
     for case, size, query in SCALE_CASES:
         here, there = ctx.Pipe(duplex=False)
-        proc = ctx.Process(target=_scale_case, args=(case, size, query, there))
+        proc = ctx.Process(target=_scale_case, args=(case, size, query, there, city_seed))
         proc.start()
         if here.poll(timeout):
             t, peak, note = here.recv()
@@ -178,7 +178,8 @@ if __name__ == "__main__":
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--repeats", type=int, default=5, help="warm runs per case (default 5)")
     ap.add_argument("--scale-only", action="store_true", help="only the city-map cold-start table")
+    ap.add_argument("--city-seed", type=int, default=0, help="seed of the city maps (0 was developed on; default 0)")
     args = ap.parse_args()
     if not args.scale_only:
         main(max(args.repeats, 1))
-    scale_table()
+    scale_table(city_seed=args.city_seed)
