@@ -10,7 +10,8 @@ column empty.
 
 Table 1 (A*, 8-connected cell centres, no corner cutting): seeded maps from
 32x32 to 512x512 (random 20 % and 30 % obstacles, a maze, rooms with doors),
-one query between free cells near opposite corners. Columns: our
+one query between free cells near opposite corners, and seeded city maps
+(``optplan.worldgen.city``: blocks of buildings between streets). Columns: our
 ``shortest_path(method="astar")`` cold (first query on a fresh map: move table
 and neighbour structure built); the A* search alone (``cell_path``: the path
 between the two points, what networkx returns too) and the whole API call
@@ -22,7 +23,7 @@ Times are the best of interleaved rounds (the two cores are shared).
 
 Table 2 (the exact any-angle search ``method="visibility"``): the Moving AI
 maps of ``../shared/data`` (the scen row with the longest optimum), seeded
-random grids, and seeded circle worlds.
+random grids, seeded 256x256 city maps (corner to corner) and seeded circle worlds.
 """
 from __future__ import annotations
 
@@ -37,6 +38,7 @@ import optplan as op
 from optplan.solvers.graph import shortest_path
 from optplan.solvers.gridpath.moves import move_table
 from optplan.world.loaders import load_scen
+from optplan.worldgen.city import city_map
 
 DATA = Path(__file__).resolve().parents[1].parent / "shared" / "data" / "movingai"
 
@@ -122,6 +124,7 @@ def grid_cases(sizes):
         yield f"random 30 %", op.GridMap(random_map(n, 0.3, 2000 + n))
         yield "maze", op.GridMap(maze_map(n, 3000 + n))
         yield "rooms", op.GridMap(rooms_map(n, 4000 + n))
+        yield "city", city_map(n, seed=7000 + n)
 
 
 # ------------------------------------------------------------------ anchors
@@ -229,6 +232,10 @@ def visibility_cases(quick: bool):
         grid = op.GridMap(random_map(n, 0.2, 5000 + n))
         s, g = far_query(grid)
         yield f"random 20 % (off-centre ends)", grid, s + [0.23, -0.31], g + [-0.4, 0.17]
+    for seed in ((0,) if quick else (0, 1, 2)):
+        grid = city_map(256, seed=seed)
+        s, g = far_query(grid)
+        yield f"city (seed {seed})", grid, s, g
     for n in ((100,) if quick else (100, 400)):
         rng = np.random.default_rng(6000 + n)
         side = 10.0 * math.sqrt(n / 25)

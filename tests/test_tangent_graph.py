@@ -116,3 +116,31 @@ def test_blockwise_checks_give_the_same_optimum(monkeypatch):
     monkeypatch.setattr(tg, "PREFILTER_T", ())
     L2, poly = tg.tangent_shortest_path(w, s, g)
     assert L2 == pytest.approx(L, abs=1e-12) and op.validate_path(w, poly)
+
+
+def _random_circles(n, seed):
+    import math
+
+    rng = np.random.default_rng(seed)
+    side = 10.0 * math.sqrt(n / 25)
+    c = np.column_stack([rng.uniform(0, side, (n, 2)), rng.uniform(0.1, 0.4, n)])
+    c = c[np.hypot(c[:, 0], c[:, 1]) > c[:, 2] + 0.5]
+    c = c[np.hypot(c[:, 0] - side, c[:, 1] - side) > c[:, 2] + 0.5]
+    return op.CircleWorld((0, 0, side, side), c), side
+
+
+def test_bounded_tangent_graph_gives_the_full_graphs_optimum(monkeypatch):
+    from optplan.solvers import tangent_graph as tg
+
+    cases = []
+    for seed in range(3):
+        w, side = _random_circles(60, 90 + seed)
+        cases += [(w, (0.2, 0.2), (side - 0.2, side - 0.2)), (w, (0.2, side / 2), (side - 0.2, side / 3))]
+    # a wall with one gap far off the straight line: only the last, unbounded pass finds the way
+    wall = [(5.0, y, 0.5) for y in np.arange(0.0, 9.01, 0.9)]
+    cases.append((op.CircleWorld((0, 0, 10, 10), wall), (1.0, 1.0), (9.0, 1.0)))
+    bounded = [tg.tangent_shortest_path(w, s, g)[0] for w, s, g in cases]
+    monkeypatch.setattr(tg, "BOUND_SLACKS", ())
+    full = [tg.tangent_shortest_path(w, s, g)[0] for w, s, g in cases]
+    np.testing.assert_allclose(bounded, full, rtol=1e-12)
+    assert full[-1] > 1.6 * 8.0    # the detour exceeds every finite slack

@@ -357,7 +357,11 @@ class ColumnNodes(PathEncoding):
         """
         from ..errors import InfeasibleQueryError
 
-        first, inner, _ = self.feasible_transitions(clearance)
+        from .segment_store import column_segments
+
+        # the moves are computed for the rows drawn (the same masks as feasible_transitions)
+        moves = column_segments(self, clearance)
+        first = moves.first_moves()
         if not first.any():
             raise InfeasibleQueryError("no collision-free path with one node per column exists between start and goal; "
                                        "this encoding cannot represent a solution (try encoding='waypoints' or algorithm='aco')")
@@ -380,7 +384,7 @@ class ColumnNodes(PathEncoding):
         rows[:, 0] = pick(np.broadcast_to(first, (n, H)), np.full(n, start_row + (goal_row - start_row) / (d + 1)))
         for j in range(d - 1):
             aim = rows[:, j] + (goal_row - rows[:, j]) / (d - j)
-            rows[:, j + 1] = pick(inner[j][rows[:, j]], aim)
+            rows[:, j + 1] = pick(moves.moves(j, rows[:, j]), aim)
         return rows + 0.5
 
 

@@ -132,13 +132,16 @@ class PathProblem:
                if self._wants_penetration else 0.0)
         return coll, pen
 
-    def _segment_cost_tables(self) -> tuple[np.ndarray, np.ndarray] | None:
-        """Per-segment ``(objective, violation)`` in the column-node flat layout.
+    def _segment_costs(self):
+        """Per-segment ``(objective, violation)`` of snapped column nodes
+        (:class:`~optplan.formulations.segment_store.SegmentCosts`), or ``None`` for other
+        encodings.
 
-        With snapped column nodes, length, collision count and penetration are sums
-        over segments drawn from a finite set, so their weighted per-segment values
-        are tabulated once per map, clearance and preset (cached on the world) and
-        a population is scored by one gather per table. ``None`` for other encodings.
+        Length, collision count and penetration are sums over segments drawn from a
+        finite set, so their weighted per-segment values are kept per map, clearance and
+        preset (cached on the world) and a population is scored by one gather per array.
+        They are computed for the segments the population visits, not for every segment
+        of the map (``(d - 1) H^2`` of them: minutes and gigabytes on a 256x256 map).
         """
         enc = self.encoding
         if not (getattr(enc, "snap", False) and hasattr(enc, "segment_index")) or enc.dim == 0:
@@ -150,34 +153,34 @@ class PathProblem:
                enc.columns.tobytes(), np.concatenate([enc.start, enc.goal]).tobytes())
         cache = enc.world._cache
         if key not in cache:
+            from .segment_store import SegmentCosts, column_segments
+
             pen_fn = None
             if self._wants_penetration:
                 pen_fn = lambda seg: terms.penetration(enc.world, seg, self.clearance, enc.penetration_samples, distance=self._distance)  # noqa: E731
-            tables = enc.segment_tables(self.clearance, pen_fn)
-            coll = enc.flat_table(tables)
-            pen = enc.flat_table(tables, "_pen") if pen_fn is not None else np.zeros_like(coll)
-            cost = self.preset.length * enc.segment_lengths()
-            if self.preset.constraint == "penalty":
-                cost = cost + self._collision_penalty * coll + self.preset.penetration_penalty * pen
-            cache[key] = (cost, coll + pen)
+            store = column_segments(enc, self.clearance, pen_fn)
+            cache[key] = SegmentCosts(store, self.preset.length, self._collision_penalty,
+                                      self.preset.penetration_penalty, self.preset.constraint == "penalty",
+                                      penetration=pen_fn is not None)
         self._fused = cache[key]
         return self._fused
 
     def evaluate(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``(objective, violation)`` for a population ``X`` of shape ``(n, d)``."""
         X = np.asarray(X, dtype=float)
-        fused = self._segment_cost_tables()
+        fused = self._segment_costs()
         if fused is not None:
             enc = self.encoding
             X = X.reshape(-1, enc.dim)
             self.nfev += len(X)
             idx = enc.segment_index(enc.rows_of(X))
+            fused.fill(idx)
             # method calls and ufunc reductions: no Python wrappers in this hot path
-            f = np.add.reduce(fused[0].take(idx), axis=1)
-            v = np.add.reduce(fused[1].take(idx), axis=1)
+            f = np.add.reduce(fused.cost.take(idx), axis=1)
+            v = np.add.reduce(fused.violation.take(idx), axis=1)
             if self._has_turn_terms:
-                # segment headings are tabulated too: turn terms without decoding paths
-                f = f + self._weighted_turns(terms.heading_changes_deg(enc.segment_headings().take(idx)))
+                # segment headings are kept too: turn terms without decoding paths
+                f = f + self._weighted_turns(terms.heading_changes_deg(fused.headings(idx)))
             return f, v
         enc = self.encoding
         if hasattr(enc, "leg_length") and not self._has_turn_terms:

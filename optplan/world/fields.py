@@ -4,7 +4,7 @@
 for every sample of every individual at every iteration. Objective terms and the
 CasADi refinement instead use a signed distance field sampled on a lattice
 ``subdiv`` times finer than the map and interpolated bilinearly; it is exact at
-the lattice points (computed with the exact ``grid_clearance``) and its error in
+the lattice points (the exact ``grid_clearance``, found by a distance transform) and its error in
 between is bounded by the lattice spacing. Decisions about feasibility are never
 taken on it: results are always re-checked with the exact rule.
 """
@@ -42,21 +42,246 @@ class DistanceField:
 
 def grid_distance_field(grid, subdiv: int = 4) -> DistanceField:
     """The signed distance field of a GridMap on a lattice of ``subdiv`` points per cell
-    (cached on the map)."""
+    (cached on the map); the values are :func:`lattice_clearance`'s."""
     key = ("sdf", int(subdiv))
     cached = grid._cache.get(key)
     if cached is not None:
         return cached
     xmin, ymin, xmax, ymax = grid.bounds
-    n_x = grid.width * subdiv + 1
-    n_y = grid.height * subdiv + 1
-    xs = np.linspace(xmin, xmax, n_x)
-    ys = np.linspace(ymin, ymax, n_y)
-    X, Y = np.meshgrid(xs, ys)
-    values = grid.clearance(np.stack([X, Y], axis=-1).reshape(-1, 2)).reshape(n_y, n_x)
-    field = DistanceField(xs, ys, values)
+    xs = np.linspace(xmin, xmax, grid.width * subdiv + 1)
+    ys = np.linspace(ymin, ymax, grid.height * subdiv + 1)
+    field = DistanceField(xs, ys, lattice_clearance(grid, xs, ys, int(subdiv)))
     grid._cache[key] = field
     return field
+
+
+def _closed_cover(occ: np.ndarray, subdiv: int) -> np.ndarray:
+    """``cover[j, i]``: the lattice point ``(i, j) / subdiv`` (grid units) lies in the closed
+    square of some cell marked in ``occ``. Point ``i`` is in the closure of the cells
+    ``floor(i / subdiv)`` and ``ceil(i / subdiv) - 1`` along its axis (one cell off the
+    grid lines, two on them)."""
+    H, W = occ.shape
+    i = np.arange(W * subdiv + 1)
+    j = np.arange(H * subdiv + 1)
+    cx = [np.clip(i // subdiv, 0, W - 1), np.clip(-(-i // subdiv) - 1, 0, W - 1)]
+    cy = [np.clip(j // subdiv, 0, H - 1), np.clip(-(-j // subdiv) - 1, 0, H - 1)]
+    cover = np.zeros((len(j), len(i)), dtype=bool)
+    for a in cy:
+        rows = occ[a]
+        for b in cx:
+            cover |= rows[:, b]
+    return cover
+
+
+def _nearest_in_cover(cover: np.ndarray, g: np.ndarray, subdiv: int) -> np.ndarray:
+    """Distance (grid units) from every lattice point (grid coordinates ``g``, shape
+    ``(ny, nx, 2)``) to the nearest lattice point of ``cover``; ``inf`` without any.
+
+    The union of closed unit squares with corners on the lattice is nearest to a lattice
+    point at a lattice point (clamping a lattice point to such a square gives one), so
+    this is the exact distance to the squares. The Euclidean distance transform finds
+    that point; the distance is measured from ``g`` as ``grid_clearance`` measures it."""
+    from scipy.ndimage import distance_transform_edt
+
+    if not cover.any():
+        return np.full(cover.shape, np.inf)
+    iy, ix = distance_transform_edt(~cover, return_distances=False, return_indices=True)
+    return np.hypot(ix / subdiv - g[..., 0], iy / subdiv - g[..., 1])
+
+
+def lattice_clearance(grid, xs: np.ndarray, ys: np.ndarray, subdiv: int) -> np.ndarray:
+    """``grid.clearance`` (signed distance, metres) at the lattice ``xs`` x ``ys``
+    (``values[iy, ix]``, ``subdiv`` points per cell, from the map's bounds), in time
+    linear in the number of lattice points.
+
+    It follows ``geometry.grid_clearance`` step by step (the same grid coordinates, the
+    free test on the lattice, the same border and sign rules) but finds the nearest blocked
+    (free) square of every point with one distance transform instead of a tree query
+    per point: a 256x256 map's 4-per-cell lattice is a million points."""
+    X, Y = np.meshgrid(xs, ys)
+    p = np.stack([X, Y], axis=-1)
+    g = grid.to_grid(p)
+    border = np.minimum.reduce([g[..., 0], g[..., 1], grid.width - g[..., 0], grid.height - g[..., 1]])
+    d = np.minimum(_nearest_in_cover(_closed_cover(grid.occ, subdiv), g, subdiv), border)
+    inside_map = (g[..., 0] >= 0) & (g[..., 0] <= grid.width) & (g[..., 1] >= 0) & (g[..., 1] <= grid.height)
+    # a point is free when it lies in the closure of a free cell (``points_free``); on the
+    # lattice that is the free cells' closed cover
+    free_cover = _closed_cover(~grid.occ, subdiv)
+    in_blocked = ~free_cover & inside_map
+    if np.any(in_blocked):
+        depth = _nearest_in_cover(free_cover, g, subdiv)
+        d[in_blocked] = -depth[in_blocked]
+    outside = ~inside_map & (border < 0)
+    d[outside] = border[outside]
+    return d * grid.resolution
+
+
+def _not_a_knot_system(n: int) -> np.ndarray:
+    """Banded form (``scipy.linalg.solve_banded`` with ``(4, 4)``) of the ``(n + 2)``-square
+    system whose solution gives the uniform cubic B-spline coefficients of the not-a-knot
+    interpolant through ``n >= 5`` equally spaced values (padded with a zero at each end):
+    row 0 and row ``n + 1`` ask for a continuous third derivative at the second and the
+    second-to-last lattice point (the 4th difference of five coefficients is 0), rows
+    ``1..n`` for ``(c[i] + 4 c[i+1] + c[i+2]) / 6 = v[i]``."""
+    ab = np.zeros((9, n + 2))
+    full = np.zeros((n + 2, n + 2))
+    full[0, :5] = (1.0, -4.0, 6.0, -4.0, 1.0)
+    full[-1, -5:] = (1.0, -4.0, 6.0, -4.0, 1.0)
+    i = np.arange(n)
+    full[i + 1, i] = full[i + 1, i + 2] = 1.0 / 6.0
+    full[i + 1, i + 1] = 4.0 / 6.0
+    for r, c in zip(*np.nonzero(full)):
+        ab[4 + r - c, c] = full[r, c]
+    return ab
+
+
+def _uniform_coefficients(values: np.ndarray, axis: int) -> np.ndarray:
+    """Coefficients along ``axis`` (``n`` values -> ``n + 2`` coefficients) of the uniform
+    cubic B-spline that is the not-a-knot interpolant of ``values`` along that axis."""
+    from scipy.linalg import solve_banded
+
+    v = np.moveaxis(values, axis, 0)
+    n = v.shape[0]
+    rhs = np.zeros((n + 2,) + v.shape[1:])
+    rhs[1:-1] = v
+    return np.moveaxis(solve_banded((4, 4), _not_a_knot_system(n), rhs.reshape(n + 2, -1)).reshape(rhs.shape), 0, axis)
+
+
+def _cubic_weights(t, m):
+    """The four uniform cubic B-spline weights at the offsets ``t`` in ``[0, 1)`` of an
+    interval (``m``: numpy or casadi, the operations are the same)."""
+    s = 1 - t
+    return (s * s * s / 6, (3 * t * t * t - 6 * t * t + 4) / 6, (-3 * t * t * t + 3 * t * t + 3 * t + 1) / 6,
+            t * t * t / 6)
+
+
+# lattice squares per side of a strip tile (DistanceSpline.strip); a tile's block holds the
+# (TILE + 3)^2 coefficients its squares read
+TILE = 8
+
+
+@dataclass(frozen=True)
+class DistanceSpline:
+    """The cubic not-a-knot spline through a :class:`DistanceField` (the function CasADi's
+    ``interpolant('bspline')`` builds from the same data), as a uniform cubic B-spline.
+
+    ``coeffs[jy, jx]`` (``(ny + 2, nx + 2)``) weigh the B-splines centred one lattice step
+    before the lattice point ``(jx, jy)``; a value at ``(x, y)`` reads the 4 x 4
+    coefficients of its lattice square. For CasADi the coefficients near a path are handed
+    over as numbers (:meth:`strip`, a parameter of the NLP) and read by index
+    (:meth:`symbolic`), so neither the NLP, nor its derivatives, nor its set-up grow with
+    the map: a CasADi B-spline over the whole lattice took minutes to fit and seconds to
+    differentiate on a 256x256 map.
+    """
+
+    x0: float
+    y0: float
+    h: float
+    coeffs: np.ndarray
+
+    @property
+    def tiles(self) -> tuple[int, int]:
+        """Strip tiles along y and x: :data:`TILE` lattice squares a side."""
+        ny, nx = self.coeffs.shape[0] - 3, self.coeffs.shape[1] - 3   # lattice squares
+        return -(-ny // TILE), -(-nx // TILE)
+
+    def _cells(self, qx, qy, m):
+        ny, nx = self.coeffs.shape[0] - 3, self.coeffs.shape[1] - 3
+        u, v = (qx - self.x0) / self.h, (qy - self.y0) / self.h
+        # the lattice square of the point; outside the lattice, the edge square's cubic
+        ix = m.fmin(m.fmax(m.floor(u), 0), nx - 1)
+        iy = m.fmin(m.fmax(m.floor(v), 0), ny - 1)
+        return ix, iy, u - ix, v - iy
+
+    def __call__(self, points) -> np.ndarray:
+        """Values at points ``(..., 2)`` (numpy)."""
+        p = np.asarray(points, dtype=float)
+        ix, iy, tx, ty = self._cells(p[..., 0], p[..., 1], _NumpyOps)
+        ix, iy = ix.astype(np.int64), iy.astype(np.int64)
+        wx, wy = _cubic_weights(tx, np), _cubic_weights(ty, np)
+        C = self.coeffs
+        return sum(wy[b] * sum(wx[a] * C[iy + b, ix + a] for a in range(4)) for b in range(4))
+
+    def strip(self, path, radius: float, capacity: int | None = None) -> tuple[np.ndarray, int]:
+        """The numbers :meth:`symbolic` reads for points within ``radius`` metres of the
+        polyline ``path``: ``(parameters, blocks)``.
+
+        ``parameters`` is one vector: for every tile (row-major over :attr:`tiles`) the
+        offset of its block, then the blocks, each the ``(TILE + 3)^2`` coefficients of
+        one tile that comes within ``radius`` of the path, and first a block whose
+        coefficients are all ``radius`` (a B-spline with equal coefficients is that
+        constant), which every other tile points to: away from the strip the distance
+        reads as ``radius``, so the strip must hold every point the solver may reach.
+        ``capacity`` pads to that many blocks (the NLP's parameter has a fixed size);
+        ``blocks`` is the number needed (the capacity must be at least that)."""
+        nty, ntx = self.tiles
+        P = np.asarray(path, dtype=float).reshape(-1, 2)
+        # tiles within radius of the path: sample the path at a quarter tile and take the
+        # tiles whose box comes within radius + half a tile diagonal of a sample
+        tile_m = TILE * self.h
+        seg = np.diff(P, axis=0)
+        L = np.hypot(seg[:, 0], seg[:, 1])
+        k = np.maximum(np.ceil(L / (0.25 * tile_m)).astype(int), 1)
+        own = np.repeat(np.arange(len(seg)), k)
+        t = (np.arange(own.size) - np.repeat(np.cumsum(k) - k, k)) / np.repeat(k, k)
+        S = np.vstack([P[own] + t[:, None] * seg[own], P[-1:]]) if len(seg) else P
+        cx = self.x0 + (np.arange(ntx) + 0.5) * tile_m
+        cy = self.y0 + (np.arange(nty) + 0.5) * tile_m
+        reach = radius + 0.75 * tile_m
+        near = np.zeros((nty, ntx), dtype=bool)
+        for a in range(0, len(S), 256):
+            q = S[a:a + 256]
+            dx = np.abs(q[:, 0, None] - cx[None, :]) <= reach          # (m, ntx)
+            dy = np.abs(q[:, 1, None] - cy[None, :]) <= reach          # (m, nty)
+            near |= (dy[:, :, None] & dx[:, None, :]).any(axis=0)
+        ty, tx = np.nonzero(near)
+        blocks = len(ty) + 1
+        cap = blocks if capacity is None else int(capacity)
+        if cap < blocks:
+            raise ValueError(f"strip needs {blocks} blocks, capacity {cap}")
+        side = TILE + 3
+        C = np.pad(self.coeffs, ((0, TILE), (0, TILE)))
+        store = np.full((cap, side, side), float(radius))
+        rows = ty[:, None] * TILE + np.arange(side)[None, :]
+        cols = tx[:, None] * TILE + np.arange(side)[None, :]
+        store[1:blocks] = C[rows[:, :, None], cols[:, None, :]]
+        table = np.zeros(nty * ntx)
+        table[ty * ntx + tx] = np.arange(1, blocks) * side * side
+        return np.concatenate([table, store.ravel()]), blocks
+
+    def symbolic(self, qx, qy, params):
+        """Values at the CasADi column vectors ``qx``, ``qy`` (same length), a column,
+        reading the coefficients from ``params`` (:meth:`strip`'s vector, symbolic). The
+        tile and the lattice square enter as indices (no derivative), the weights as
+        polynomials; inside the strip this is the spline, exactly."""
+        import casadi as ca
+
+        nty, ntx = self.tiles
+        side = TILE + 3
+        ix, iy, tx, ty = self._cells(qx, qy, ca)
+        jx, jy = ca.floor(ix / TILE), ca.floor(iy / TILE)
+        base = params[jy * ntx + jx] + nty * ntx + (iy - jy * TILE) * side + (ix - jx * TILE)
+        wx, wy = _cubic_weights(tx, ca), _cubic_weights(ty, ca)
+        return sum(wy[b] * sum(wx[a] * params[base + (b * side + a)] for a in range(4)) for b in range(4))
+
+
+class _NumpyOps:
+    """The three functions :meth:`DistanceSpline._cells` needs, numpy's."""
+
+    fmin, fmax, floor = staticmethod(np.fmin), staticmethod(np.fmax), staticmethod(np.floor)
+
+
+def distance_spline(grid, subdiv: int = 4) -> DistanceSpline:
+    """The :class:`DistanceSpline` of the grid's :func:`grid_distance_field` (cached on the
+    map). Its coefficients come from banded solves, one axis at a time: time linear in
+    the lattice."""
+    key = ("sdf_spline", int(subdiv))
+    spline = grid._cache.get(key)
+    if spline is None:
+        f = grid_distance_field(grid, subdiv)
+        coeffs = _uniform_coefficients(_uniform_coefficients(f.values, 1), 0)
+        spline = grid._cache[key] = DistanceSpline(float(f.xs[0]), float(f.ys[0]), f.spacing, coeffs)
+    return spline
 
 
 def distance_function(world, subdiv: int = 4):

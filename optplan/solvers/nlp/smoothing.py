@@ -15,8 +15,10 @@ interior point and every segment midpoint.
   Opti layer, nothing to expand) and an outer loop reassigns neighbours and
   re-solves, warm-started, while the exact check finds a violation.
 * Grid maps: the signed distance field (``optplan.world.fields``) becomes a CasADi
-  ``interpolant('bspline')``, built once per map and cached (MX graph, not
-  expanded). The spline only approximates the field near corners, so ``margin``
+  cubic B-spline (:func:`optplan.world.fields.distance_spline`: the function CasADi's
+  ``interpolant('bspline')`` makes of it, fitted in time linear in the map, read as
+  4 x 4 indexed coefficients per point so that neither the NLP nor its derivatives grow
+  with the map), built once per map and cached (MX graph, not expanded). The spline only approximates the field near corners, so ``margin``
   carries a small cushion that is raised when the exact check fails.
 
 Warm starts: every successful result carries a :class:`WarmStart` (points,
@@ -102,13 +104,24 @@ def _path_expressions(ca, z, ends, N: int, w_smooth: float, per_segment: int = 1
     return J, qx, qy, seg2
 
 
-def _two_solvers(name: str, nlp: dict) -> dict:
-    """A cold-start and a warm-start IPOPT instance of the same NLP (options are fixed per instance)."""
-    import casadi as ca
+class _TwoSolvers(dict):
+    """A cold-start (``"cold"``) and a warm-start (``"warm"``) IPOPT instance of the same NLP
+    (options are fixed per instance), each created on first use: building one takes time
+    that grows with the NLP's parameter vector, and many callers never warm-start."""
 
-    base = {"print_time": False}
-    return {"cold": ca.nlpsol(name, "ipopt", nlp, {**base, "ipopt": dict(IPOPT_OPTIONS)}),
-            "warm": ca.nlpsol(name + "_warm", "ipopt", nlp, {**base, "ipopt": dict(IPOPT_WARM_OPTIONS)})}
+    def __init__(self, name: str, nlp: dict, **entries) -> None:
+        super().__init__(entries)
+        self._name, self._nlp = name, nlp
+
+    def __missing__(self, which: str):
+        if which not in ("cold", "warm"):
+            raise KeyError(which)
+        import casadi as ca
+
+        opts = IPOPT_OPTIONS if which == "cold" else IPOPT_WARM_OPTIONS
+        name = self._name if which == "cold" else self._name + "_warm"
+        solver = self[which] = ca.nlpsol(name, "ipopt", self._nlp, {"print_time": False, "ipopt": dict(opts)})
+        return solver
 
 
 def circle_nlp(N: int, K: int, w_smooth: float) -> dict:
@@ -129,43 +142,41 @@ def circle_nlp(N: int, K: int, w_smooth: float) -> dict:
         cy = ca.reshape(p[4 + M * K:4 + 2 * M * K], M, K)
         R = ca.reshape(p[4 + 2 * M * K:], M, K)
         g = ca.vertcat(*[(qx - cx[:, k]) ** 2 + (qy - cy[:, k]) ** 2 - R[:, k] ** 2 for k in range(K)])
-        _CACHE[key] = {"key": key, **_two_solvers("smooth_circles", {"x": z, "p": p, "f": J, "g": g})}
+        _CACHE[key] = _TwoSolvers("smooth_circles", {"x": z, "p": p, "f": J, "g": g}, key=key)
     return _CACHE[key]
 
 
-def _grid_interpolant(grid, subdiv: int):
-    import casadi as ca
-
-    from ...world.fields import grid_distance_field
-
-    interp = grid._cache.get(("casadi_sdf", subdiv))
-    if interp is None:
-        field_ = grid_distance_field(grid, subdiv)
-        interp = ca.interpolant("sdf", "bspline", [field_.xs, field_.ys], field_.values.ravel())
-        grid._cache[("casadi_sdf", subdiv)] = interp
-    return interp
+# grids: the distance spline is handed to the NLP for the cells within this many cells of
+# the seed (DistanceSpline.strip); farther away it reads as free. A local smoother moves
+# points along the path, not that far across it
+STRIP_CELLS = 6.0
 
 
-def grid_nlp(grid, N: int, w_smooth: float, per_segment: int = 1, subdiv: int = 4) -> dict:
-    """NLP for a grid map, built once per ``(map, N, w, per_segment)``: parameters
-    ``p = (ends (4), margin, longest segment)``; clearance constraints at the
-    interior points and at ``per_segment`` points inside each segment, and every
-    segment at most the given length (so the samples stay as close as the
-    cushion assumes)."""
-    key = ("grid", N, float(w_smooth), per_segment, subdiv)
+def grid_nlp(grid, N: int, w_smooth: float, per_segment: int = 1, subdiv: int = 4, blocks: int = 1) -> dict:
+    """NLP for a grid map, built once per ``(map, N, w, per_segment, strip capacity)``:
+    parameters ``p = (ends (4), margin, longest segment, strip)``; clearance constraints at
+    the interior points and at ``per_segment`` points inside each segment, and every
+    segment at most the given length (so the samples stay as close as the cushion
+    assumes). ``blocks``: the strip's capacity (:meth:`DistanceSpline.strip`), rounded up
+    to a power of two so that seeds of similar length share one NLP."""
+    cap = 1 << max(int(blocks) - 1, 0).bit_length()
+    key = ("grid", N, float(w_smooth), per_segment, subdiv, cap)
     cached = grid._cache.get(key)
     if cached is None:
         import casadi as ca
 
-        interp = _grid_interpolant(grid, subdiv)
+        from ...world.fields import TILE, distance_spline
+
+        spline = distance_spline(grid, subdiv)
+        nty, ntx = spline.tiles
         z = ca.MX.sym("z", 2 * (N - 2))
-        p = ca.MX.sym("p", 6)
+        p = ca.MX.sym("p", 6 + nty * ntx + cap * (TILE + 3) ** 2)
         J, qx, qy, seg2 = _path_expressions(ca, z, p[:4], N, w_smooth, per_segment)
-        g = interp(ca.horzcat(qx, qy).T).T - p[4]
+        g = spline.symbolic(qx, qy, p[6:]) - p[4]
         if SEGMENT_STRETCH is not None:
             g = ca.vertcat(g, p[5] ** 2 - seg2)
-        cached = grid._cache[key] = {"key": ("grid", id(grid)) + key[1:],
-                                     **_two_solvers("smooth_grid", {"x": z, "p": p, "f": J, "g": g})}
+        cached = grid._cache[key] = _TwoSolvers("smooth_grid", {"x": z, "p": p, "f": J, "g": g},
+                                                key=("grid", id(grid)) + key[1:], blocks=cap)
     return cached
 
 
@@ -267,10 +278,18 @@ def _solve_circles(world, X0, clearance, cushion, w_smooth, K, run, warm: WarmSt
 def _solve_grid(world, X0, clearance, cushion, w_smooth, per_segment, max_segment, run, warm: WarmStart | None):
     N = len(X0)
     ends = np.stack([X0[0], X0[-1]])
-    nlp = grid_nlp(world, N, w_smooth, per_segment)
+    from ...world.fields import distance_spline
+
+    # the strip holds the seed and the warm start's points, whichever the solve starts from
+    near = X0 if warm is None else np.vstack([X0, warm.points])
+    radius = STRIP_CELLS * world.resolution
+    spline = distance_spline(world)
+    _, blocks = spline.strip(near, radius)
+    nlp = grid_nlp(world, N, w_smooth, per_segment, blocks=blocks)
+    strip, _ = spline.strip(near, radius, nlp["blocks"])
     lbx, ubx = _box_bounds(world, N, 0.0)
-    args = dict(p=np.concatenate([ends.ravel(), [clearance + cushion, max_segment]]), lbx=lbx, ubx=ubx, lbg=0.0,
-                ubg=np.inf)
+    args = dict(p=np.concatenate([ends.ravel(), [clearance + cushion, max_segment], strip]), lbx=lbx, ubx=ubx,
+                lbg=0.0, ubg=np.inf)
     if warm is not None and warm.key == nlp["key"]:
         X = np.vstack([ends[0], warm.points[1:-1], ends[1]])
         sol = run(nlp["warm"], x0=_pack(X), lam_x0=warm.lam_x, lam_g0=warm.lam_g, **args)
