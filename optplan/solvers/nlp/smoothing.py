@@ -50,15 +50,15 @@ from ..smoother import SmoothResult, WarmStart, check_seed_ends, default_points,
 IPOPT_OPTIONS = {
     "print_level": 0,
     "sb": "yes",
-    # measured on the paper maps (benchmarks/refine_solvers.py --ipopt-options): adaptive mu
-    # needs fewer iterations than monotone from a cold start; limited-memory Hessians stall
+    # adaptive mu: fewer iterations than monotone from a cold start; limited-memory Hessians
+    # stall (benchmarks/refine_solvers.py; docs/measurements.md)
     "mu_strategy": "adaptive",
     "tol": 1e-6,
     "max_iter": 300,
 }
 # grids: no segment may grow beyond this multiple of the seed's point spacing. Without
 # the cap IPOPT sometimes stretches one segment across a corner the samples cannot see
-# (measured: 28/36 grid seeds valid on the first try, 3 fallbacks; with it 36/36)
+# (docs/measurements.md)
 SEGMENT_STRETCH = 1.5
 # from a previous primal-dual solution: keep the point where it is (tiny bound pushes)
 # and start with a small barrier parameter instead of re-centring
@@ -320,10 +320,9 @@ def smooth_path(world, seed_path, clearance: float = 0.0, n_points: int | None =
         clearance: required distance to obstacles, metres.
         n_points: resampled points (default: about 4 per cell or per 0.25 m, 20-100).
         w_smooth: weight of the squared second differences.
-        k_nearest: circles per point in the constraints (circle worlds). Measured on 8
-            yang2023 seeds: K = 2 needs the fewest IPOPT iterations (164 vs 180 for K = 4,
-            257 for K = 6) and never more than one neighbour round; the outer loop adds
-            rounds when a path nears a third circle.
+        k_nearest: circles per point in the constraints (circle worlds); 2 needs the
+            fewest IPOPT iterations (docs/measurements.md), and the outer loop adds rounds
+            when a path nears a third circle.
         cushion: extra margin over ``clearance`` at the sampled points. Constraints
             hold at sample points ``h`` apart, so a straight piece between two
             samples can come closer to an obstacle than either sample: by up to ``h/2``
@@ -332,19 +331,16 @@ def smooth_path(world, seed_path, clearance: float = 0.0, n_points: int | None =
             check passes on the first try.
         grid_samples: constrained points inside each segment on grids (the cushion
             shrinks with the spacing; more samples cost constraint evaluations, not
-            variables). Measured on 36 grid seeds (A*, MSIAR-GWO, MISSA on the 12 grid
-            paper maps) with the polish on: 1 and 2 give the same gaps and first-try
-            validity (36/36), 1 takes half the CPU time.
+            variables); 1 and 2 give the same gaps with the polish on, 1 at half the
+            cost (docs/measurements.md).
         warm_start: a previous result (or its ``.warm``) of a solve with the same
             number of points: IPOPT starts from its points and multipliers (the new
             seed's start and goal replace the old ends). Ignored when the sizes differ.
         polish: after a valid NLP solution, run the QP corridor smoother
             (:func:`optplan.solvers.qp.smooth_path_qp`) from it. The NLP keeps the
             sampling cushion away from every corner; the corridor pass works on the
-            exact geometry and removes it (measured on A* seeds of the grid paper
-            maps: gap to the optimum 1.21 % -> 0.11 % on hou2024_env2, 0.85 % -> 0.31 %
-            on li2023_60, for 4-30 ms). Default: on for grids, off for circle worlds
-            (there the cushion is ~1e-3 m and the pass gains nothing measurable).
+            exact geometry and removes it (docs/measurements.md). Default: on for grids,
+            off for circle worlds (there the cushion is ~1e-3 m).
 
     Returns:
         SmoothResult; ``success`` only when the result passed ``validate_path``.
