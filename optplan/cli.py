@@ -74,7 +74,8 @@ def _cmd_plan(args) -> int:
 
 
 def _add_simulate_arguments(parser) -> None:
-    parser.add_argument("scenario", help="scenario YAML file or the name of a shipped scenario")
+    parser.add_argument("scenario", help="scenario YAML file, the name of a shipped scenario, or a generated "
+                                            "family drawn from --seed (clutter, clutter-movers)")
     parser.add_argument("--global", dest="global_planner", default="astar",
                         help="global planner (see 'optplan algorithms'); default astar (visibility on circle worlds)")
     parser.add_argument("--local", dest="local_planner", default="dwa",
@@ -93,11 +94,10 @@ def _cmd_simulate(args) -> int:
     """Run ``optplan simulate``; returns the exit status: 0 when the robot reached the goal
     with no collision, :data:`EXIT_GOAL_MISSED` (1) when it did not (stuck, timed out or
     collided; the outcome is printed all the same)."""
-    from .sim.closed_loop import realized_scenario, simulate
+    from .sim.closed_loop import realized_scenario, scenario_for, simulate
     from .sim.experiments import plan_global
-    from .world.scenario import load_scenario
 
-    scenario = load_scenario(args.scenario)
+    scenario = scenario_for(args.scenario, args.seed)
     options = {}
     if args.subgoals:
         options["subgoals"] = args.subgoals
