@@ -193,18 +193,44 @@ class QPDWAPlanner(DWAPlanner):
         return float(out[0]), float(out[1]), float(out[2]) if self.n_u == 3 else 0.0
 
     # ------------------------------------------------------------------ refinement
+    def _committed(self, step: Step, i: int) -> int:
+        """Rollout points of sample ``i`` the robot is committed to: those it passes before
+        it can stop if it keeps the command for the reaction time and then brakes
+        (at most ``qp_horizon``). Later points are re-planned before they are reached;
+        constraining them at fixed times only rewards slowing down, which in clutter, where
+        every constant-command trajectory meets an obstacle within a second, froze the robot
+        in front of every passage (issue 27)."""
+        roll = step.roll
+        speed = float(roll.speed[i]) if roll.profile is None else float(roll.profile[i].max())
+        t_commit = self._reaction() + speed / self.robot.a_max + roll.dt
+        t_cap = min(self.options["qp_horizon"], t_commit)
+        return max(1, min(roll.z.shape[1], int(math.ceil(t_cap / roll.dt - 1e-9))))
+
+    def _margins(self, ctx: LocalContext, points: np.ndarray) -> np.ndarray:
+        """Static margin (m) the QP asks for at each complex point: ``qp_margin``, but never
+        more than the global path offers next to it (its clearance at the nearest path point).
+        A passage the global path threads with 3 cm to spare cannot be driven with 15 cm;
+        asking for it made the QP trade all speed for margin and stop at the gap."""
+        from .critics import point_at_arc, project_on_path
+
+        path = ctx.global_path
+        s, _ = project_on_path(path, points, complex(ctx.state.x, ctx.state.y), 2.0)
+        near = point_at_arc(path, s)
+        offered = np.asarray(ctx.static_distance(np.column_stack([near.real, near.imag])), float).ravel()
+        return np.clip(offered - self.robot.radius, 0.0, self.options["qp_margin"])
+
     def _rows(self, ctx: LocalContext, step: Step, i: int):
-        """Linearised clearance rows ``(grad (k, n_u), gap0 (k,))`` at sample ``i``."""
+        """Linearised clearance rows ``(grad (k, n_u), gap0 (k,), margin (k,))`` at sample ``i``."""
         o = self.options
         roll = step.roll
-        H = max(1, min(roll.z.shape[1], int(round(o["qp_horizon"] / roll.dt))))
+        H = self._committed(step, i)
         z = roll.z[i, :H]
         # dz/du by forward differences of the planner's own rollout (constant or ramped)
         v, w, vy, h = roll.v[i], roll.w[i], roll.vy[i], 1e-4
         r = self.rollout_of(ctx.state, [v, v + h, v], [vy, vy, vy + h], [w, w + h])
         zz = r.z[:, :H]  # rows: (v,w) (v,w+h) (v+h,w) (v+h,w+h) (vy+h,w) (vy+h,w+h)
         dz = [(zz[2] - zz[0]) / h, (zz[1] - zz[0]) / h, (zz[4] - zz[0]) / h][:self.n_u]
-        grads, gaps = [], []
+        grads, gaps, margins = [], [], []
         R = self.robot.radius
         if len(step.mover_r) and o["qp_rows_moving"]:
             d = np.abs(z[None, :] - step.movers[:, :H]) - step.mover_r[:, None] - R  # (K, H)
@@ -218,6 +244,7 @@ class QPDWAPlanner(DWAPlanner):
                 nrm = nrm / abs(nrm) if abs(nrm) > 0 else 1.0
                 grads.append([(np.conj(nrm) * dzc[t]).real for dzc in dz])
                 gaps.append(g[k])
+                margins.append(o["qp_margin"])
         if o["qp_rows_static"]:
             sg = step.static_gap[i, :H]
             picked: list[int] = []
@@ -228,10 +255,12 @@ class QPDWAPlanner(DWAPlanner):
                     picked.append(int(t))
             if picked:
                 grad_z = static_gradient(ctx, z[picked])
+                margins.extend(self._margins(ctx, z[picked]).tolist())
                 for q, t in enumerate(picked):
                     grads.append([(np.conj(grad_z[q]) * dzc[t]).real for dzc in dz])
                     gaps.append(sg[t])
-        return np.asarray(grads, dtype=float).reshape(-1, self.n_u), np.asarray(gaps, dtype=float)
+        return (np.asarray(grads, dtype=float).reshape(-1, self.n_u), np.asarray(gaps, dtype=float),
+                np.asarray(margins, dtype=float))
 
     def _legal_after_filters(self, check: Step) -> bool:
         """Whether the (single) trajectory of ``check`` passes the preset's filters."""
@@ -245,7 +274,7 @@ class QPDWAPlanner(DWAPlanner):
                info: dict) -> tuple[float, float, float]:
         """The QP refinement of the sampled command ``u0`` (falls back to ``u0``)."""
         i = info["index"]
-        grads, gaps = self._rows(ctx, step, i)
+        grads, gaps, margins = self._rows(ctx, step, i)
         if len(gaps) == 0:
             info["qp"] = "inactive"
             return u0
@@ -259,7 +288,7 @@ class QPDWAPlanner(DWAPlanner):
         k = len(gaps)
         rows[:k, :n_u] = grads
         rows[:k, n_u] = 1.0
-        lb[:k] = o["qp_margin"] - gaps + grads @ x0
+        lb[:k] = margins - gaps + grads @ x0
         dense = np.vstack([np.eye(n), rows])
         q = np.r_[-self._W * x0, _SLACK_LINEAR]
         lower = np.r_[lo, 0.0, lb]
@@ -279,11 +308,11 @@ class QPDWAPlanner(DWAPlanner):
         x = np.clip(x_opt[:n_u], lo, hi)
         u = (float(x[0]), float(x[1]), float(x[2]) if n_u == 3 else 0.0)
         check = self._assess(ctx, self.rollout_of(ctx.state, [u[0]], [u[2]], [u[1]]))
-        H = max(1, min(step.roll.z.shape[1], int(round(o["qp_horizon"] / step.roll.dt))))
+        H = max(self._committed(step, i), self._committed(check, 0))
         # the rows constrain the plain predicted gaps, so judge the result on those
         gap_new = np.minimum(check.static_gap[0, :H], check.dyn_gap[0, :H]).min()
         gap_old = np.minimum(step.static_gap[i, :H], step.dyn_gap[i, :H]).min()
-        worse = gap_new < min(gap_old, o["qp_margin"]) - 1e-9
+        worse = gap_new < min(gap_old, margins.min()) - 1e-9
         if not check.admissible[0] or check.mover_contact[0] < step.mover_contact[i] or worse:
             info["qp"] = "fallback: refined command failed the rollout check"
             return u0
