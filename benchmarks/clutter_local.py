@@ -36,11 +36,15 @@ def run_world(task: tuple[str, int, tuple[str, ...], str]) -> list[dict]:
     """Every planner on one generated world: one row per run."""
     from optplan.sim.closed_loop import scenario_for, simulate
     from optplan.sim.experiments import barn_score, optimal_time, plan_global
+    from optplan.solvers.graph import shortest_path
+    from optplan.worldgen.clutter import family_options
 
     family, seed, planners, nav = task
     sc = scenario_for(family, seed)
-    gp = plan_global(sc, "astar", None, seed)
-    ot = optimal_time(gp, sc.robot)
+    gp = plan_global(sc, "astar", None, seed, family_options(family).get("global_options"))
+    # OT: the shortest route the footprint has, whatever the global planner preferred
+    ot = optimal_time(shortest_path(sc.world, sc.start[:2], sc.goal, method="astar", clearance=sc.robot.radius),
+                      sc.robot)
     rows = []
     for planner in planners:
         qp: dict[str, int] = {}

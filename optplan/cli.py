@@ -104,7 +104,10 @@ def _cmd_simulate(args) -> int:
     if args.progress:
         options["progress"] = True
     refine = None if args.refine == "none" else args.refine
-    plan = plan_global(scenario, args.global_planner, refine, args.seed)
+    from .worldgen.clutter import family_options
+
+    plan = plan_global(scenario, args.global_planner, refine, args.seed,
+                       family_options(args.scenario).get("global_options"))
     res = simulate(scenario, global_planner=args.global_planner, local_planner=args.local_planner, refine=refine,
                    seed=args.seed, global_plan=plan, **options)
     if args.gif:

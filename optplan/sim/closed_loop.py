@@ -35,7 +35,7 @@ from ..nav.navigator import Navigator, preset_defaults
 from ..results import SimResult
 from ..world.robot import Command, RobotState
 from ..world.scenario import Scenario, load_scenario
-from ..worldgen.clutter import family_scenario
+from ..worldgen.clutter import family_options, family_scenario
 from ..worldgen.scenarios import realize
 from .environment import SimEnvironment
 from .kinematics import step_pose
@@ -133,6 +133,7 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
     unknown = sorted(set(options) - set(OPTIONS))
     if unknown:
         raise ParameterError(f"unknown simulate option(s) {unknown}; known: {', '.join(OPTIONS)}")
+    options = {**family_options(scenario), **options}
     sc = scenario_for(scenario, seed)
     if "time_limit" in options:
         sc = replace(sc, time_limit=options["time_limit"])

@@ -87,7 +87,7 @@ def run_local(scenarios, planners, runs: int, global_planner: str = "astar", ref
         One :class:`LocalRuns` per scenario and planner, in that order.
     """
     from ..errors import OptplanError
-    from ..worldgen.clutter import FAMILIES
+    from ..worldgen.clutter import FAMILIES, family_options
     from .closed_loop import scenario_for, simulate
 
     out: list[LocalRuns] = []
@@ -100,7 +100,9 @@ def run_local(scenarios, planners, runs: int, global_planner: str = "astar", ref
             seed = seed0 + k
             if generated:
                 sc = scenario_for(spec, seed)
-            gp = plan_global(sc, global_planner, refine, seed, global_options)
+            gp = plan_global(sc, global_planner, refine, seed,
+                             global_options if global_options is not None or not generated
+                             else family_options(spec).get("global_options"))
             for p in planners:
                 if sets[p].error:
                     continue
