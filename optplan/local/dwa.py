@@ -40,6 +40,7 @@ from .window import Window, dynamic_window, sample_grid
 
 
 _PINNED = 0.05  # m: a robot whose admissible forward samples all stop within this is pinned
+_ESCAPE_DONE = 0.2  # rad: an escape turn ends when the robot faces this close to the way out
 
 
 @dataclass(frozen=True)
@@ -166,6 +167,7 @@ class DWAPlanner(MoverSweepSource):
         self.steps = max(1, int(round(self.options["horizon"] / self.rollout_dt)))
         self.omni = bool(self.options["omni"]) and robot.model == "omni" and robot.vy_max > 0
         self.last: Command | None = None
+        self.escape_heading: float | None = None  # rad: the way out of an escape turn under way
 
     # ------------------------------------------------------------------ set-up helpers
     @staticmethod
@@ -205,6 +207,7 @@ class DWAPlanner(MoverSweepSource):
     def reset(self, state: RobotState, global_path: np.ndarray) -> None:
         """Forget the previous run (adaptive limits, alignment, previous command)."""
         self.last = None
+        self.escape_heading = None
         for m in self.mechanisms:
             m.reset(self.view, state, global_path)
 
@@ -300,6 +303,7 @@ class DWAPlanner(MoverSweepSource):
         pool = cand if cand.any() else step.admissible
         turn = self._escape_turn(step, pool)
         if turn is not None:
+            self.escape_heading = float(step.aux.get("escape_heading", self.escape_heading))
             return turn, {"mode": "escape-turn", "index": turn, "n_candidates": int(pool.sum()),
                           "free_distance": float(step.free_distance[turn])}
         if not cand.any() and step.admissible.any():
@@ -343,12 +347,25 @@ class DWAPlanner(MoverSweepSource):
         turns that all leave the robot in the same place: either way the robot stays.
         Turning up the clearance gradient makes the way out admissible on a later step."""
         roll, ctx = step.roll, step.ctx
-        forward = step.admissible & (roll.speed > 0)
-        if not pool.any() or (step.free_distance[forward] >= _PINNED).any():
-            return None  # a way forward exists
-        grad = static_gradient(ctx, [complex(ctx.state.x, ctx.state.y)])[0]
-        away = math.atan2(grad.imag, grad.real)
-        need = math.remainder(away - ctx.state.theta, 2 * math.pi)
+        if not pool.any():
+            return None
+        if self.escape_heading is not None:
+            # an escape is finished once the robot faces the way out: turning back towards the
+            # goal after every small turn (the way the cost terms lead) pinned it again at
+            # once, and it swung to and fro in place until its stuck budget ran out
+            away = self.escape_heading
+            need = math.remainder(away - ctx.state.theta, 2 * math.pi)
+            if abs(need) <= _ESCAPE_DONE:
+                self.escape_heading = None
+                return None
+        else:
+            forward = step.admissible & (roll.speed > 0)
+            if (step.free_distance[forward] >= _PINNED).any():
+                return None  # a way forward exists
+            grad = static_gradient(ctx, [complex(ctx.state.x, ctx.state.y)])[0]
+            away = math.atan2(grad.imag, grad.real)
+            need = math.remainder(away - ctx.state.theta, 2 * math.pi)
+        step.aux["escape_heading"] = away
         miss = np.abs(need - roll.w * ctx.dt)
         miss[~pool] = np.inf
         return int(np.argmin(miss))
