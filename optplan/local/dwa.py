@@ -355,7 +355,9 @@ class DWAPlanner(MoverSweepSource):
             # once, and it swung to and fro in place until its stuck budget ran out
             away = self.escape_heading
             need = math.remainder(away - ctx.state.theta, 2 * math.pi)
-            if abs(need) <= _ESCAPE_DONE:
+            # ... or once a mover is predicted to meet some candidate: the mover rules decide then
+            # (holding the turn in place let a crossing mover drive into the robot)
+            if abs(need) <= _ESCAPE_DONE or not step.mover_free[pool].all():
                 self.escape_heading = None
                 return None
         else:
