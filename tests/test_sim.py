@@ -321,6 +321,9 @@ def test_a_non_finite_mover_position_stops_the_run_instead_of_hiding_the_mover(m
 
     sc = open_room(dynamic_obstacles=[{"radius": 0.4, "waypoints": [[5, 3], [6, 3]], "speed": 1.0}])
     monkeypatch.setattr(DynamicObstacle, "state", lambda self, t, bounds: (np.full(2, np.nan), np.zeros(2)))
+    # the simulator tabulates its movers at the control instants through states()
+    monkeypatch.setattr(DynamicObstacle, "states",
+                        lambda self, t, bounds: (np.full((len(t), 2), np.nan), np.zeros((len(t), 2))))
     with pytest.raises(ScenarioError, match="dynamic obstacle 0"):
         op.simulate(sc, local_planner=Replay([]), subgoals="goal")
     env = SimEnvironment(open_room())
