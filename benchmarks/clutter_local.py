@@ -52,7 +52,7 @@ def run_world(task: tuple[str, int, tuple[str, ...], str]) -> list[dict]:
         def count(t, state, info, qp=qp):
             status = info["command"].info.get("qp")
             if status is not None:
-                key = "used" if status == "solved" else "inactive" if status == "inactive" else "fallback"
+                key = "used" if status.startswith("solved") else "inactive" if status == "inactive" else "fallback"
                 qp[key] = qp.get(key, 0) + 1
 
         opts = dict(SHARED_NAV) if nav == "shared" else {}
