@@ -156,7 +156,8 @@ def _plot_simulation(args, realized_scenario, scenario, plan, res) -> None:
 
 
 def _add_simulate_arguments(parser) -> None:
-    parser.add_argument("scenario", help="scenario YAML file or the name of a shipped scenario")
+    parser.add_argument("scenario", help="scenario YAML file, the name of a shipped scenario, or a generated "
+                                            "family drawn from --seed (clutter, clutter-movers)")
     parser.add_argument("--global", dest="global_planner", default="astar",
                         help="global planner (see 'optplan algorithms'); default astar (visibility on circle worlds)")
     parser.add_argument("--local", dest="local_planner", default="dwa",
@@ -178,19 +179,21 @@ def _cmd_simulate(args) -> int:
     """Run ``optplan simulate``; returns the exit status: 0 when the robot reached the goal
     with no collision, :data:`EXIT_GOAL_MISSED` (1) when it did not (stuck, timed out or
     collided; the outcome is printed all the same)."""
-    from .sim.closed_loop import realized_scenario, simulate
+    from .sim.closed_loop import realized_scenario, scenario_for, simulate
     from .sim.experiments import plan_global
-    from .world.scenario import load_scenario
 
     _check_seed(args.seed)
-    scenario = load_scenario(args.scenario)
+    scenario = scenario_for(args.scenario, args.seed)
     options = {}
     if args.subgoals:
         options["subgoals"] = args.subgoals
     if args.progress:
         options["progress"] = True
     refine = None if args.refine == "none" else args.refine
-    plan = plan_global(scenario, args.global_planner, refine, args.seed)
+    from .worldgen.clutter import family_options
+
+    plan = plan_global(scenario, args.global_planner, refine, args.seed,
+                       family_options(args.scenario).get("global_options"))
     res = simulate(scenario, global_planner=args.global_planner, local_planner=args.local_planner, refine=refine,
                    seed=args.seed, global_plan=plan, **options)
     if args.gif:

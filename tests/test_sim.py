@@ -321,6 +321,9 @@ def test_a_non_finite_mover_position_stops_the_run_instead_of_hiding_the_mover(m
 
     sc = open_room(dynamic_obstacles=[{"radius": 0.4, "waypoints": [[5, 3], [6, 3]], "speed": 1.0}])
     monkeypatch.setattr(DynamicObstacle, "state", lambda self, t, bounds: (np.full(2, np.nan), np.zeros(2)))
+    # the simulator tabulates its movers at the control instants through states()
+    monkeypatch.setattr(DynamicObstacle, "states",
+                        lambda self, t, bounds: (np.full((len(t), 2), np.nan), np.zeros((len(t), 2))))
     with pytest.raises(ScenarioError, match="dynamic obstacle 0"):
         op.simulate(sc, local_planner=Replay([]), subgoals="goal")
     env = SimEnvironment(open_room())
@@ -328,3 +331,26 @@ def test_a_non_finite_mover_position_stops_the_run_instead_of_hiding_the_mover(m
         env.moving_gap(np.zeros(2), np.ones(2), np.array([[np.nan, 1.0, 0, 0, 0.3]]), np.array([[1.0, 1.0, 0, 0, 0.3]]))
     with pytest.raises(ParameterError, match="non-finite"):
         env.static_check(np.array([[0.5, 0.5], [np.nan, 0.5]]))
+
+
+def test_the_movers_table_equals_each_movers_closed_form_at_every_control_instant():
+    from dataclasses import replace
+
+    from optplan.world.scenario import DynamicObstacle
+    from optplan.worldgen.scenarios import realize
+
+    movers = [DynamicObstacle(0.3, start=np.array([5.0, 5.0]), velocity=np.array([0.7, -0.4]), at_border=m)
+              for m in ("bounce", "stop", "pass")]
+    movers += [DynamicObstacle(0.3, waypoints=np.array([[1, 1], [1, 1], [4, 1], [4, 3]], float), speed=0.5,
+                               loop=loop, phase=0.3) for loop in (True, False)]
+    for sc in (realize(load_scenario("li2023_exp2_3"), 3),
+               replace(load_scenario("yang2023_idwa_crossing"), dynamic=movers, timing_jitter=0.0)):
+        env = SimEnvironment(sc)
+        for k in range(0, int(sc.time_limit / sc.dt) + 1, 7):
+            t = k * sc.dt
+            exact = np.array([[*ob.state(t, env.bounds)[0], *ob.state(t, env.bounds)[1], ob.radius]
+                              for ob in sc.dynamic])
+            assert np.array_equal(env.movers(t), exact), (sc.name, k)
+        off_grid = 0.05
+        assert np.array_equal(env.movers(off_grid)[:, :2],
+                              np.array([ob.state(off_grid, env.bounds)[0] for ob in sc.dynamic]))

@@ -155,9 +155,13 @@ def _scenario_target(target_json: str, inputs: str | None = None):
 
 @functools.lru_cache(maxsize=16)
 def _load_scenario_target(target_json: str, inputs: str):
+    """The Scenario of a file or shipped name; a generated family's name stays a name (its
+    world depends on the run's seed: ``optplan.sim.closed_loop.scenario_for``)."""
     from ..world.scenario import load_scenario
+    from ..worldgen.clutter import FAMILIES
 
-    return load_scenario(json.loads(target_json)["scenario"])
+    name = json.loads(target_json)["scenario"]
+    return name if isinstance(name, str) and name in FAMILIES else load_scenario(name)
 
 
 @functools.lru_cache(maxsize=64)
@@ -167,9 +171,13 @@ def _shared_global_plan(target_json: str, inputs: str, algorithm: str, refine: s
     per worker process and shared by the runs that differ only in the local planner
     (``optplan.sim.experiments.plan_global``); planning is seeded, so sharing changes no number,
     it only saves the metaheuristic's time."""
+    from ..sim.closed_loop import scenario_for
     from ..sim.experiments import plan_global
+    from ..worldgen.clutter import family_options
 
-    return plan_global(_scenario_target(target_json, inputs), algorithm, refine, seed, json.loads(options_json))
+    target = _scenario_target(target_json, inputs)
+    options = json.loads(options_json) or family_options(target).get("global_options")
+    return plan_global(scenario_for(target, seed), algorithm, refine, seed, options)
 
 
 def _run_simulate(rec) -> tuple[Any, dict]:

@@ -414,9 +414,12 @@ def _parse_targets(kind: str, raw: dict, base_dir: Path, where: str, from_file: 
                     from ..world.scenario import scenario_names
                 except ImportError:  # no scenario layer: the run itself reports it
                     scenario_names = None
-                if scenario_names is not None and Path(it).stem not in scenario_names():
-                    raise ScenarioError(f"{where}: scenario {it!r} is neither a file (relative to the spec) nor a "
-                                        f"shipped scenario ({', '.join(scenario_names()) or 'none shipped'})")
+                from ..worldgen.clutter import FAMILIES  # generated families: a new world per seed
+
+                if scenario_names is not None and Path(it).stem not in scenario_names() and it not in FAMILIES:
+                    raise ScenarioError(f"{where}: scenario {it!r} is neither a file (relative to the spec), a "
+                                        f"shipped scenario ({', '.join(scenario_names()) or 'none shipped'}) nor "
+                                        f"a generated family ({', '.join(FAMILIES)})")
             out.append(TargetSpec(Path(it).stem if it.endswith((".yaml", ".yml")) else it, {"scenario": sc}))
     else:
         from ..formulations.functions import NAMES

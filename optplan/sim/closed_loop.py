@@ -35,6 +35,7 @@ from ..nav.navigator import Navigator, preset_defaults
 from ..results import SimResult
 from ..world.robot import Command, RobotState
 from ..world.scenario import Scenario, load_scenario
+from ..worldgen.clutter import family_options, family_scenario
 from ..worldgen.scenarios import realize
 from .environment import SimEnvironment
 from .kinematics import step_pose
@@ -79,6 +80,14 @@ def _progress_printer(every: float) -> Callable:
     return report
 
 
+def scenario_for(scenario, seed=0) -> Scenario:
+    """The scenario a run with ``seed`` uses: a generated family's world for that seed
+    (``"clutter"``, ``"clutter-movers"``: :data:`optplan.worldgen.clutter.FAMILIES`), else
+    ``load_scenario(scenario)`` (a Scenario, a file path or a shipped name)."""
+    generated = family_scenario(scenario, seed) if isinstance(scenario, str) else None
+    return generated if generated is not None else load_scenario(scenario)
+
+
 def simulate(scenario: Scenario | str, global_planner: str = "astar", local_planner: Any = "dwa",
              refine: str | None = None, seed=0, **options) -> SimResult:
     """Run the robot of ``scenario`` from start to goal in closed loop.
@@ -88,7 +97,9 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
     gives the same world for plotting).
 
     Args:
-        scenario: a :class:`Scenario` or a path / shipped name for ``load_scenario``.
+        scenario: a :class:`Scenario`, a path / shipped name for ``load_scenario``, or a
+            generated family's name (``"clutter"``, ``"clutter-movers"``: the world is
+            drawn from ``seed``, :func:`scenario_for`).
         global_planner: ``op.plan`` algorithm on the known map (``astar`` means
             ``visibility`` on circle worlds). The robot radius is the clearance
             (zero if no valid path keeps it; ``SimResult.message`` says so).
@@ -122,7 +133,8 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
     unknown = sorted(set(options) - set(OPTIONS))
     if unknown:
         raise ParameterError(f"unknown simulate option(s) {unknown}; known: {', '.join(OPTIONS)}")
-    sc = load_scenario(scenario)
+    options = {**family_options(scenario), **options}
+    sc = scenario_for(scenario, seed)
     if "time_limit" in options:
         sc = replace(sc, time_limit=options["time_limit"])
     robot, dt = sc.robot, sc.dt
@@ -238,7 +250,7 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
 def realized_scenario(scenario, seed, global_plan) -> Scenario:
     """The world a run of ``op.simulate(scenario, seed=seed, global_plan=global_plan)`` meets:
     random obstacles drawn from ``seed`` on the global path (with the exact start and goal)."""
-    sc = load_scenario(scenario)
+    sc = scenario_for(scenario, seed)
     nav = Navigator(sc.world, sc.robot, sc.start[:2], sc.goal)
     nav.plan_initial(global_plan)
     return realize(sc, seed, path=nav.path)

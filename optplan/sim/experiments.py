@@ -5,9 +5,11 @@ one scenario and seed the global plan (the slow part with a metaheuristic) is ma
 once and shared by every local planner, so the planners are compared on the same
 global path and the same random obstacles. :func:`local_table` prints one row per
 scenario and planner: success (goal reached with no collision), runs that reached
-the goal, runs with a collision, timeouts, stuck runs, and the means of time, path
+the goal, runs with a collision, timeouts, stuck runs, the means of time, path
 length and local-planner step time over the successful runs (all runs when none
-succeeded, marked so). Nothing is hidden: failing planners get their rows too.
+succeeded, marked so), and the BARN score (:func:`barn_score`). Nothing is hidden:
+failing planners get their rows too. Generated scenario families (``"clutter"``,
+``"clutter-movers"``) are drawn anew for every seed.
 """
 from __future__ import annotations
 
@@ -27,10 +29,33 @@ class LocalRuns:
     planner: str
     results: list[SimResult] = field(default_factory=list)
     error: str = ""
+    optimal_times: list[float] = field(default_factory=list)  # OT of each run, s (see barn_score)
+
+    @property
+    def barn_scores(self) -> list[float]:
+        """:func:`barn_score` of each run (runs without a known OT are left out)."""
+        return [barn_score(r, ot) for r, ot in zip(self.results, self.optimal_times)]
 
     @property
     def successes(self) -> list[SimResult]:
         return [r for r in self.results if r.reached and r.collisions == 0]
+
+
+def barn_score(result: SimResult, optimal_time: float) -> float:
+    """The BARN benchmark's score of one run (Perille et al. 2020; issue 27's form):
+    ``1{success} * OT / clip(AT, 2 OT, 8 OT)``, with ``AT`` the run's time and ``OT`` the
+    optimal traversal time (the shortest path for the footprint over ``v_max``). A run that
+    reaches the goal without collision in at most twice OT scores 0.5; slower runs score
+    less, down to 0.125 at 8 OT and beyond; failed runs score 0."""
+    if not (result.reached and result.collisions == 0) or not optimal_time > 0:
+        return 0.0
+    return float(optimal_time / np.clip(result.time_s, 2 * optimal_time, 8 * optimal_time))
+
+
+def optimal_time(plan_result, robot) -> float:
+    """BARN's OT of a run, s: the length of its initial global plan (A* with the robot radius
+    as clearance in the closed loop) over ``robot.v_max``."""
+    return float(plan_result.length) / float(robot.v_max)
 
 
 def plan_global(scenario, global_planner: str = "astar", refine=None, seed: int = 0, global_options: dict | None = None):
@@ -62,22 +87,29 @@ def run_local(scenarios, planners, runs: int, global_planner: str = "astar", ref
         One :class:`LocalRuns` per scenario and planner, in that order.
     """
     from ..errors import OptplanError
-    from ..world.scenario import load_scenario
-    from .closed_loop import simulate
+    from ..worldgen.clutter import FAMILIES, family_options
+    from .closed_loop import scenario_for, simulate
 
     out: list[LocalRuns] = []
     for spec in scenarios:
-        sc = load_scenario(spec)
-        sets = {p: LocalRuns(sc.name, p) for p in planners}
+        generated = isinstance(spec, str) and spec.lower() in FAMILIES
+        sc = None if generated else scenario_for(spec)
+        name = spec.lower() if generated else sc.name
+        sets = {p: LocalRuns(name, p) for p in planners}
         for k in range(runs):
             seed = seed0 + k
-            gp = plan_global(sc, global_planner, refine, seed, global_options)
+            if generated:
+                sc = scenario_for(spec, seed)
+            gp = plan_global(sc, global_planner, refine, seed,
+                             global_options if global_options is not None or not generated
+                             else family_options(spec).get("global_options"))
             for p in planners:
                 if sets[p].error:
                     continue
                 try:
                     sets[p].results.append(simulate(sc, global_planner=global_planner, local_planner=p, refine=refine,
                                                     seed=seed, global_plan=gp, **options))
+                    sets[p].optimal_times.append(optimal_time(gp, sc.robot))
                 except (ImportError, OptplanError) as exc:  # a planner that cannot run gets an honest row
                     sets[p].error = f"{type(exc).__name__}: {exc}"
             if progress:
@@ -94,12 +126,12 @@ def local_table(sets: list[LocalRuns], title: str = "") -> str:
     if title:
         lines += [f"## {title}", ""]
     lines += ["| scenario | local planner | runs | success [%] | reached | with collision | timeouts | stuck | "
-              "mean time [s] | mean path length [m] | mean step [ms] | min clearance [m] |",
-              "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+              "mean time [s] | mean path length [m] | mean step [ms] | min clearance [m] | BARN score |",
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for s in sets:
         if s.error and not s.results:
             lines.append(f"| {s.scenario} | {s.planner} | 0 | - | - | - | - | - | - | - | - | not run: "
-                         f"{s.error.splitlines()[0][:80]} |")
+                         f"{s.error.splitlines()[0][:80]} | - |")
             continue
         n = len(s.results)
         ok = s.successes
@@ -112,10 +144,14 @@ def local_table(sets: list[LocalRuns], title: str = "") -> str:
         L = np.mean([r.path_length for r in pool]) if pool else np.nan
         ms = np.mean([r.mean_step_ms for r in s.results]) if n else np.nan
         mc = min(r.min_clearance for r in s.results) if n else np.nan
-        lines.append(f"| {s.scenario} | {s.planner} | {n} | {100 * len(ok) / max(n, 1):.0f} | {reached} | {coll} | "
-                     f"{timeouts} | {stuck} | {t:.1f}{mark} | {L:.2f}{mark} | {ms:.2f} | {mc:.3f} |")
+        scores = s.barn_scores
+        barn = f"{np.mean(scores):.3f}" if scores else "-"
+        lines.append(f"| {s.scenario} | {s.planner} | {n} | {100 * len(ok) / max(n, 1):.1f} | {reached} | {coll} | "
+                     f"{timeouts} | {stuck} | {t:.1f}{mark} | {L:.2f}{mark} | {ms:.2f} | {mc:.3f} | {barn} |")
     lines += ["", "success = goal reached with no collision; time and length are means over successful runs "
-                  "(* = no run succeeded: mean over all runs); min clearance is the worst over all runs."]
+                  "(* = no run succeeded: mean over all runs); min clearance is the worst over all runs; "
+                  "BARN score = mean over all runs of 1{success} OT / clip(time, 2 OT, 8 OT), OT = initial "
+                  "global path length / v_max (at most 0.5)."]
     return "\n".join(lines)
 
 

@@ -179,6 +179,48 @@ class DynamicObstacle:
             return self._along_polygon(t)
         return self._constant_velocity(t, bounds)
 
+    def states(self, times, bounds: tuple[float, float, float, float]) -> tuple[np.ndarray, np.ndarray]:
+        """Positions ``(T, 2)`` and velocities ``(T, 2)`` at the times ``(T,)``, all at once and
+        equal to :meth:`state` at each time (the simulator tabulates its movers with it)."""
+        t = np.asarray(times, dtype=float).reshape(-1)
+        if self.waypoints is not None:
+            return self._along_polygon_at(t)
+        pos, vel = self._constant_velocity(t[:, None], bounds)
+        return np.broadcast_to(pos, (len(t), 2)).copy(), np.broadcast_to(vel, (len(t), 2)).copy()
+
+    def _along_polygon_at(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`_along_polygon` at many times (the same operations, element-wise)."""
+        P = self.waypoints
+        still = (np.repeat(P[:1], len(t), axis=0), np.zeros((len(t), 2)))
+        if len(P) == 1 or self.speed == 0:
+            return still
+        if self.loop:
+            P = np.vstack([P, P[:1]])
+        seg = np.diff(P, axis=0)
+        lengths = np.hypot(seg[:, 0], seg[:, 1])
+        cum = np.concatenate([[0.0], np.cumsum(lengths)])
+        total = cum[-1]
+        if total <= 0:
+            return still
+        s = self.phase + self.speed * t
+        if self.loop:
+            s = s % total
+        i = np.clip(np.searchsorted(cum, s, side="right") - 1, 0, len(seg) - 1)
+        # the first non-empty leg from each leg on (the last leg if none), as the scalar loop skips
+        nonempty = np.nonzero(lengths > 0)[0]
+        later = np.searchsorted(nonempty, np.arange(len(seg)))
+        skip = np.where(later < len(nonempty), nonempty[np.minimum(later, len(nonempty) - 1)], len(seg) - 1)
+        i = skip[i]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            u = np.where(lengths[i, None] > 0, seg[i] / lengths[i, None], 0.0)
+        pos = P[i] + u * (s - cum[i])[:, None]
+        vel = u * self.speed
+        if not self.loop:
+            done = s >= total
+            pos[done] = P[-1]
+            vel[done] = 0.0
+        return pos, vel
+
     def _along_polygon(self, t: float) -> tuple[np.ndarray, np.ndarray]:
         P = self.waypoints
         if len(P) == 1 or self.speed == 0:
@@ -217,9 +259,8 @@ class DynamicObstacle:
             with np.errstate(divide="ignore", invalid="ignore"):
                 t_hit = np.where(v > 0, (hi - p0) / v, np.where(v < 0, (lo - p0) / v, np.inf))
             t_stop = max(float(np.min(t_hit)), 0.0)
-            if t >= t_stop:
-                return p0 + v * t_stop, np.zeros(2)
-            return p0 + v * t, v.copy()
+            stopped = np.asarray(t >= t_stop)  # element-wise, so states() can ask for many times
+            return np.where(stopped, p0 + v * t_stop, p0 + v * t), np.where(stopped, 0.0, v)
         # bounce: each coordinate is a triangle wave between lo and hi. A disc that starts over
         # the border moves straight on until it is wholly inside, and bounces from then on
         # (one moving away from the map, or not moving in that coordinate, never comes in);
