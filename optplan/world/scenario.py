@@ -176,7 +176,8 @@ class DynamicObstacle:
     def state(self, t: float, bounds: tuple[float, float, float, float]) -> tuple[np.ndarray, np.ndarray]:
         """Position ``(2,)`` (m) and velocity ``(2,)`` (m/s) at time ``t`` (s), in closed form."""
         if self.waypoints is not None:
-            return self._along_polygon(t)
+            pos, vel = self._along_polygon_at(np.array([float(t)]))
+            return pos[0], vel[0]
         return self._constant_velocity(t, bounds)
 
     def states(self, times, bounds: tuple[float, float, float, float]) -> tuple[np.ndarray, np.ndarray]:
@@ -189,7 +190,8 @@ class DynamicObstacle:
         return np.broadcast_to(pos, (len(t), 2)).copy(), np.broadcast_to(vel, (len(t), 2)).copy()
 
     def _along_polygon_at(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """:meth:`_along_polygon` at many times (the same operations, element-wise)."""
+        """Position and velocity along the waypoint polygon at many times ``(T,)``: arc length
+        from the phase, a loop wrapped, repeated waypoints skipped, a finished open route held."""
         P = self.waypoints
         still = (np.repeat(P[:1], len(t), axis=0), np.zeros((len(t), 2)))
         if len(P) == 1 or self.speed == 0:
@@ -220,29 +222,6 @@ class DynamicObstacle:
             pos[done] = P[-1]
             vel[done] = 0.0
         return pos, vel
-
-    def _along_polygon(self, t: float) -> tuple[np.ndarray, np.ndarray]:
-        P = self.waypoints
-        if len(P) == 1 or self.speed == 0:
-            return P[0].copy(), np.zeros(2)
-        if self.loop:
-            P = np.vstack([P, P[:1]])
-        seg = np.diff(P, axis=0)
-        lengths = np.hypot(seg[:, 0], seg[:, 1])
-        cum = np.concatenate([[0.0], np.cumsum(lengths)])
-        total = cum[-1]
-        if total <= 0:  # every waypoint at one place: the mover stands there (no s % 0)
-            return P[0].copy(), np.zeros(2)
-        s = self.phase + self.speed * t
-        if self.loop:
-            s = s % total
-        elif s >= total:
-            return P[-1].copy(), np.zeros(2)
-        i = int(np.clip(np.searchsorted(cum, s, side="right") - 1, 0, len(seg) - 1))
-        while lengths[i] == 0 and i < len(seg) - 1:  # repeated waypoint: skip the empty leg
-            i += 1
-        u = seg[i] / lengths[i] if lengths[i] > 0 else np.zeros(2)
-        return P[i] + u * (s - cum[i]), u * self.speed
 
     def _constant_velocity(self, t: float, bounds) -> tuple[np.ndarray, np.ndarray]:
         p0, v = self.start, self.velocity
