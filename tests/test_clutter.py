@@ -124,42 +124,6 @@ def _ctx(path, y=0.0, theta=0.0, wall_y=-0.3):
                         static_distance=lambda P: np.asarray(P)[..., 1] - wall_y, dynamic=np.zeros((0, 5)), dt=0.1)
 
 
-def test_qp_margin_never_asks_more_than_the_global_path_offers():
-    planner = make_local_planner("qp-dwa", BARN_ROBOT, 0.1)
-    ctx = _ctx([[0.0, 0.0], [3.0, 0.0]], wall_y=-0.25)   # the path keeps 0.25 - 0.2 = 5 cm from the wall
-    m = planner._margins(ctx, np.array([0.5 + 0.1j, 1.0 - 0.1j]))
-    assert np.allclose(m, 0.05)
-    wide = planner._margins(_ctx([[0.0, 0.0], [3.0, 0.0]], wall_y=-2.0), np.array([0.5 + 0j]))
-    assert np.allclose(wide, planner.options["qp_margin"])
-
-
-def test_qp_rows_cover_only_the_committed_part_of_the_trajectory():
-    planner = make_local_planner("qp-dwa", BARN_ROBOT, 0.1)
-    ctx = _ctx([[0.0, 0.0], [3.0, 0.0]])
-    step = planner.evaluate(ctx, planner.window(ctx))
-    fast = int(np.argmax(step.roll.v))
-    slow = int(np.argmin(step.roll.v))
-    n_fast, n_slow = planner._committed(step, fast), planner._committed(step, slow)
-    # reaction (one period) + braking from 0.5 m/s at 1 m/s^2 + one period, at most qp_horizon
-    assert n_fast == math.ceil((0.1 + 0.5 / 1.0 + 0.1) / 0.1 - 1e-9)
-    assert n_slow < n_fast <= round(planner.options["qp_horizon"] / 0.1)
-
-
-def test_tracking_rates_steer_each_speed_onto_the_path():
-    planner = make_local_planner("qp-dwa", BARN_ROBOT, 0.1)
-    straight = _ctx([[0.0, 0.0], [3.0, 0.0]])
-    win = planner.window(straight)
-    v = np.array([0.0, 0.1, 0.2, 0.4])
-    assert np.allclose(planner.tracking_rates(straight, win, v), 0.0)
-    left = _ctx([[0.0, 0.1], [3.0, 0.1]])          # the path runs 10 cm to the robot's left
-    w = planner.tracking_rates(left, win, v)
-    assert len(w) == 3 and np.all(w > 0) and np.all(np.diff(w) > 0)   # faster speeds turn faster
-    # pure pursuit: the arc through the path point 0.4 m along the path from the nearest one
-    aim = complex(0.4, 0.1)
-    assert w[0] == pytest.approx(0.1 * 2 * math.sin(math.atan2(aim.imag, aim.real)) / abs(aim), rel=1e-6)
-    assert make_local_planner("dwa", BARN_ROBOT, 0.1).options["path_tracking"] == 0.0   # paper presets: off
-
-
 # ---------------------------------------------------------------- closed loop
 def test_qp_dwa_crosses_a_clutter_world_without_collision_within_the_limits():
     res = op.simulate("clutter", local_planner="qp-dwa", seed=7)

@@ -40,7 +40,6 @@ from .window import Window, dynamic_window, sample_grid
 
 
 _PINNED = 0.05  # m: a robot whose admissible forward samples all stop within this is pinned
-_ESCAPE_DONE = 0.2  # rad: an escape turn ends when the robot faces this close to the way out
 
 
 @dataclass(frozen=True)
@@ -111,8 +110,6 @@ class DWAPlanner(MoverSweepSource):
         "growth_cap": 0.0,    # ... up to this much, m (cost terms only)
         "lookahead": None,    # s: sample targets reachable within this time and roll out the
                               # ramp to them (None = the classic window of one period)
-        "path_tracking": 0.0, # m: add the yaw rates that steer each sampled speed onto the global
-                              # path this far ahead (pure pursuit, Coulter 1992); 0 = off
     }
 
     def __init__(self, preset: Preset, robot: RobotSpec, dt: float, **params: Any) -> None:
@@ -167,7 +164,6 @@ class DWAPlanner(MoverSweepSource):
         self.steps = max(1, int(round(self.options["horizon"] / self.rollout_dt)))
         self.omni = bool(self.options["omni"]) and robot.model == "omni" and robot.vy_max > 0
         self.last: Command | None = None
-        self.escape_heading: float | None = None  # rad: the way out of an escape turn under way
 
     # ------------------------------------------------------------------ set-up helpers
     @staticmethod
@@ -190,7 +186,7 @@ class DWAPlanner(MoverSweepSource):
             o["lookahead"] = self._number("lookahead", o["lookahead"])
         if o["rollout_dt"] is not None:
             o["rollout_dt"] = self._number("rollout_dt", o["rollout_dt"])
-        for k in ("margin", "reaction", "mover_range", "mover_growth", "growth_cap", "path_tracking"):
+        for k in ("margin", "reaction", "mover_range", "mover_growth", "growth_cap"):
             o[k] = self._number(k, o[k], allow_zero=True)
         if o["normalise"] not in ("sum", "minmax", "none"):
             raise ParameterError(f"normalise must be 'sum', 'minmax' or 'none', got {o['normalise']!r}")
@@ -207,7 +203,6 @@ class DWAPlanner(MoverSweepSource):
     def reset(self, state: RobotState, global_path: np.ndarray) -> None:
         """Forget the previous run (adaptive limits, alignment, previous command)."""
         self.last = None
-        self.escape_heading = None
         for m in self.mechanisms:
             m.reset(self.view, state, global_path)
 
@@ -231,33 +226,11 @@ class DWAPlanner(MoverSweepSource):
         """Roll out and assess the sample grid of ``window``."""
         o = self.options
         lin_v, lin_vy, w = sample_grid(window, o["n_v"], o["n_w"], o["n_vy"] if self.omni else 1)
-        if o["path_tracking"] > 0:
-            w = np.union1d(w, self.tracking_rates(ctx, window, lin_v))
         step = self._assess(ctx, self.rollout_of(ctx.state, lin_v, lin_vy, w))
         if self.omni:  # the acceleration limit bounds the (v, vy) vector: keep the disc of the box
             dv = np.hypot(step.roll.v - ctx.state.v, step.roll.vy - ctx.state.vy)
             step.admissible &= dv <= self.robot.a_max * (o["lookahead"] or ctx.dt) * (1 + 1e-9)
         return step
-
-    def tracking_rates(self, ctx: LocalContext, window: Window, lin_v: np.ndarray) -> np.ndarray:
-        """Yaw rates (rad/s, inside the window) that put each forward speed of ``lin_v`` on the
-        pure-pursuit arc to the global path point ``path_tracking`` metres ahead of the robot's
-        nearest path point: ``w = v * 2 sin(alpha) / d`` (alpha: bearing of that point from the
-        heading, d: its distance). The evenly spaced yaw rates of the window are 0.16 rad/s
-        apart with the default 21 samples; at 0.1 m/s that is a 1.6 cm/s sideways error
-        along a 3 s horizon, too coarse to follow a path through a gap a few centimetres
-        wider than the robot. The extra rates give the sampler the arcs that do."""
-        from .critics import point_at_arc, project_on_path
-
-        z0 = complex(ctx.state.x, ctx.state.y)
-        s0, _ = project_on_path(ctx.global_path, np.array([z0]), z0, 2.0)
-        aim = point_at_arc(ctx.global_path, s0 + self.options["path_tracking"])[0] - z0
-        d = abs(aim)
-        if d < 1e-6:
-            return np.zeros(0)
-        alpha = math.remainder(math.atan2(aim.imag, aim.real) - ctx.state.theta, 2 * math.pi)
-        v = np.unique(lin_v[lin_v > 0])
-        return np.clip(v * 2.0 * math.sin(alpha) / d, window.w[0], window.w[1])
 
     def rollout_of(self, state: RobotState, lin_v, lin_vy, w) -> Rollouts:
         """The planner's rollouts of the grid ``(lin_v, lin_vy) x w`` (constant velocities, or
@@ -303,7 +276,6 @@ class DWAPlanner(MoverSweepSource):
         pool = cand if cand.any() else step.admissible
         turn = self._escape_turn(step, pool)
         if turn is not None:
-            self.escape_heading = float(step.aux.get("escape_heading", self.escape_heading))
             return turn, {"mode": "escape-turn", "index": turn, "n_candidates": int(pool.sum()),
                           "free_distance": float(step.free_distance[turn])}
         if not cand.any() and step.admissible.any():
@@ -347,27 +319,12 @@ class DWAPlanner(MoverSweepSource):
         turns that all leave the robot in the same place: either way the robot stays.
         Turning up the clearance gradient makes the way out admissible on a later step."""
         roll, ctx = step.roll, step.ctx
-        if not pool.any():
-            return None
-        if self.escape_heading is not None:
-            # an escape is finished once the robot faces the way out: turning back towards the
-            # goal after every small turn (the way the cost terms lead) pinned it again at
-            # once, and it swung to and fro in place until its stuck budget ran out
-            away = self.escape_heading
-            need = math.remainder(away - ctx.state.theta, 2 * math.pi)
-            # ... or once a mover is predicted to meet some candidate: the mover rules decide then
-            # (holding the turn in place let a crossing mover drive into the robot)
-            if abs(need) <= _ESCAPE_DONE or not step.mover_free[pool].all():
-                self.escape_heading = None
-                return None
-        else:
-            forward = step.admissible & (roll.speed > 0)
-            if (step.free_distance[forward] >= _PINNED).any():
-                return None  # a way forward exists
-            grad = static_gradient(ctx, [complex(ctx.state.x, ctx.state.y)])[0]
-            away = math.atan2(grad.imag, grad.real)
-            need = math.remainder(away - ctx.state.theta, 2 * math.pi)
-        step.aux["escape_heading"] = away
+        forward = step.admissible & (roll.speed > 0)
+        if not pool.any() or (step.free_distance[forward] >= _PINNED).any():
+            return None  # a way forward exists
+        grad = static_gradient(ctx, [complex(ctx.state.x, ctx.state.y)])[0]
+        away = math.atan2(grad.imag, grad.real)
+        need = math.remainder(away - ctx.state.theta, 2 * math.pi)
         miss = np.abs(need - roll.w * ctx.dt)
         miss[~pool] = np.inf
         return int(np.argmin(miss))

@@ -64,7 +64,7 @@ PRESETS: dict[str, Preset] = {p.name: p for p in (
         terms=(Term("path_progress", 1.0), Term("path_deviation", 0.5, {"paired": False}), Term("path_heading", 0.3),
                Term("clearance", 1.0, {"cap": 0.5})),
         options={"omni": True, "normalise": "none", "mover_growth": 1.0, "growth_cap": 1.0,
-                 "lookahead": 1.0, "path_tracking": 0.4},
+                 "lookahead": 1.0},
         mechanisms=(("sweep_gate", {}),),
         refine="qp",
     ),

@@ -46,7 +46,6 @@ from .rollout import Step, static_gradient
 from .window import Window, dynamic_window
 
 _SLACK_LINEAR, _SLACK_QUADRATIC = 1e2, 1e4
-_STEP_FRACTIONS = (1.0, 0.5, 0.25)  # of the QP's step tried in turn before falling back
 
 
 class LeanOSQP:
@@ -194,47 +193,18 @@ class QPDWAPlanner(DWAPlanner):
         return float(out[0]), float(out[1]), float(out[2]) if self.n_u == 3 else 0.0
 
     # ------------------------------------------------------------------ refinement
-    def _committed(self, step: Step, i: int) -> int:
-        """Rollout points of sample ``i`` the robot is committed to: those it passes before
-        it can stop if it keeps the command for the reaction time and then brakes
-        (at most ``qp_horizon``). Later points are re-planned before they are reached;
-        constraining them at fixed times only rewards slowing down, which in clutter, where
-        every constant-command trajectory meets an obstacle within a second, froze the robot
-        in front of every passage (issue 27)."""
-        roll = step.roll
-        speed = float(roll.speed[i]) if roll.profile is None else float(roll.profile[i].max())
-        t_commit = self._reaction() + speed / self.robot.a_max + roll.dt
-        t_cap = min(self.options["qp_horizon"], t_commit)
-        return max(1, min(roll.z.shape[1], int(math.ceil(t_cap / roll.dt - 1e-9))))
-
-    def _margins(self, ctx: LocalContext, points: np.ndarray) -> np.ndarray:
-        """Static margin (m) the QP asks for at each complex point: ``qp_margin``, but never
-        more than the global path offers next to it (its clearance at the nearest path point).
-        A passage the global path threads with 3 cm to spare cannot be driven with 15 cm;
-        asking for it made the QP trade all speed for margin and stop at the gap."""
-        from .critics import point_at_arc, project_on_path
-
-        path = ctx.global_path
-        s, _ = project_on_path(path, points, complex(ctx.state.x, ctx.state.y), 2.0)
-        near = point_at_arc(path, s)
-        offered = np.asarray(ctx.static_distance(np.column_stack([near.real, near.imag])), float).ravel()
-        return np.clip(offered - self.robot.radius, 0.0, self.options["qp_margin"])
-
     def _rows(self, ctx: LocalContext, step: Step, i: int):
-        """Linearised clearance rows ``(grad (k, n_u), gap0 (k,), margin (k,))`` at sample ``i``."""
+        """Linearised clearance rows ``(grad (k, n_u), gap0 (k,))`` at sample ``i``."""
         o = self.options
         roll = step.roll
-        # movers come at the robot whatever it does: their rows look qp_horizon ahead; static
-        # rows only over the committed part (see _committed)
         H = max(1, min(roll.z.shape[1], int(round(o["qp_horizon"] / roll.dt))))
-        H_static = min(H, self._committed(step, i))
         z = roll.z[i, :H]
         # dz/du by forward differences of the planner's own rollout (constant or ramped)
         v, w, vy, h = roll.v[i], roll.w[i], roll.vy[i], 1e-4
         r = self.rollout_of(ctx.state, [v, v + h, v], [vy, vy, vy + h], [w, w + h])
         zz = r.z[:, :H]  # rows: (v,w) (v,w+h) (v+h,w) (v+h,w+h) (vy+h,w) (vy+h,w+h)
         dz = [(zz[2] - zz[0]) / h, (zz[1] - zz[0]) / h, (zz[4] - zz[0]) / h][:self.n_u]
-        grads, gaps, margins = [], [], []
+        grads, gaps = [], []
         R = self.robot.radius
         if len(step.mover_r) and o["qp_rows_moving"]:
             d = np.abs(z[None, :] - step.movers[:, :H]) - step.mover_r[:, None] - R  # (K, H)
@@ -248,9 +218,8 @@ class QPDWAPlanner(DWAPlanner):
                 nrm = nrm / abs(nrm) if abs(nrm) > 0 else 1.0
                 grads.append([(np.conj(nrm) * dzc[t]).real for dzc in dz])
                 gaps.append(g[k])
-                margins.append(o["qp_margin"])
         if o["qp_rows_static"]:
-            sg = step.static_gap[i, :H_static]
+            sg = step.static_gap[i, :H]
             picked: list[int] = []
             for t in np.argsort(sg, kind="stable"):
                 if sg[t] >= o["qp_activate"] or len(picked) == o["qp_rows_static"]:
@@ -259,23 +228,16 @@ class QPDWAPlanner(DWAPlanner):
                     picked.append(int(t))
             if picked:
                 grad_z = static_gradient(ctx, z[picked])
-                margins.extend(self._margins(ctx, z[picked]).tolist())
                 for q, t in enumerate(picked):
                     grads.append([(np.conj(grad_z[q]) * dzc[t]).real for dzc in dz])
                     gaps.append(sg[t])
-        return (np.asarray(grads, dtype=float).reshape(-1, self.n_u), np.asarray(gaps, dtype=float),
-                np.asarray(margins, dtype=float))
+        return np.asarray(grads, dtype=float).reshape(-1, self.n_u), np.asarray(gaps, dtype=float)
 
-    def _filters_keep(self, ctx: LocalContext, u0: tuple[float, float, float], u: tuple[float, float, float]) -> bool:
-        """Whether ``u`` passes the preset's filters wherever the sampled ``u0`` does, judged side
-        by side: a filter that relaxes itself when no trajectory keeps its rule (the sweep gate
-        then keeps those that come least close) passed ``u0`` relaxed, and the strict rule alone
-        refused every refinement of it."""
-        pair = self._assess(ctx, self.rollout_of(ctx.state, [u0[0], u[0]], [u0[2], u[2]], [u0[1], u[1]]))
-        # grid order (v, vy) x w: sample 0 is u0, sample 3 is u
+    def _legal_after_filters(self, check: Step) -> bool:
+        """Whether the (single) trajectory of ``check`` passes the preset's filters."""
         for m in self.mechanisms:
-            keep = m.filter(self.view, pair)
-            if keep is not None and keep[0] and not keep[3]:
+            keep = m.strict_filter(self.view, check)
+            if keep is not None and not keep[0]:
                 return False
         return True
 
@@ -283,7 +245,7 @@ class QPDWAPlanner(DWAPlanner):
                info: dict) -> tuple[float, float, float]:
         """The QP refinement of the sampled command ``u0`` (falls back to ``u0``)."""
         i = info["index"]
-        grads, gaps, margins = self._rows(ctx, step, i)
+        grads, gaps = self._rows(ctx, step, i)
         if len(gaps) == 0:
             info["qp"] = "inactive"
             return u0
@@ -297,7 +259,7 @@ class QPDWAPlanner(DWAPlanner):
         k = len(gaps)
         rows[:k, :n_u] = grads
         rows[:k, n_u] = 1.0
-        lb[:k] = margins - gaps + grads @ x0
+        lb[:k] = o["qp_margin"] - gaps + grads @ x0
         dense = np.vstack([np.eye(n), rows])
         q = np.r_[-self._W * x0, _SLACK_LINEAR]
         lower = np.r_[lo, 0.0, lb]
@@ -315,38 +277,19 @@ class QPDWAPlanner(DWAPlanner):
             info["qp"] = f"fallback: OSQP status {status!r}"
             return u0
         x = np.clip(x_opt[:n_u], lo, hi)
-        # the QP's step, or a shorter one along it: the rows are linear models of the gaps and
-        # the filters (the sweep gate) are not in the QP at all, so the full step may fail a check
-        # a part of it passes; falling back to u0 at once discarded 85 % of the solves in
-        # benchmarks/dwa_step.py (issue 30)
-        why = ""
-        for frac in _STEP_FRACTIONS:
-            xs = x0 + frac * (x - x0)
-            u = (float(xs[0]), float(xs[1]), float(xs[2]) if n_u == 3 else 0.0)
-            why = self._check_refined(ctx, step, i, u0, u, margins, info)
-            if not why:
-                info["qp"] = "solved" if frac == 1.0 else "solved (shortened)"
-                info["qp_step"] = frac
-                info["qp_slack"] = float(x_opt[n_u])
-                return u
-        info["qp"] = f"fallback: refined command failed {why}"
-        return u0
-
-    def _check_refined(self, ctx: LocalContext, step: Step, i: int, u0: tuple[float, float, float],
-                       u: tuple[float, float, float], margins: np.ndarray, info: dict) -> str:
-        """Why the refined command ``u`` may not replace sample ``i`` (``""``: it may): it must be
-        admissible on the exact rollout, meet no mover sooner, come no closer to obstacles than
-        the sample (or than the margins asked) and pass the filters the sample passed."""
-        o = self.options
+        u = (float(x[0]), float(x[1]), float(x[2]) if n_u == 3 else 0.0)
         check = self._assess(ctx, self.rollout_of(ctx.state, [u[0]], [u[2]], [u[1]]))
         H = max(1, min(step.roll.z.shape[1], int(round(o["qp_horizon"] / step.roll.dt))))
-        Hs = min(H, max(self._committed(step, i), self._committed(check, 0)))
         # the rows constrain the plain predicted gaps, so judge the result on those
-        gap_new = min(check.static_gap[0, :Hs].min(), check.dyn_gap[0, :H].min())
-        gap_old = min(step.static_gap[i, :Hs].min(), step.dyn_gap[i, :H].min())
-        worse = gap_new < min(gap_old, margins.min()) - 1e-9
+        gap_new = np.minimum(check.static_gap[0, :H], check.dyn_gap[0, :H]).min()
+        gap_old = np.minimum(step.static_gap[i, :H], step.dyn_gap[i, :H]).min()
+        worse = gap_new < min(gap_old, o["qp_margin"]) - 1e-9
         if not check.admissible[0] or check.mover_contact[0] < step.mover_contact[i] or worse:
-            return "the rollout check"
-        if info.get("mode") == "sample" and not self._filters_keep(ctx, u0, u):
-            return "a filter the sampled one passed"
-        return ""
+            info["qp"] = "fallback: refined command failed the rollout check"
+            return u0
+        if info.get("mode") == "sample" and not self._legal_after_filters(check):
+            info["qp"] = "fallback: refined command failed a filter the sampled one passed"
+            return u0
+        info["qp"] = "solved"
+        info["qp_slack"] = float(x_opt[n_u])
+        return u
