@@ -294,10 +294,7 @@ def build_parser() -> argparse.ArgumentParser:
     m.set_defaults(func=_cmd_simulate)
 
     for name, module, help_text in LAYER_COMMANDS:
-        try:
-            mod = importlib.import_module(module)
-        except ImportError:  # a layer not built in this version
-            continue
+        mod = importlib.import_module(module)
         c = sub.add_parser(name, help=help_text)
         getattr(mod, f"add_{name}_arguments")(c)
         c.set_defaults(func=getattr(mod, f"run_{name}"))

@@ -284,10 +284,6 @@ def test_reproduce_prints_the_example_scripts_numbers(tmp_path, capsys):
 
 
 def test_closed_loop_runs_through_simulate(tmp_path):
-    from optplan.bench.command import simulate_available
-
-    if not simulate_available():
-        pytest.skip("this version of optplan has no op.simulate")
     (tmp_path / "tiny.yaml").write_text(
         "map: [[0,0,0,0,0,0],[0,0,1,1,0,0],[0,0,0,0,0,0],[0,0,0,0,0,0]]\nresolution: 1.0\n"
         "robot: {model: unicycle, radius: 0.2, v_max: 1.0, w_max_deg: 60, a_max: 0.5, alpha_max_deg: 90}\n"

@@ -150,16 +150,6 @@ def run_bench(args) -> int:
         store.close()
 
 
-def simulate_available() -> bool:
-    """Whether this optplan has the closed loop (``op.simulate``)."""
-    try:
-        from ..sim import simulate  # noqa: F401
-        from ..world.scenario import load_scenario  # noqa: F401
-    except ImportError:
-        return False
-    return True
-
-
 def run_reproduce(args) -> int:
     """``optplan reproduce PAPER``: run the paper's shipped specs and print its tables in its layout."""
     from .spec import load_spec, shipped_specs
@@ -182,10 +172,6 @@ def run_reproduce(args) -> int:
     keys: list[str] = []
     try:
         for spec in specs:
-            if spec.kind == "simulate" and not simulate_available():
-                print(f"## {spec.formatted_title()}\n\n(skipped: this version of optplan has no op.simulate; "
-                      f"the spec is {spec.source})\n", flush=True)
-                continue
             with _sigterm_as_interrupt():
                 try:
                     rep = run_spec(spec, store, args, label=spec.name)

@@ -181,20 +181,14 @@ def _shared_global_plan(target_json: str, inputs: str, algorithm: str, refine: s
 
 
 def _run_simulate(rec) -> tuple[Any, dict]:
-    try:
-        from ..sim import simulate
-    except ImportError as exc:
-        raise NotImplementedError(f"closed-loop runs need op.simulate, which this version of optplan does not "
-                                  f"have ({exc})") from None
+    from ..sim import simulate
+
     target_json = json.dumps(rec.target_spec, sort_keys=True)
     inputs = _scenario_inputs(target_json)
     scenario = _scenario_target(target_json, inputs)
     params = dict(rec.params)
-    try:
-        plan = _shared_global_plan(target_json, inputs, rec.algorithm, rec.refine, rec.seed,
-                                   json.dumps(params.get("global_options") or {}, sort_keys=True))
-    except ImportError:  # no shared-plan helper in this version: simulate plans by itself
-        plan = None
+    plan = _shared_global_plan(target_json, inputs, rec.algorithm, rec.refine, rec.seed,
+                               json.dumps(params.get("global_options") or {}, sort_keys=True))
     if plan is not None and "global_plan" not in params:
         params["global_plan"] = plan
     res = simulate(scenario, global_planner=rec.algorithm, local_planner=rec.local_planner, refine=rec.refine,
@@ -234,10 +228,7 @@ def warm_up(extra: tuple[str, ...] = (), parent_pid: int | None = None) -> None:
     for mod in ("scipy.spatial", "scipy.interpolate", "scipy.stats", "optplan.planning", "optplan.solvers.paths",
                 "optplan.solvers.metaheuristics", "optplan.formulations.functions", "optplan.world.papermaps",
                 *extra):
-        try:
-            importlib.import_module(mod)
-        except ImportError:  # a layer missing in this version: its runs report it themselves
-            pass
+        importlib.import_module(mod)
 
 
 def warm_modules(records: Iterable[Mapping[str, Any]]) -> tuple[str, ...]:

@@ -410,13 +410,10 @@ def _parse_targets(kind: str, raw: dict, base_dir: Path, where: str, from_file: 
             resolved = base_dir / it
             sc = _spec_file(it, base_dir, from_file, "scenario", where) if resolved.is_file() else it
             if not resolved.is_file():
-                try:
-                    from ..world.scenario import scenario_names
-                except ImportError:  # no scenario layer: the run itself reports it
-                    scenario_names = None
+                from ..world.scenario import scenario_names
                 from ..worldgen.clutter import FAMILIES  # generated families: a new world per seed
 
-                if scenario_names is not None and Path(it).stem not in scenario_names() and it not in FAMILIES:
+                if Path(it).stem not in scenario_names() and it not in FAMILIES:
                     raise ScenarioError(f"{where}: scenario {it!r} is neither a file (relative to the spec), a "
                                         f"shipped scenario ({', '.join(scenario_names()) or 'none shipped'}) nor "
                                         f"a generated family ({', '.join(FAMILIES)})")
@@ -720,12 +717,10 @@ def _refine_name(r, where: str) -> str | None:
 def _check_local(lp, where: str) -> str:
     if not isinstance(lp, str):
         raise ScenarioError(f"{where}: a local planner is a name, got {lp!r}")
-    try:
-        from ..local import algorithm_names
-    except ImportError:  # the local layer is not built in this version: the run reports it
-        return lp.lower()
+    from ..local import algorithm_names
+
     names = list(algorithm_names())
-    if names and lp.lower() not in names:
+    if lp.lower() not in names:
         raise UnknownAlgorithmError(f"{where}: unknown local planner {lp!r}; known: {', '.join(names)}")
     return lp.lower()
 

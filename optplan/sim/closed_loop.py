@@ -51,10 +51,8 @@ def make_planner(local_planner, robot, dt: float, params: dict):
         return local_planner
     if not isinstance(local_planner, str):
         raise UnknownAlgorithmError(f"local_planner must be a name or a planner object, got {local_planner!r}")
-    try:
-        from ..local import make_local_planner
-    except ImportError:
-        raise UnknownAlgorithmError("no local planners are available in this version of optplan") from None
+    from ..local import make_local_planner
+
     return make_local_planner(local_planner.lower(), robot, dt, **params)
 
 

@@ -169,13 +169,9 @@ def path_switches(result: SimResult) -> int:
 def available_planners(wanted=None) -> list[str]:
     """Local planner names from ``optplan.local`` (all of them, or those of ``wanted`` that exist;
     unknown ones are kept so their rows say why they did not run)."""
-    try:
-        from ..local import algorithm_names
+    from ..local import algorithm_names
 
-        names = list(algorithm_names())
-    except ImportError:
-        names = []
-    return list(wanted) if wanted else names
+    return list(wanted) if wanted else list(algorithm_names())
 
 
 def paper_local(title: str, scenarios, runs: int, planners=None, global_planner: str = "astar",
