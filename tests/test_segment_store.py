@@ -80,8 +80,8 @@ def test_population_scores_equal_the_full_table_sums(preset, constraint):
         cost = cost + prob._collision_penalty * coll + prob.preset.penetration_penalty * pen
     idx = enc.segment_index(enc.rows_of(X))
     f_ref = np.add.reduce(cost.take(idx), axis=1)
-    if prob._has_turn_terms:
-        f_ref = f_ref + prob._weighted_turns(terms.heading_changes_deg(enc.segment_headings().take(idx)))
+    if prob.has_turn_terms:
+        f_ref = f_ref + prob.weighted_turns(terms.heading_changes_deg(enc.segment_headings().take(idx)))
     np.testing.assert_array_equal(f, f_ref)
     np.testing.assert_array_equal(v, np.add.reduce((coll + pen).take(idx), axis=1))
     assert (v > 0).any() and (v == 0).any()

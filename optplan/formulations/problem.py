@@ -88,20 +88,23 @@ class PathProblem:
         return f if turns is None else f + turns
 
     @property
-    def _has_turn_terms(self) -> bool:
+    def has_turn_terms(self) -> bool:
+        """Whether the preset weights any turn term (angle, count or cost)."""
         p = self.preset
         return bool(p.turn_angle or p.turn_count or p.turn_cost)
 
     def turn_terms(self, paths: np.ndarray) -> np.ndarray | None:
         """Weighted terms of consecutive segment pairs (turn angle, count, cost), ``(n,)``;
         ``None`` when the preset has none."""
-        if not self._has_turn_terms:
+        if not self.has_turn_terms:
             return None
-        return self._weighted_turns(turn_angles_deg(paths))
+        return self.weighted_turns(turn_angles_deg(paths))
 
-    def _weighted_turns(self, ang_deg: np.ndarray) -> np.ndarray:
+    def weighted_turns(self, ang_deg: np.ndarray, base=0.0) -> np.ndarray:
+        """``base`` plus the preset's weighted turn terms of the heading changes ``ang_deg``
+        (degrees, ``(n, N-2)``), added one after the other."""
         p = self.preset
-        f = 0.0
+        f = base
         if p.turn_angle:
             f = f + p.turn_angle * terms.turn_angle_of_angles(ang_deg)
         if p.turn_count:
@@ -178,12 +181,12 @@ class PathProblem:
             # method calls and ufunc reductions: no Python wrappers in this hot path
             f = np.add.reduce(fused.cost.take(idx), axis=1)
             v = np.add.reduce(fused.violation.take(idx), axis=1)
-            if self._has_turn_terms:
+            if self.has_turn_terms:
                 # segment headings are kept too: turn terms without decoding paths
-                f = f + self._weighted_turns(terms.heading_changes_deg(fused.headings(idx)))
+                f = f + self.weighted_turns(terms.heading_changes_deg(fused.headings(idx)))
             return f, v
         enc = self.encoding
-        if hasattr(enc, "leg_length") and not self._has_turn_terms:
+        if hasattr(enc, "leg_length") and not self.has_turn_terms:
             # general encoding: legs are visible roadmap edges, so the path is collision-free by
             # construction and its length is a table sum
             X = X.reshape(-1, enc.dim)

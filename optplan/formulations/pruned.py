@@ -23,7 +23,6 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ParameterError
-from . import terms
 from .encodings import ColumnNodes
 
 FITNESS_ON = ("nodes", "pruned")
@@ -165,14 +164,8 @@ class PrunedColumnFitness:
         _, length, coll = self.prune(X)
         problem.nfev += len(length)
         f = preset.length * length
-        if preset.turn_angle or preset.turn_count or preset.turn_cost:
-            ang = self._turn_angles_deg()
-            if preset.turn_angle:
-                f = f + preset.turn_angle * terms.turn_angle_of_angles(ang)
-            if preset.turn_count:
-                f = f + preset.turn_count * terms.turn_count_of_angles(ang)
-            if preset.turn_cost:
-                f = f + preset.turn_cost * terms.turn_cost_of_angles(ang)
+        if problem.has_turn_terms:
+            f = problem.weighted_turns(self._turn_angles_deg(), base=f)
         if preset.constraint == "penalty":
             f = f + problem.collision_penalty * coll
         return f, coll
