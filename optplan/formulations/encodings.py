@@ -89,7 +89,7 @@ class ColumnNodes(PathEncoding):
 
     def __post_init__(self) -> None:
         grid = self.world
-        if not hasattr(grid, "occ"):
+        if not getattr(grid, "is_grid", False):
             raise ParameterError("ColumnNodes needs a GridMap")
         cs, cg = (int(c) for c in (grid.cell_of(self.start)[0], grid.cell_of(self.goal)[0]))
         step = 1 if cg >= cs else -1
@@ -485,7 +485,7 @@ class GeneralPath(PathEncoding):
         self.upper = np.tile([xmax, ymax], self.m).astype(float)
         # circle worlds: fewer polygon vertices per disc when there are many discs, so the
         # all-pairs tables stay near 2000 nodes (paths around discs get a little longer)
-        ring = None if hasattr(self.world, "occ") else int(np.clip(2000 // max(len(self.world.circles), 1), 8, 32))
+        ring = None if self.world.is_grid else int(np.clip(2000 // max(len(self.world.circles), 1), 8, 32))
         rm = self.roadmap = Roadmap.of(self.world, self.clearance, ring)
         M = len(rm.nodes)
         ds, es = rm.attach(self.start)

@@ -41,7 +41,7 @@ class ProgramContext:
         self.world = world
         self.start = np.asarray(start, float)
         self.goal = np.asarray(goal, float)
-        self.is_grid = hasattr(world, "occ")
+        self.is_grid = world.is_grid
         self._distance = None
 
     @property

@@ -48,7 +48,7 @@ class PathProblem:
         pen = self.preset.collision_penalty
         if pen == "goal_product":
             world = self.encoding.world
-            tx, ty = world.cell_of(self.encoding.goal) + 1 if hasattr(world, "occ") else self.encoding.goal
+            tx, ty = world.cell_of(self.encoding.goal) + 1 if world.is_grid else self.encoding.goal
             pen = float(tx * ty)
         self._collision_penalty = float(pen)
 

@@ -86,7 +86,7 @@ class Navigator:
         self.robot = robot
         self.start = np.asarray(start, float)
         self.goal = np.asarray(goal, float)
-        self.is_grid = hasattr(world, "occ")
+        self.is_grid = world.is_grid
         self.global_planner = global_planner.lower()
         if not self.is_grid and self.global_planner in ("astar", "dijkstra"):
             self.global_planner = "visibility"
@@ -292,7 +292,7 @@ class Navigator:
             f = np.linspace(0.0, 1.0, n + 1)
             discs.append(np.stack([x0 + f * (x1 - x0), y0 + f * (y1 - y0), np.full(n + 1, r)], axis=1))
         discs = np.vstack(discs)
-        if hasattr(world, "occ"):
+        if world.is_grid:
             from ..world.grid import GridMap
 
             occ = world.occ | world.cells_touched_by_discs(discs)

@@ -39,7 +39,7 @@ def _connect(world, a: np.ndarray, b: np.ndarray, clearance: float) -> np.ndarra
     """A collision-free path ``a -> b`` (ends exact) or ``None``."""
     if bool(world.segments_free(a, b, clearance)):
         return np.array([a, b])
-    method = "astar" if hasattr(world, "occ") else "visibility"
+    method = "astar" if world.is_grid else "visibility"
     try:
         res = shortest_path(world, a, b, method=method, clearance=clearance)
     except OptplanError:
@@ -57,7 +57,7 @@ def _connect(world, a: np.ndarray, b: np.ndarray, clearance: float) -> np.ndarra
 
 
 def _candidate_points(world, clearance: float) -> np.ndarray:
-    if hasattr(world, "occ"):
+    if world.is_grid:
         iy, ix = np.nonzero(~world.occ)
         pts = world.cell_center(np.stack([ix, iy], axis=1))
     else:

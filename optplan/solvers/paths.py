@@ -48,7 +48,7 @@ def make_problem(world, start, goal, *, preset: str, encoding: str | None = None
     """The default formulation: column nodes on grids, spline handles on circle worlds."""
     s, g = np.asarray(start, float), np.asarray(goal, float)
     if encoding is None:
-        encoding = "columns" if hasattr(world, "occ") else "spline"
+        encoding = "columns" if world.is_grid else "spline"
     if encoding == "columns":
         enc = ColumnNodes(world, s, g)
     elif encoding == "waypoints":
@@ -133,7 +133,7 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
 
         return plan_iaco(world, s, g, seed=seed, pop=pop, iters=iters, clearance=clearance, max_evals=max_evals,
                          **params)
-    if name in ("ga", "iga") and hasattr(world, "occ") and encoding in (None, "columns"):
+    if name in ("ga", "iga") and world.is_grid and encoding in (None, "columns"):
         from .gridpath.ga_path import plan_ga
 
         return plan_ga(world, s, g, improved=name == "iga", seed=seed, pop=pop, iters=iters, clearance=clearance,
@@ -152,7 +152,7 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
     t0 = time.perf_counter()
     chosen = encoding is not None
     if encoding is None:
-        encoding = GRID_ENCODING.get(paper, "columns") if hasattr(world, "occ") else "spline"
+        encoding = GRID_ENCODING.get(paper, "columns") if world.is_grid else "spline"
     if encoding not in ENCODINGS:
         raise ParameterError(f"encoding must be one of {', '.join(ENCODINGS)}, got {encoding!r}")
     note = ""

@@ -89,7 +89,7 @@ def obstacle_width(world) -> float:
     centre) from a blocked cell to a free one, so a wall ``w`` cells thick
     (``w`` odd) measures ``w`` cells. ``0`` when there is no obstacle.
     """
-    if hasattr(world, "occ"):
+    if world.is_grid:
         cached = world._cache.get("obstacle_width")
         if cached is None:
             from scipy.ndimage import distance_transform_edt
@@ -232,7 +232,7 @@ class Band:
     def __init__(self, world, path, separation: float, h: float | None = None):
         self.path = np.asarray(path, float).reshape(-1, 2)
         self.separation = float(separation)
-        if hasattr(world, "occ"):
+        if world.is_grid:
             self.h, self.origin = float(world.resolution), np.asarray(world.origin, float)
             self.width, self.height = world.width, world.height
         else:
@@ -317,7 +317,7 @@ def tube_grid(world, seed, radius: float, clearance: float = 0.0, resolution: fl
     does). Circle worlds: :func:`rasterise_circles` at :func:`raster_step`.
     """
     P = np.asarray(seed, float)
-    if hasattr(world, "occ"):
+    if world.is_grid:
         base = world.inflate(clearance) if clearance > 0 else world
         mask = cells_within(base.width, base.height, base.resolution, base.origin, P, radius)
         return GridMap(base.occ | ~mask, base.resolution, base.origin, f"{world.name} tube {radius:g} m")

@@ -27,7 +27,7 @@ def draw_world(ax, world) -> None:
     from matplotlib.patches import Circle
 
     xmin, ymin, xmax, ymax = world.bounds
-    if hasattr(world, "occ"):
+    if world.is_grid:
         ax.imshow(world.occ, origin="lower", cmap="Greys", vmin=0, vmax=1, extent=(xmin, xmax, ymin, ymax),
                   interpolation="nearest")
         if world.width <= 60 and world.height <= 60:

@@ -287,6 +287,6 @@ def distance_spline(grid, subdiv: int = 4) -> DistanceSpline:
 def distance_function(world, subdiv: int = 4):
     """A vectorised ``points -> signed distance`` callable for any world: the sampled
     field for grids, the analytic distance for circle worlds."""
-    if hasattr(world, "occ"):
+    if world.is_grid:
         return grid_distance_field(world, subdiv)
     return world.clearance

@@ -74,7 +74,7 @@ PAIR_BLOCK = 2_000_000
 
 def _components(world, clearance: float) -> np.ndarray:
     """Representative points ``(K, 2)`` of the obstacle components that do not touch the border."""
-    if hasattr(world, "occ"):
+    if world.is_grid:
         from scipy import ndimage
 
         occ = world.occ
@@ -160,7 +160,7 @@ class Roadmap:
 
     def __init__(self, world, clearance: float = 0.0, ring: int = DEFAULT_RING) -> None:
         self.world, self.clearance = world, float(clearance)
-        if hasattr(world, "occ"):
+        if world.is_grid:
             self.nodes, self.quadrants = _grid_corners(world, self.clearance)
             self.ring = None
         else:
@@ -177,7 +177,7 @@ class Roadmap:
     def of(cls, world, clearance: float = 0.0, ring: int | None = None) -> "Roadmap":
         """The world's roadmap for ``clearance`` (and ``ring`` on circle worlds, default
         :data:`DEFAULT_RING`), built once and kept in the world's cache."""
-        ring = DEFAULT_RING if ring is None or hasattr(world, "occ") else int(ring)
+        ring = DEFAULT_RING if ring is None or world.is_grid else int(ring)
         key = ("roadmap", float(clearance), ring)
         rm = world._cache.get(key)
         if rm is None:

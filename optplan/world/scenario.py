@@ -312,7 +312,7 @@ class Scenario:
 
     @property
     def is_grid(self) -> bool:
-        return hasattr(self.world, "occ")
+        return self.world.is_grid
 
     @property
     def bounds(self) -> tuple[float, float, float, float]:
@@ -485,12 +485,12 @@ def _read_map(spec, resolution, base_dir: Path | None):
         world = load_map(p if p.exists() else spec)
     except MapFormatError as exc:
         raise ScenarioError(f"map {spec!r}: {exc}") from None
-    if resolution is not None and hasattr(world, "occ") and resolution != world.resolution:
+    if resolution is not None and world.is_grid and resolution != world.resolution:
         if world.resolution != 1.0:
             raise ScenarioError(f"map {spec!r} has its own resolution {world.resolution:g} m; "
                                 f"remove 'resolution: {resolution:g}' from the scenario or make them agree")
         world = GridMap(world.occ, resolution, world.origin, world.name)
-    if resolution is not None and not hasattr(world, "occ"):
+    if resolution is not None and not world.is_grid:
         raise ScenarioError("'resolution' applies to grid maps only; remove it for a circle world")
     return world
 

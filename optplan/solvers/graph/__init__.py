@@ -67,7 +67,7 @@ def shortest_path(world, start, goal, method: str = "astar", *, corner_cutting: 
         from ..homotopy import homotopy_shortest_path
 
         return homotopy_shortest_path(world, start, goal, homotopy, clearance)
-    if not hasattr(world, "occ"):
+    if not world.is_grid:
         if method != "visibility":
             raise ParameterError(f"method {method!r} needs a grid map; use 'visibility' on circle worlds")
         return plan_tangent(world, start, goal, clearance)

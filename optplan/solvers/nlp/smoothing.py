@@ -352,7 +352,7 @@ def smooth_path(world, seed_path, clearance: float = 0.0, n_points: int | None =
     warm = warm_start.warm if isinstance(warm_start, SmoothResult) else warm_start
     if warm is not None and not isinstance(warm, WarmStart):
         raise ParameterError(f"warm_start must be a SmoothResult or WarmStart, got {type(warm_start).__name__}")
-    is_grid = hasattr(world, "occ")
+    is_grid = world.is_grid
     res = world.resolution if is_grid else 1.0
     if n_points is None:
         N = len(warm.points) if warm is not None else default_points(P, 0.25 * res)

@@ -321,7 +321,7 @@ def build_corridor(world, points: np.ndarray, clearance: float = 0.0, *, k: int 
         split: on grids, split pieces whose bounding box is not free at cell lines.
     """
     P = np.asarray(points, dtype=float)
-    if hasattr(world, "occ"):
+    if world.is_grid:
         P, boxes, pinned = grid_boxes(world, P, clearance, max_cells, split)
         normals = np.zeros((len(P) - 1, 0, 2))
         offsets = np.zeros((len(P) - 1, 0))

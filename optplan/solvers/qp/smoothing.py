@@ -72,7 +72,7 @@ def smooth_path_qp(world, seed_path, clearance: float = 0.0, n_points: int | Non
         return SmoothResult(P, False, f"the seed path is not collision-free ({seed_check.reason}); the corridor "
                             "smoother keeps a valid seed's homotopy class and cannot repair a colliding one "
                             "(use refine='casadi' or a feasible seed)", time.perf_counter() - t0)
-    is_grid = hasattr(world, "occ")
+    is_grid = world.is_grid
     scale = world.resolution if is_grid else 1.0
     N = n_points or default_points(P, 0.25 * scale)
     if max_step is None and not is_grid:
