@@ -570,6 +570,10 @@ BAD_SPECS = [
     ("scen bad file", _spec(maps=[{"scen": "bad.scen", "map": "q.map"}])),
     ("bad map file in the folder", _spec(maps=[{"map": "broken.map", "start": [0.5, 0.5], "goal": [1.5, 0.5]}])),
     ("order text", _spec(order="first")),
+    ("metric unknown", _spec(metric="lenght")),
+    ("metric of another kind", _spec(metric="f_error")),
+    ("metric not a name", _spec(metric=[1])),
+    ("metric in quick", _spec(quick={"metric": "lenght"})),
 ]
 
 

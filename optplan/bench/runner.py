@@ -76,14 +76,11 @@ def _run_plan(rec) -> tuple[Any, dict]:
     return res, _gap_split(world, start, goal, res, float(rec.params.get("clearance", 0.0)))
 
 
-# the gap split stored with every plan run (issue 26); None for an infeasible path
-SPLIT_METRICS = ("class_gap", "in_class_gap", "optimal_class")
-
-
 def _gap_split(world, start, goal, res, clearance: float) -> dict:
     """The run's class gap (the corridor), in-class gap (the shape) and whether its class is
     the optimum's (1/0), from :func:`optplan.solvers.gaps.class_gaps`."""
     from ..solvers.gaps import class_gaps
+    from .spec import SPLIT_METRICS  # the gap split stored with every plan run (issue 26)
 
     d = class_gaps(world, start, goal, res.path, clearance=clearance)
     return {k: (None if d[k] is None else float(d[k])) for k in SPLIT_METRICS}

@@ -51,6 +51,12 @@ SPECS_DIR = Path(__file__).resolve().parent.parent / "data" / "specs"
 KINDS = ("plan", "simulate", "optimize", "program")
 TARGET_KEY = {"plan": "maps", "simulate": "scenarios", "optimize": "functions", "program": "maps"}
 DEFAULT_METRIC = {"plan": "length", "simulate": "time_s", "optimize": "f", "program": "cost"}
+# numbers a run stores beside its result's own fields (bench/runner.py computes them)
+SPLIT_METRICS = ("class_gap", "in_class_gap", "optimal_class")
+EXTRA_METRICS = {"plan": SPLIT_METRICS, "simulate": ("success",), "optimize": ("f_error", "f_opt"),
+                 "program": ("violation",)}
+RESULT_OF_KIND = {"plan": "PlanResult", "simulate": "SimResult", "optimize": "OptimizeResult",
+                  "program": "ProgramResult"}
 PROGRAM_KEYS = ("program", "args", "init")   # kind program only
 REFINE_NAMES = ("none", "casadi", "qp")
 
@@ -350,7 +356,10 @@ def _parse(raw: dict, path: Path | None, where: str) -> ExperimentSpec:
         local = [None]
 
     seeds = _parse_seeds(raw, where)
-    metric = str(raw.get("metric") or DEFAULT_METRIC[kind])
+    metric = raw.get("metric") or DEFAULT_METRIC[kind]
+    if metric not in metric_names(kind):
+        raise ParameterError(f"{where}: unknown metric {metric!r} for kind {kind}; valid: "
+                             f"{', '.join(metric_names(kind))}")
     alpha = raw.get("alpha", 0.05)
     if not isinstance(alpha, (int, float)) or not 0 < alpha < 1:
         raise ParameterError(f"{where}: alpha must be a number in (0, 1), got {alpha!r}")
@@ -371,6 +380,19 @@ def _parse(raw: dict, path: Path | None, where: str) -> ExperimentSpec:
         paper=raw.get("paper"), part=raw.get("part"), report=str(raw.get("report") or "summary"),
         notes=str(raw.get("notes") or ""), params=dict(shared), source=path, order=_order(raw.get("order", 0), where),
         program=program)
+
+
+def metric_names(kind: str) -> list[str]:
+    """The numbers a run of ``kind`` stores, any of which a spec's ``metric:`` may name: the
+    numeric fields of the kind's result, the extra numbers the runner adds, and ``wall_s``."""
+    import dataclasses
+
+    from .. import results
+
+    cls = getattr(results, RESULT_OF_KIND[kind])
+    numeric = {"bool", "int", "float", "float | None", "int | None"}
+    names = [f.name for f in dataclasses.fields(cls) if f.type in numeric and f.name != "seed"]
+    return sorted({*names, *EXTRA_METRICS[kind], "wall_s"})
 
 
 def _parse_targets(kind: str, raw: dict, base_dir: Path, where: str, from_file: bool = False) -> list[TargetSpec]:
