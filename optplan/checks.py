@@ -70,6 +70,42 @@ def seed(name: str, value):
     return value
 
 
+def function(optional: bool = False) -> Callable[[str, Any], Any]:
+    """A callable (``None`` allowed when ``optional``)."""
+    def check(name: str, value):
+        if value is None and optional:
+            return None
+        if not callable(value):
+            raise ParameterError(f"{name} must be a function{' or None' if optional else ''}, "
+                                 f"got {type(value).__name__} {value!r:.60}")
+        return value
+    return check
+
+
+def boolean(name: str, value) -> bool:
+    """``True`` or ``False`` (a numpy bool too), nothing that merely converts to one."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise ParameterError(f"{name} must be True or False, got {value!r:.60}")
+    return bool(value)
+
+
+def file_path(name: str, value):
+    """A non-empty file name: ``str`` or ``os.PathLike``."""
+    import os
+
+    if not isinstance(value, (str, os.PathLike)) or not str(value):
+        raise ParameterError(f"{name} must be a file name (str or pathlib.Path), got {value!r:.60}")
+    return value
+
+
+def float_array(name: str, value, shape_text: str = "an array of numbers") -> np.ndarray:
+    """``value`` as a float array, or a ParameterError naming ``name`` when it holds no numbers."""
+    try:
+        return np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError(f"{name} must be {shape_text}, got {value!r:.60}") from None
+
+
 def anything(name: str, value):
     """Any value (the consumer checks it, e.g. an algorithm's own parameter)."""
     return value

@@ -851,6 +851,68 @@ BAD_API_CALLS = [
 ]
 
 
+# found by a sweep over op.__all__ with wrong types (str for int, None, negative, NaN, lists of the
+# wrong shape); each must name the argument in its message
+PROG = op.smoothing_program(WORLD, S, G, n=10)
+BAD_TYPED_CALLS = [
+    ("optimize f text", "f", lambda: op.optimize("sphere", [(0, 1)], pop=4, iters=2)),
+    ("optimize f None", "f", lambda: op.optimize(None, [(0, 1)], pop=4, iters=2)),
+    ("optimize bounds text", "bounds", lambda: op.optimize(_f, "x", pop=4, iters=2)),
+    ("optimize bounds dict", "bounds", lambda: op.optimize(_f, {"a": 1}, pop=4, iters=2)),
+    ("optimize init text", "init", lambda: op.optimize(_f, [(0, 1)], pop=4, iters=2, init="x")),
+    ("optimize repair int", "repair", lambda: op.optimize(_f, [(0, 1)], pop=4, iters=2, repair=3)),
+    ("optimize callback list", "callback", lambda: op.optimize(_f, [(0, 1)], pop=4, iters=2, callback=[1])),
+    ("optimize dim text", "dim", lambda: op.optimize(_f, [0, 1], pop=4, iters=2, dim="3")),
+    ("optimize dim nan", "dim", lambda: op.optimize(_f, [(0, 1)], pop=4, iters=2, dim=np.nan)),
+    ("shortest_path world None", "world", lambda: op.shortest_path(None, S, G)),
+    ("shortest_path world list", "world", lambda: op.shortest_path([[1, 2, 3]], S, G)),
+    ("shortest_path world file name", "world", lambda: op.shortest_path("chen2025_20", S, G)),
+    ("shortest_path points text", "points", lambda: op.shortest_path(WORLD, S, G, method="visibility", points="x")),
+    ("shortest_path points None", "points", lambda: op.shortest_path(WORLD, S, G, points=None)),
+    ("shortest_path corner_cutting text", "corner_cutting",
+     lambda: op.shortest_path(WORLD, S, G, corner_cutting="yes")),
+    ("simulate seed text", "seed", lambda: op.simulate("li2023_exp1", seed="0")),
+    ("simulate seed nan", "seed", lambda: op.simulate("li2023_exp1", seed=np.nan)),
+    ("simulate seed negative", "seed", lambda: op.simulate("li2023_exp1", seed=-1)),
+    ("simulate seed list", "seed", lambda: op.simulate("li2023_exp1", seed=[[1, 2, 3]])),
+    ("simulate global_planner None", "global_planner", lambda: op.simulate("li2023_exp1", global_planner=None)),
+    ("simulate global_planner int", "global_planner", lambda: op.simulate("li2023_exp1", global_planner=3)),
+    ("path_metrics path text", "path", lambda: op.path_metrics(WORLD, "x")),
+    ("export_path file None", "file", lambda: op.export_path(np.array([S, G]), None)),
+    ("export_path file int", "file", lambda: op.export_path(np.array([S, G]), 3)),
+    ("export_path frame_id None", "frame_id", lambda: op.export_path(np.array([S, G]), "p.yaml", frame_id=None)),
+    ("export_trajectory file list", "file", lambda: op.export_trajectory(np.zeros((3, 6)), [[1, 2, 3]])),
+    ("export_trajectory frame_id nan", "frame_id",
+     lambda: op.export_trajectory(np.zeros((3, 6)), "t.yaml", frame_id=np.nan)),
+    ("save_map grid None", "grid", lambda: op.save_map(None, "m.map")),
+    ("save_map grid circles", "grid", lambda: op.save_map(CIRCLES, "m.map")),
+    ("save_map path None", "path", lambda: op.save_map(WORLD, None)),
+    ("save_map path nan", "path", lambda: op.save_map(WORLD, np.nan)),
+    ("smoothing_program w_smooth text", "w_smooth", lambda: op.smoothing_program(WORLD, S, G, w_smooth="x")),
+    ("smoothing_program w_smooth nan", "w_smooth", lambda: op.smoothing_program(WORLD, S, G, w_smooth=np.nan)),
+    ("smoothing_program clearance None", "clearance", lambda: op.smoothing_program(WORLD, S, G, clearance=None)),
+    ("smoothing_program clearance negative", "clearance",
+     lambda: op.smoothing_program(WORLD, S, G, clearance=-1)),
+    ("paper_program name list", "paper program", lambda: op.paper_program([[1, 2, 3]], WORLD, S, G)),
+    ("paper_program world None", "world", lambda: op.paper_program("chen2025", None, S, G)),
+    ("paper_program world number", "world", lambda: op.paper_program("chen2025", 3.0, S, G)),
+    ("paper_program clearance text", "clearance", lambda: op.paper_program("chen2025", WORLD, S, G, clearance="x")),
+    ("RobotSpec v_min text", "v_min", lambda: op.RobotSpec(v_min="x")),
+    ("RobotSpec v_min None", "v_min", lambda: op.RobotSpec(v_min=None)),
+    ("compare program None", "program", lambda: op.compare(None, ["slsqp"])),
+    ("compare program text", "program", lambda: op.compare("smoothing", ["slsqp"])),
+    ("compare seeds int", "seeds", lambda: op.compare(PROG, ["slsqp"], seeds=3)),
+    ("compare seeds None", "seeds", lambda: op.compare(PROG, ["slsqp"], seeds=None)),
+]
+
+
+@pytest.mark.parametrize("label,name,call", BAD_TYPED_CALLS, ids=[c[0] for c in BAD_TYPED_CALLS])
+def test_wrong_types_raise_optplan_errors_naming_the_argument(tmp_path, monkeypatch, label, name, call):
+    monkeypatch.chdir(tmp_path)
+    exc = _expect_api_error(call)
+    assert name in str(exc), str(exc)
+
+
 @pytest.mark.parametrize("label,call", BAD_API_CALLS, ids=[c[0] for c in BAD_API_CALLS])
 def test_hostile_api_calls_raise_optplan_errors(tmp_path, monkeypatch, label, call):
     monkeypatch.chdir(tmp_path)
@@ -860,5 +922,5 @@ def test_hostile_api_calls_raise_optplan_errors(tmp_path, monkeypatch, label, ca
 def test_the_suite_has_at_least_300_cases():
     n = (len(BAD_MAPS) + len(CLI_MAP_SAMPLE) + len(BAD_SCENARIOS) + 2 * len(BAD_SCENARIO_TEXTS) + len(BAD_SPECS)
          + len(CLI_SPEC_SAMPLE) + 2 * len(BAD_SPEC_TEXTS) + 2 * len(BAD_DATABASES) + len(BAD_COMMAND_LINES)
-         + len(BAD_API_CALLS))
+         + len(BAD_API_CALLS) + len(BAD_TYPED_CALLS))
     assert n >= 300, n

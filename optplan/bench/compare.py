@@ -78,6 +78,13 @@ def compare(program, solvers, seeds=(0,), db=None, progress: bool = False, **opt
 
     if isinstance(solvers, (str, bytes)) or not hasattr(solvers, "__iter__"):
         raise ParameterError("solvers must be a list of solver names, chains or instances")
+    from ..formulations.program import PathProgram
+
+    if not isinstance(program, PathProgram):
+        raise ParameterError(f"program must be an op.PathProgram (e.g. op.smoothing_program(world, start, goal)), "
+                             f"got {type(program).__name__}")
+    if isinstance(seeds, (str, bytes)) or not hasattr(seeds, "__iter__"):
+        raise ParameterError(f"seeds must be a list of integer seeds, e.g. range(5), got {seeds!r:.60}")
     seeds = list(seeds)
     if not seeds:
         raise ParameterError("seeds must name at least one seed")

@@ -8,7 +8,9 @@ penalised form).
 """
 from __future__ import annotations
 
+from ..checks import number
 from ..errors import UnknownAlgorithmError
+from ..world.queries import check_world
 from ..papers import method_of
 from . import expressions as T
 from .presets import PRESETS, get_preset
@@ -42,8 +44,10 @@ def paper_program(name: str, world, start, goal, variables: Variables | None = N
 
     ``variables`` defaults to the paper's encoding (column nodes on grids; a cubic
     B-spline for yang2023 and on circle worlds)."""
-    if name not in PRESETS:
+    if not isinstance(name, str) or name not in PRESETS:
         raise UnknownAlgorithmError(f"unknown paper program {name!r}; known: {', '.join(sorted(PRESETS))}")
+    check_world(world)
+    clearance = number(minimum=0.0)("clearance", clearance)
     if variables is None:
         on_grid = world.is_grid
         variables = PAPER_VARIABLES.get(name, ColumnNodes)() if on_grid else BSpline(ctrl=3, samples=100)
@@ -58,6 +62,8 @@ def smoothing_program(world, start, goal, n: int = 50, w_smooth: float = 0.5, cl
     """The refinement's energy ``sum |dp|^2 + w_smooth * sum |d2p|^2`` over ``n`` dense
     points, subject to ``clearance() >= clearance``: quadratic, so IPOPT, SLSQP, OSQP
     and cvxpy all take it."""
+    w_smooth = number(minimum=0.0)("w_smooth", w_smooth)
+    clearance = number(minimum=0.0)("clearance", clearance)
     prog = program_class(world, start, goal, variables=Points(n), name=f"smoothing(n={n}, w={w_smooth:g})")
     prog.minimize(T.squared_length() + float(w_smooth) * T.bending())
     prog.subject_to(T.clearance() >= float(clearance))

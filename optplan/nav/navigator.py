@@ -35,7 +35,7 @@ from collections import deque
 
 import numpy as np
 
-from ..errors import InfeasibleQueryError, OptplanError, ParameterError
+from ..errors import InfeasibleQueryError, OptplanError, ParameterError, UnknownAlgorithmError
 from ..papers import LOCAL_GUIDANCE, PAPERS, local_guidance
 from ..planning import plan
 from ..world.polyline import point_segment_distances
@@ -87,6 +87,9 @@ class Navigator:
         self.start = np.asarray(start, float)
         self.goal = np.asarray(goal, float)
         self.is_grid = world.is_grid
+        if not isinstance(global_planner, str):
+            raise UnknownAlgorithmError(f"global_planner must be an algorithm name (see op.algorithms()), "
+                                        f"got {global_planner!r:.60}")
         self.global_planner = global_planner.lower()
         if not self.is_grid and self.global_planner in ("astar", "dijkstra"):
             self.global_planner = "visibility"

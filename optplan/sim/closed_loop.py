@@ -29,6 +29,8 @@ from typing import Any, Callable
 
 import numpy as np
 
+from ..checks import seed as checked_seed
+from ..checks import seed_bound
 from ..errors import ParameterError, UnknownAlgorithmError
 from ..local.base import LocalContext, MoverSweepSource
 from ..nav.navigator import Navigator, preset_defaults
@@ -131,6 +133,8 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
     unknown = sorted(set(options) - set(OPTIONS))
     if unknown:
         raise ParameterError(f"unknown simulate option(s) {unknown}; known: {', '.join(OPTIONS)}")
+    checked_seed("seed", seed)
+    seed_bound("seed", seed)
     options = {**family_options(scenario), **options}
     sc = scenario_for(scenario, seed)
     if "time_limit" in options:

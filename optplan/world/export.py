@@ -21,6 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..checks import file_path
 from ..errors import ParameterError
 
 EXPORT_SUFFIXES = (".csv", ".yaml", ".yml")
@@ -38,8 +39,13 @@ def _checked_rows(rows, width: int, what: str) -> np.ndarray:
     return a
 
 
+def _check_frame(frame_id) -> None:
+    if not isinstance(frame_id, str) or not frame_id.strip() or "\n" in frame_id:
+        raise ParameterError(f"frame_id must be a one-line frame name such as 'map', got {frame_id!r:.60}")
+
+
 def _target(file, kinds: str) -> Path:
-    p = Path(file)
+    p = Path(file_path("file", file))
     if p.suffix.lower() not in EXPORT_SUFFIXES:
         raise ParameterError(f"cannot export {kinds} to {p.name}: use a .csv or .yaml file name")
     return p
@@ -95,6 +101,7 @@ def export_path(path, file: str | os.PathLike, frame_id: str = "map") -> Path:
         ParameterError: not an (N, 2) finite array, or an unsupported file suffix.
     """
     p = _target(file, "a path")
+    _check_frame(frame_id)
     P = _checked_rows(path, 2, "path")
     if p.suffix.lower() == ".csv":
         return _write_csv(p, "x,y", P)
@@ -110,6 +117,7 @@ def export_trajectory(trajectory, file: str | os.PathLike, frame_id: str = "map"
         ParameterError: not a (T, 6) finite array, or an unsupported file suffix.
     """
     p = _target(file, "a trajectory")
+    _check_frame(frame_id)
     T = _checked_rows(trajectory, 6, "trajectory")
     if p.suffix.lower() == ".csv":
         return _write_csv(p, "t,x,y,theta,v,w", T)

@@ -28,6 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..checks import file_path
 from ..errors import MapFormatError, ParameterError
 from .grid import MAX_GRID_CELLS, GridMap
 
@@ -515,7 +516,10 @@ def load_map(path: str | os.PathLike) -> GridMap:
 def save_map(grid: GridMap, path: str | os.PathLike) -> Path:
     """Write ``grid`` in the format given by the suffix (``.map``, ``.txt``, ``.csv``,
     ``.npy``, or ``.yaml`` which also writes a ``.pgm`` beside it). Returns the path."""
-    p = Path(path)
+    if not isinstance(grid, GridMap):
+        raise ParameterError(f"grid must be an op.GridMap (only grid maps have a file format), got "
+                             f"{type(grid).__name__}")
+    p = Path(file_path("path", path))
     rows = grid.to_rows()
     suffix = p.suffix.lower()
     if suffix == ".map":

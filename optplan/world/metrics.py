@@ -108,7 +108,9 @@ def path_metrics(world, path) -> PathMetrics:
         from .queries import check_world
 
         check_world(world)
-    P = np.asarray(path, dtype=float)
+    from ..checks import float_array
+
+    P = float_array("path", path, "an (N, 2) array of points")
     if P.ndim != 2 or len(P) == 0:
         return PathMetrics(float("inf"), float("nan"), 0, float("nan"), float("nan"))
     return PathMetrics(

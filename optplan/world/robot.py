@@ -65,7 +65,10 @@ class RobotSpec:
             raise ParameterError(f"robot model must be one of {', '.join(MODELS)}, got {self.model!r}")
         for name in ("radius", "v_max", "w_max", "a_max", "alpha_max"):
             object.__setattr__(self, name, _positive(name, getattr(self, name)))
-        v_min = float(self.v_min)
+        try:
+            v_min = float(self.v_min)
+        except (TypeError, ValueError):
+            v_min = math.nan
         if not math.isfinite(v_min) or v_min > self.v_max:
             raise ParameterError(f"robot v_min must be finite and <= v_max ({self.v_max:g}), got {self.v_min!r}")
         object.__setattr__(self, "v_min", v_min)

@@ -11,13 +11,14 @@ import time
 
 import numpy as np
 
+from ...checks import boolean, choice
 from ...errors import ParameterError, UnknownAlgorithmError
 from ...results import PlanResult
-from ...world.queries import check_start_goal
+from ...world.queries import check_start_goal, check_world
 from ..result import make_plan_result
 from ..tangent_graph import plan_tangent
 from .astar import CellPath, cell_path, grid_search, octile
-from .visibility import convex_corners, visibility_path
+from .visibility import POINT_MODES, convex_corners, visibility_path
 
 METHODS = ("astar", "dijkstra", "visibility")
 
@@ -57,6 +58,9 @@ def shortest_path(world, start, goal, method: str = "astar", *, corner_cutting: 
             (for A*/Dijkstra also: an end that joins no free cell centre).
         UnknownAlgorithmError: unknown ``method``.
     """
+    check_world(world)
+    corner_cutting = boolean("corner_cutting", corner_cutting)
+    choice(*POINT_MODES)("points", points)
     if method not in METHODS:
         raise UnknownAlgorithmError(f"unknown graph method {method!r}; known: {', '.join(METHODS)}")
     t0 = time.perf_counter()

@@ -11,6 +11,7 @@ from typing import Callable
 
 import numpy as np
 
+from ...checks import float_array, function, integer
 from ...checks import seed as checked_seed
 from ...errors import ParameterError, UnknownAlgorithmError
 from ...results import OptimizeResult
@@ -60,7 +61,7 @@ def _positive_int(name: str, value, minimum: int) -> int:
 
 
 def _bounds(bounds, dim: int | None) -> tuple[np.ndarray, np.ndarray]:
-    b = np.asarray(bounds, dtype=float)
+    b = float_array("bounds", bounds, "a (d, 2) array of (lower, upper) rows")
     if b.ndim == 1 and b.size == 2 and dim is not None:
         b = np.tile(b, (dim, 1))
     if b.ndim != 2 or b.shape[1] != 2 or b.shape[0] == 0:
@@ -114,6 +115,10 @@ def optimize(f: Callable, bounds, algorithm: str = "gwo", pop: int = 30, iters: 
         **params: the algorithm's own parameters (see its class for defaults).
     """
     cls = get_algorithm(algorithm)
+    function()("f", f)
+    repair, callback = function(optional=True)("repair", repair), function(optional=True)("callback", callback)
+    if init is not None and not callable(init):
+        init = float_array("init", init, "an initial population (pop, d) of numbers or a function (n, rng) -> X")
     pop = _positive_int("pop", pop, max(cls.min_pop, 1))
     if budget is None:
         budget = Budget(iterations=iters, evaluations=max_evals, stagnation=stagnation, target=target)
@@ -123,7 +128,7 @@ def optimize(f: Callable, bounds, algorithm: str = "gwo", pop: int = 30, iters: 
         raise ParameterError("give either budget=Budget(...) or iters/max_evals/stagnation/target, not both")
     if archive_every is not None:
         archive_every = _positive_int("archive_every", archive_every, 1)
-    lo, hi = _bounds(bounds, dim)
+    lo, hi = _bounds(bounds, integer(1, optional=True)("dim", dim))
     if seeds is not None:
         return _optimize_seeds(cls, f, lo, hi, pop, budget, seeds, init=init, repair=repair, callback=callback,
                                progress=progress, archive_every=archive_every, params=params)
