@@ -6,7 +6,6 @@ from pathlib import Path
 
 from .errors import UnknownAlgorithmError
 from .planning import plan
-from .viz.plots import plot_paths
 from .world.loaders import load_map
 
 DEMO_MAP = "multialgo20_template"
@@ -65,7 +64,46 @@ def run_demo(out: str | Path = "optplan_demo.png", seed: int = 0, stream=None) -
     print("exact optimum = visibility graph over obstacle corners (any-angle, cell centres); "
           "'+ casadi' / '+ qp' = the msiar-gwo path refined by IPOPT / the OSQP corridor smoother "
           "(times include the metaheuristic; every path passed the exact collision check)", file=stream)
-    plot_paths(grid, {k: v.path for k, v in results.items()}, out,
-               title=f"{DEMO_MAP}: planners vs exact any-angle optimum")
+    demo_figure(grid, results, optimum, out)
     print(f"wrote {out}", file=stream)
     return rows
+
+
+def demo_figure(grid, results: dict, optimum: float, out: str | Path | None):
+    """The demo's picture: the paths on the map with the exact optimum drawn as a band on top
+    (paths that follow it cannot hide it), and the searches' convergence on a linear axis with
+    each path's final length after pruning and refinement marked past the curve (the refined
+    runs share the msiar-gwo search, so only their marks differ)."""
+    import numpy as np
+    from matplotlib.figure import Figure
+
+    from .viz.convergence import draw_convergence, post_processing_x
+    from .viz.plots import draw_paths
+
+    fig = Figure(figsize=(12.5, 6.2))
+    ax_map, ax_conv = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.0, 1.05]})
+    exact = "exact optimum (visibility)"
+    paths = {(exact if k == "visibility" else k): r.path for k, r in results.items()}
+    cycle = [f"C{i}" for i in range(10)]
+    colours = {k: cycle[i % len(cycle)] for i, k in enumerate(k for k in paths if k != exact)}
+    draw_paths(ax_map, grid, paths, DEMO_START, DEMO_GOAL, highlight=exact, legend_loc="upper left",
+               colours=colours)
+    ax_map.set_title(f"{DEMO_MAP}: paths (every one passed the exact collision check)", fontsize=10)
+    searches = {k: r for k, r in results.items() if len(r.history) > 1 and " + " not in k}
+    histories = {k: [np.where(np.isfinite(r.history), r.history, np.nan)] for k, r in searches.items()}
+    finals = {k: [r.length] for k, r in searches.items()}
+    draw_convergence(ax_conv, histories, log=False, finals=finals, reference=(optimum, "exact optimum"),
+                     ylabel="best fitness during the search; marks: final path length [m]", colours=colours)
+    n_max = max((len(h[0]) for h in histories.values()), default=1)
+    for shift, (name, r) in enumerate((k, r) for k, r in results.items() if " + " in k):
+        ax_conv.plot([post_processing_x(n_max) + 4 * (shift + 1)], [r.length], "P", color=colours.get(name), ms=8,
+                     label=f"{name} (the msiar-gwo search, refined)")
+    finite = [v for h in histories.values() for v in h[0] if np.isfinite(v)]
+    if finite:  # leave out the first infeasible iterations' huge values, keep the end readable
+        ax_conv.set_ylim(optimum * 0.98, min(max(finite), optimum * 1.35))
+    ax_conv.legend(fontsize=7)
+    ax_conv.set_title("convergence: search, then pruning / refinement", fontsize=10)
+    fig.tight_layout()
+    if out is not None:
+        fig.savefig(out, dpi=110)
+    return fig

@@ -96,3 +96,27 @@ def test_unwritable_outputs_are_refused_before_any_work(tmp_path, capsys, argv):
     out, err = capsys.readouterr()
     assert code == 2 and out == ""
     assert len(err.strip().splitlines()) == 1 and "optplan: error:" in err
+
+
+def test_demo_figure_shows_the_optimum_on_top_and_post_processing_on_a_linear_axis():
+    """The exact optimum is drawn above every other path; the convergence panel is linear and
+    marks each path's length after post-processing, so a refined run differs from its search."""
+    from optplan import demo
+    from optplan.planning import plan
+
+    grid = demo.load_map(demo.DEMO_MAP)
+    q = (grid, demo.DEMO_START, demo.DEMO_GOAL)
+    results = {"visibility": plan(*q, algorithm="visibility"),
+               "msiar-gwo": plan(*q, algorithm="msiar-gwo", seed=0, pop=10, iters=20),
+               "msiar-gwo + qp": plan(*q, algorithm="msiar-gwo", seed=0, pop=10, iters=20, refine="qp")}
+    fig = demo.demo_figure(grid, results, results["visibility"].length, None)
+    ax_map, ax_conv = fig.axes[:2]
+    band = [ln for ln in ax_map.lines if ln.get_label() == "exact optimum (visibility)"]
+    others = [ln for ln in ax_map.lines if ln.get_label() in ("msiar-gwo", "msiar-gwo + qp")]
+    assert band and others and band[0].get_zorder() > max(ln.get_zorder() for ln in others)
+    assert ax_conv.get_yscale() == "linear"
+    marks = {ln.get_label(): ln.get_ydata()[-1] for ln in ax_conv.lines if len(ln.get_ydata()) == 1}
+    refined = [v for k, v in marks.items() if k.startswith("msiar-gwo + qp")]
+    assert refined and np.isclose(refined[0], results["msiar-gwo + qp"].length)
+    ends = [ln.get_ydata()[-1] for ln in ax_conv.lines if ln.get_marker() == "D" and len(ln.get_ydata()) == 1]
+    assert any(np.isclose(v, results["msiar-gwo"].length) for v in ends)

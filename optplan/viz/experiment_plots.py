@@ -68,7 +68,8 @@ def experiment_plots(res: ExperimentResults, out_dir: str | Path, metric: str | 
         if any(len(v) for v in vals.values()):
             files.append(out_dir / f"{_safe(spec.name)}_{_safe(t.name)}_box.png")
             box_plot(vals, files[-1], title=f"{t.name}: {metric}", ylabel=metric, reference_line=ref_line)
-        histories, paths = {}, {}
+        histories, paths, finals = {}, {}, {}
+        final_metric = {"plan": "length", "program": "cost"}.get(spec.kind)
         for g, recs in groups.items():
             ok = [r for r in recs if res.successful(r)] or [r for r in recs if r.key in res.rows
                                                              and res.rows[r.key]["status"] == "ok"]
@@ -78,6 +79,8 @@ def experiment_plots(res: ExperimentResults, out_dir: str | Path, metric: str | 
             hs = [h for h in hs if np.isfinite(h).all()]
             if hs:
                 histories[names[g]] = hs
+                if final_metric:  # what pruning / refinement made of the search's best
+                    finals[names[g]] = res.values(ok, final_metric, successful_only=False)
             if ok and spec.kind in ("plan", "simulate", "program"):
                 best = min(ok, key=lambda r: float(res.rows[r.key].get(metric) or np.inf))
                 trace = tr.get(best.key, {})
@@ -86,9 +89,15 @@ def experiment_plots(res: ExperimentResults, out_dir: str | Path, metric: str | 
                 elif trace.get("trajectory"):
                     paths[names[g]] = np.asarray(trace["trajectory"], float)[:, 1:3]
         if histories:
-            positive = all((h > 0).all() for hs in histories.values() for h in hs)
+            # a path search's fitness is no error to a known optimum: a linear axis, with the
+            # value after post-processing marked past the curve (so runs that share a search
+            # but not a refinement do not draw one curve)
             files.append(out_dir / f"{_safe(spec.name)}_{_safe(t.name)}_convergence.png")
-            plot_convergence(histories, files[-1], title=f"{t.name}: best value per iteration", log=positive)
+            plot_convergence(histories, files[-1], title=f"{t.name}: best value per iteration", log=False,
+                             finals=finals or None,
+                             reference=(ref_line, "exact optimum") if ref_line is not None else None,
+                             ylabel=(f"best fitness during the search; marks: final {final_metric}"
+                                     if final_metric else None))
         if paths:
             world = _world_of(spec.kind, t.spec)
             if world is not None:

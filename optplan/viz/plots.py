@@ -47,19 +47,39 @@ def draw_world(ax, world) -> None:
 
 
 def plot_paths(world, paths: Mapping[str, np.ndarray], filename: str | Path | None = None, title: str = "",
-               start=None, goal=None):
+               start=None, goal=None, highlight: str | None = None):
     """Draw ``world`` with each named ``(N, 2)`` path (metres) overlaid; returns the Figure,
     after writing it as a PNG to ``filename`` when one is given.
 
     ``start`` and ``goal`` mark the query; by default the first path's ends (give them for
-    trajectories, which end where the robot stopped, not at the goal)."""
+    trajectories, which end where the robot stopped, not at the goal). ``highlight`` names
+    one path (e.g. the exact optimum) drawn as a wide band above the others, so paths that
+    follow it closely cannot hide it."""
     fig, ax = new_figure((6.4, 6.4))
+    draw_paths(ax, world, paths, start, goal, highlight)
+    return finish_figure(fig, filename, title, dpi=120)
+
+
+def draw_paths(ax, world, paths: Mapping[str, np.ndarray], start=None, goal=None, highlight: str | None = None,
+               legend_loc: str = "best", colours: Mapping[str, str] | None = None) -> None:
+    """The drawing of :func:`plot_paths` on a given Axes (``colours`` by path name, e.g. to
+    match another panel)."""
+    colours = colours or {}
     draw_world(ax, world)
     styles = ["-", "--", "-.", ":"]
-    for k, (name, path) in enumerate(paths.items()):
+    k = 0
+    for name, path in paths.items():
         P = np.asarray(path, dtype=float)
-        if P.ndim == 2 and len(P):
-            ax.plot(P[:, 0], P[:, 1], styles[k % len(styles)], lw=2, marker="o", ms=3, label=name, zorder=5)
+        if not (P.ndim == 2 and len(P)):
+            continue
+        if name == highlight:  # a translucent band on top: visible, and what it covers shows through
+            ax.plot(P[:, 0], P[:, 1], "-", color="gold", lw=7, alpha=0.55, solid_capstyle="round", label=name,
+                    zorder=7)
+            ax.plot(P[:, 0], P[:, 1], "o", color="darkgoldenrod", ms=6, zorder=7)
+            continue
+        ax.plot(P[:, 0], P[:, 1], styles[k % len(styles)], lw=1.6, marker="o", ms=2.5, label=name, zorder=5,
+                color=colours.get(name))
+        k += 1
     first = next((np.asarray(p) for p in paths.values() if len(p)), None)
     if start is None and first is not None:
         start = first[0]
@@ -69,8 +89,7 @@ def plot_paths(world, paths: Mapping[str, np.ndarray], filename: str | Path | No
         ax.plot(*np.asarray(start, float)[:2], "g^", ms=10, zorder=6, label="start")
     if goal is not None:
         ax.plot(*np.asarray(goal, float)[:2], "r*", ms=13, zorder=6, label="goal")
-    ax.legend(loc="best", fontsize=8, framealpha=0.85)
-    return finish_figure(fig, filename, title, dpi=120)
+    ax.legend(loc=legend_loc, fontsize=7, framealpha=0.85)
 
 
 def finish_figure(fig, filename: str | Path | None = None, title: str = "", dpi: int = 110):
