@@ -349,7 +349,8 @@ def main(argv: list[str] | None = None) -> int:
     """Run the command line with ``argv`` (default ``sys.argv[1:]``); returns the exit status
     (0 success, 1 a simulation that missed the goal or collided, 2 an OptplanError whose
     message was printed on one line, 3 an internal error (a bug; one line, the traceback with
-    ``OPTPLAN_TRACEBACK=1``), 130 interrupted)."""
+    ``OPTPLAN_TRACEBACK=1``), 130 interrupted, 141 the reader of the output went away, as in
+    ``optplan ... | head``, which prints nothing more)."""
     parser = build_parser()
     args = parser.parse_args(argv)
     if not getattr(args, "command", None):
@@ -361,6 +362,12 @@ def main(argv: list[str] | None = None) -> int:
     except OptplanError as exc:
         print(f"optplan: error: {one_line(exc)}", file=sys.stderr)
         return EXIT_ERROR
+    except BrokenPipeError:  # the reader of our output went away (`optplan ... | head`): not an error
+        import os
+
+        # stdout is dead: point it at devnull so the interpreter's final flush stays quiet
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 141  # what a shell reports for a process ended by SIGPIPE
     except OSError as exc:  # a file the user named could not be read or written
         where = f" {exc.filename}" if getattr(exc, "filename", None) else ""
         print(f"optplan: error: cannot access{where}: {exc.strerror or exc}", file=sys.stderr)

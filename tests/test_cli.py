@@ -120,3 +120,20 @@ def test_demo_figure_shows_the_optimum_on_top_and_post_processing_on_a_linear_ax
     assert refined and np.isclose(refined[0], results["msiar-gwo + qp"].length)
     ends = [ln.get_ydata()[-1] for ln in ax_conv.lines if ln.get_marker() == "D" and len(ln.get_ydata()) == 1]
     assert any(np.isclose(v, results["msiar-gwo"].length) for v in ends)
+
+
+def test_a_closed_output_pipe_prints_no_error(tmp_path):
+    """`optplan plan ... | head`: the reader goes away; no 'error' line, status 141 (SIGPIPE)."""
+    import os
+    from pathlib import Path
+
+    child = ("import os, sys\n"
+             "r, w = os.pipe(); os.close(r); os.dup2(w, 1)\n"   # stdout is a pipe nobody reads
+             "from optplan.cli import main\n"
+             "code = main(['plan', 'chen2025_20', '--algo', 'astar', '--json'])\n"
+             "sys.stderr.write(f'status {code}\\n')\n")
+    root = Path(__file__).resolve().parents[1]
+    env = {**os.environ, "PYTHONPATH": str(root)}
+    done = subprocess.run([sys.executable, "-c", child], cwd=tmp_path, env=env, capture_output=True, text=True,
+                          timeout=120)
+    assert done.stderr.strip() == "status 141", done.stderr
