@@ -504,3 +504,18 @@ def validate_path(world, path, clearance: float = 0.0) -> PathCheck:
     else:
         reason = ""
     return PathCheck(not reason, bad_segs, bad_pts, reason)
+
+
+def convex_corners(grid) -> tuple[np.ndarray, np.ndarray]:
+    """Lattice vertices (grid units) with exactly one blocked cell around them (the map's
+    outside counts as blocked), and the quadrant ``(sx, sy)`` (each +-1) in which that
+    blocked cell lies: the only points where a shortest path under the segment rule bends."""
+    pad = grid.padded  # padded[iy + 1, ix + 1]
+    # the four cells around vertex (X, Y): (X-1, Y-1), (X, Y-1), (X-1, Y), (X, Y)
+    bl, br = pad[:-1, :-1], pad[:-1, 1:]
+    tl, tr = pad[1:, :-1], pad[1:, 1:]
+    count = bl.astype(np.int8) + br + tl + tr
+    Y, X = np.nonzero(count == 1)
+    sx = np.where(br[Y, X] | tr[Y, X], 1, -1)
+    sy = np.where(tl[Y, X] | tr[Y, X], 1, -1)
+    return np.stack([X, Y], axis=1).astype(float), np.stack([sx, sy], axis=1)

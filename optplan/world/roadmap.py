@@ -33,6 +33,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ParameterError
+from .geometry import convex_corners
 
 # segments checked per segments_free call (bounds the work arrays of the exact rule)
 EDGE_CHUNK = 20_000
@@ -42,14 +43,8 @@ DEFAULT_RING = 32
 
 def _grid_corners(grid, clearance: float) -> tuple[np.ndarray, np.ndarray]:
     """Convex corners in metres and their blocked quadrant ``(sx, sy)``."""
-    pad = grid.padded
-    bl, br, tl, tr = pad[:-1, :-1], pad[:-1, 1:], pad[1:, :-1], pad[1:, 1:]
-    count = bl.astype(np.int8) + br + tl + tr
-    Y, X = np.nonzero(count == 1)
-    sx = np.where(br[Y, X] | tr[Y, X], 1, -1)
-    sy = np.where(tl[Y, X] | tr[Y, X], 1, -1)
-    quad = np.stack([sx, sy], axis=1)
-    nodes = np.stack([X, Y], axis=1).astype(float) - quad * (clearance / grid.resolution)
+    corners, quad = convex_corners(grid)
+    nodes = corners - quad * (clearance / grid.resolution)
     P = grid.to_world(nodes)
     keep = grid.is_free(P, clearance) if clearance > 0 else np.ones(len(P), bool)
     # nodes on the map border are never on a shortest path (nothing to wrap around)

@@ -14,11 +14,12 @@ import numpy as np
 from ...checks import boolean, choice
 from ...errors import ParameterError, UnknownAlgorithmError
 from ...results import PlanResult
+from ...world.geometry import convex_corners
 from ...world.queries import check_start_goal, check_world
 from ..result import make_plan_result
 from ..tangent_graph import plan_tangent
 from .astar import CellPath, cell_path, grid_search, octile
-from .visibility import POINT_MODES, convex_corners, visibility_path
+from .visibility import POINT_MODES, visibility_path
 
 METHODS = ("astar", "dijkstra", "visibility")
 

@@ -36,26 +36,12 @@ import heapq
 import numpy as np
 
 from ...errors import InfeasibleQueryError, ParameterError
-from ...world.geometry import segments_free
+from ...world.geometry import convex_corners, segments_free
 
 # cells of segment length (|dx| + |dy| + 2 per segment) checked per segments_free call: the
 # rule's work arrays hold about that many entries, so this bounds them (~10 int64 arrays)
 SPAN_BUDGET = 1_000_000
 POINT_MODES = ("exact", "centres", "corners")
-
-
-def convex_corners(grid) -> tuple[np.ndarray, np.ndarray]:
-    """Lattice vertices (grid units) with exactly one blocked cell around them, and the
-    quadrant ``(sx, sy)`` (each +-1) in which that blocked cell lies."""
-    pad = grid.padded  # padded[iy + 1, ix + 1]
-    # the four cells around vertex (X, Y): (X-1, Y-1), (X, Y-1), (X-1, Y), (X, Y)
-    bl, br = pad[:-1, :-1], pad[:-1, 1:]
-    tl, tr = pad[1:, :-1], pad[1:, 1:]
-    count = bl.astype(np.int8) + br + tl + tr
-    Y, X = np.nonzero(count == 1)
-    sx = np.where(br[Y, X] | tr[Y, X], 1, -1)
-    sy = np.where(tl[Y, X] | tr[Y, X], 1, -1)
-    return np.stack([X, Y], axis=1).astype(float), np.stack([sx, sy], axis=1)
 
 
 def _tangent(d: np.ndarray, quadrant: np.ndarray) -> np.ndarray:
