@@ -67,7 +67,9 @@ Optional keys added by optplan (all validated like the rest):
   along its motion by a time drawn uniformly from ``[0, timing_jitter]`` with the
   run's seed, so seeded runs of a fixed scenario meet the movers at different moments.
 
-This module reads and checks the file; the seed-dependent parts are realised by
+This module reads and checks the file (the :class:`Scenario` it builds is in
+:mod:`optplan.world.scenario_model`, the movers in :mod:`optplan.world.movers`, the value
+checks in :mod:`optplan.world.file_values`); the seed-dependent parts are realised by
 :func:`optplan.worldgen.scenarios.realize` (``op.simulate`` calls it with its ``seed``
 and its initial global path), so the same scenario file, seed and global path always
 give the same world. Drawing them needs a planner, which this layer may not import.
@@ -77,14 +79,21 @@ from __future__ import annotations
 
 import math
 import os
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from ..errors import MapFormatError, OptplanError, ScenarioError
+from .file_values import file_mapping, file_number, file_points, file_range, file_vector
+from .movers import BORDER_MODES, DynamicObstacle
 from .robot import FILE_KEYS, RobotSpec
+from .scenario_model import MAX_RANDOM_MOVERS, MAX_RANDOM_OBSTACLES, Scenario, circle_distance, static_clearance, validate
+
+# the public names of the scenario modules, importable from here as before the split
+__all__ = ["BORDER_MODES", "MAX_RANDOM_MOVERS", "MAX_RANDOM_OBSTACLES", "REQUIRED", "SCENARIOS_DIR", "TOP_KEYS",
+           "DynamicObstacle", "Scenario", "circle_distance", "load_scenario", "scenario_from_dict", "scenario_names",
+           "static_clearance", "validate"]
 
 SCENARIOS_DIR = Path(__file__).resolve().parent.parent / "data" / "scenarios"
 
@@ -92,375 +101,6 @@ TOP_KEYS = ("map", "resolution", "robot", "start", "goal", "sensor_range", "dt",
             "unknown_obstacles", "dynamic_obstacles", "name", "description", "goal_tolerance",
             "random_obstacles", "random_dynamic", "timing_jitter")
 REQUIRED = ("map", "start", "goal")
-BORDER_MODES = ("bounce", "stop", "pass")
-# random draws larger than these are fills, not scenarios; refusing them keeps a hostile
-# file from making the draw allocate without bound or retry for ever
-MAX_RANDOM_OBSTACLES, MAX_RANDOM_MOVERS = 10_000, 1_000
-
-
-# ----------------------------------------------------------------- value checks
-def _where(ctx: str) -> str:
-    return f"scenario {ctx}" if ctx else "scenario"
-
-
-def _number(value, key: str, *, positive: bool = False, non_negative: bool = False) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
-        raise ScenarioError(f"{key} must be a number, got {value!r}")
-    v = float(value)
-    if not math.isfinite(v):
-        raise ScenarioError(f"{key} must be a finite number, got {value!r}")
-    if positive and v <= 0:
-        raise ScenarioError(f"{key} must be > 0, got {value!r}")
-    if non_negative and v < 0:
-        raise ScenarioError(f"{key} must be >= 0, got {value!r}")
-    return v
-
-
-def _vector(value, key: str, lengths: tuple[int, ...] = (2,)) -> np.ndarray:
-    if not isinstance(value, (list, tuple, np.ndarray)) or len(value) not in lengths:
-        want = " or ".join(str(n) for n in lengths)
-        raise ScenarioError(f"{key} must be a list of {want} numbers, got {value!r}")
-    return np.array([_number(v, f"{key}[{i}]") for i, v in enumerate(value)], dtype=float)
-
-
-def _points(value, key: str, min_len: int = 1) -> np.ndarray:
-    if not isinstance(value, (list, tuple)) or len(value) < min_len:
-        raise ScenarioError(f"{key} must be a list of at least {min_len} [x, y] pairs, got {value!r}")
-    return np.array([_vector(p, f"{key}[{i}]") for i, p in enumerate(value)], dtype=float).reshape(-1, 2)
-
-
-def _mapping(value, key: str, allowed: tuple[str, ...]) -> dict:
-    if not isinstance(value, dict):
-        raise ScenarioError(f"{key} must be a mapping with keys {', '.join(allowed)}, got {value!r}")
-    unknown = sorted(set(map(str, value)) - set(allowed))
-    if unknown:
-        raise ScenarioError(f"unknown key(s) {unknown} in {key}; known: {', '.join(allowed)}")
-    return value
-
-
-def _range(value, key: str) -> tuple[float, float]:
-    if isinstance(value, (int, float)) and not isinstance(value, bool):
-        v = _number(value, key, non_negative=True)
-        return (v, v)
-    lo, hi = _vector(value, key)
-    if lo < 0 or hi < lo:
-        raise ScenarioError(f"{key} must be [low, high] with 0 <= low <= high, got {value!r}")
-    return (float(lo), float(hi))
-
-
-# ------------------------------------------------------------- moving obstacles
-@dataclass
-class DynamicObstacle:
-    """A disc that moves along a waypoint polygon or at a constant velocity.
-
-    Attributes:
-        radius: metres.
-        waypoints: ``(k, 2)`` polygon (metres) for waypoint movers, else ``None``.
-        speed: m/s along the polygon.
-        loop: drive the polygon closed and repeat (``False``: stop at the last waypoint).
-        phase: metres along the polygon already driven at ``t = 0``.
-        start: ``(2,)`` position at ``t = 0`` of a constant-velocity mover, else ``None``.
-        velocity: ``(2,)`` m/s of a constant-velocity mover.
-        at_border: ``bounce``, ``stop`` or ``pass`` (constant-velocity movers).
-    """
-
-    radius: float
-    waypoints: np.ndarray | None = None
-    speed: float = 0.0
-    loop: bool = True
-    phase: float = 0.0
-    start: np.ndarray | None = None
-    velocity: np.ndarray | None = None
-    at_border: str = "bounce"
-
-    def state(self, t: float, bounds: tuple[float, float, float, float]) -> tuple[np.ndarray, np.ndarray]:
-        """Position ``(2,)`` (m) and velocity ``(2,)`` (m/s) at time ``t`` (s), in closed form."""
-        if self.waypoints is not None:
-            pos, vel = self._along_polygon_at(np.array([float(t)]))
-            return pos[0], vel[0]
-        return self._constant_velocity(t, bounds)
-
-    def states(self, times, bounds: tuple[float, float, float, float]) -> tuple[np.ndarray, np.ndarray]:
-        """Positions ``(T, 2)`` and velocities ``(T, 2)`` at the times ``(T,)``, all at once and
-        equal to :meth:`state` at each time (the simulator tabulates its movers with it)."""
-        t = np.asarray(times, dtype=float).reshape(-1)
-        if self.waypoints is not None:
-            return self._along_polygon_at(t)
-        pos, vel = self._constant_velocity(t[:, None], bounds)
-        return np.broadcast_to(pos, (len(t), 2)).copy(), np.broadcast_to(vel, (len(t), 2)).copy()
-
-    def _along_polygon_at(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Position and velocity along the waypoint polygon at many times ``(T,)``: arc length
-        from the phase, a loop wrapped, repeated waypoints skipped, a finished open route held."""
-        P = self.waypoints
-        still = (np.repeat(P[:1], len(t), axis=0), np.zeros((len(t), 2)))
-        if len(P) == 1 or self.speed == 0:
-            return still
-        if self.loop:
-            P = np.vstack([P, P[:1]])
-        seg = np.diff(P, axis=0)
-        lengths = np.hypot(seg[:, 0], seg[:, 1])
-        cum = np.concatenate([[0.0], np.cumsum(lengths)])
-        total = cum[-1]
-        if total <= 0:
-            return still
-        s = self.phase + self.speed * t
-        if self.loop:
-            s = s % total
-        i = np.clip(np.searchsorted(cum, s, side="right") - 1, 0, len(seg) - 1)
-        # the first non-empty leg from each leg on (the last leg if none), as the scalar loop skips
-        nonempty = np.nonzero(lengths > 0)[0]
-        later = np.searchsorted(nonempty, np.arange(len(seg)))
-        skip = np.where(later < len(nonempty), nonempty[np.minimum(later, len(nonempty) - 1)], len(seg) - 1)
-        i = skip[i]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            u = np.where(lengths[i, None] > 0, seg[i] / lengths[i, None], 0.0)
-        pos = P[i] + u * (s - cum[i])[:, None]
-        vel = u * self.speed
-        if not self.loop:
-            done = s >= total
-            pos[done] = P[-1]
-            vel[done] = 0.0
-        return pos, vel
-
-    def _constant_velocity(self, t: float, bounds) -> tuple[np.ndarray, np.ndarray]:
-        p0, v = self.start, self.velocity
-        if self.at_border == "pass":
-            return p0 + v * t, v.copy()
-        lo = np.array(bounds[:2]) + self.radius
-        hi = np.array(bounds[2:]) - self.radius
-        if np.any(hi < lo):
-            # no place inside the map holds the disc: bouncing or stopping would have to put it
-            # somewhere it never was (validate() refuses such a mover when the file is read)
-            raise ScenarioError(_misfit_message("this mover", self.radius, bounds, self.at_border))
-        if self.at_border == "stop":
-            # the first time either coordinate reaches its limit
-            with np.errstate(divide="ignore", invalid="ignore"):
-                t_hit = np.where(v > 0, (hi - p0) / v, np.where(v < 0, (lo - p0) / v, np.inf))
-            t_stop = max(float(np.min(t_hit)), 0.0)
-            stopped = np.asarray(t >= t_stop)  # element-wise, so states() can ask for many times
-            return np.where(stopped, p0 + v * t_stop, p0 + v * t), np.where(stopped, 0.0, v)
-        # bounce: each coordinate is a triangle wave between lo and hi. A disc that starts over
-        # the border moves straight on until it is wholly inside, and bounces from then on
-        # (one moving away from the map, or not moving in that coordinate, never comes in);
-        # folding its start into [lo, hi] instead would move it at t = 0.
-        span = hi - lo
-        free = p0 + v * t
-        u = free - lo
-        period = 2 * span
-        with np.errstate(divide="ignore", invalid="ignore"):
-            t_in = np.where(p0 < lo, np.where(v > 0, (lo - p0) / v, np.inf),
-                            np.where(p0 > hi, np.where(v < 0, (hi - p0) / v, np.inf), 0.0))
-        s = np.mod(u, np.where(period > 0, period, 1.0))
-        back = s > span
-        pos = np.where(span > 0, lo + np.where(back, period - s, s), lo)   # span 0: the disc just fits
-        vel = np.where(span > 0, np.where(back, -v, v), 0.0)
-        outside = t < t_in
-        return np.where(outside, free, pos), np.where(outside, v, vel)
-
-
-# ----------------------------------------------------------------------- scenario
-@dataclass
-class Scenario:
-    """Everything a closed-loop run needs (see the module docstring for the file format).
-
-    Attributes:
-        world: the known map (GridMap or CircleWorld) the global planner sees.
-        robot: footprint and limits.
-        start: ``(3,)`` pose ``(x, y, theta)`` in metres and radians.
-        goal: ``(2,)`` metres.
-        sensor_range: distance (m) within which unknown obstacles and movers are sensed.
-        dt: control and simulation period, seconds.
-        time_limit: seconds of simulated time before a run counts as a timeout.
-        unknown_cells: ``(m, 2)`` integer cells ``(ix, iy)`` blocked but missing from ``world``.
-        unknown_circles: ``(k, 3)`` discs ``(x, y, r)`` missing from ``world``.
-        dynamic: moving obstacles.
-        goal_tolerance: metres.
-        name, description: free text.
-        random_obstacles, random_dynamic: seed-dependent parts (``None`` when absent);
-            :func:`optplan.worldgen.scenarios.realize` turns them into unknown and moving obstacles.
-        timing_jitter: seconds; ``realize`` advances each mover by a random time up to this.
-        source: the file it was read from, if any.
-    """
-
-    world: Any
-    robot: RobotSpec
-    start: np.ndarray
-    goal: np.ndarray
-    sensor_range: float = 3.0
-    dt: float = 0.1
-    time_limit: float = 300.0
-    unknown_cells: np.ndarray = field(default_factory=lambda: np.zeros((0, 2), dtype=np.int64))
-    unknown_circles: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
-    dynamic: list[DynamicObstacle] = field(default_factory=list)
-    goal_tolerance: float = 0.3
-    name: str = ""
-    description: str = ""
-    random_obstacles: dict | None = None
-    random_dynamic: dict | None = None
-    timing_jitter: float = 0.0
-    source: str = ""
-
-    def __post_init__(self) -> None:
-        self.start = np.asarray(self.start, dtype=float).reshape(-1)
-        if self.start.shape == (2,):
-            self.start = np.append(self.start, 0.0)
-        self.goal = np.asarray(self.goal, dtype=float).reshape(-1)
-        self.unknown_cells = np.asarray(self.unknown_cells, dtype=np.int64).reshape(-1, 2)
-        self.unknown_circles = np.asarray(self.unknown_circles, dtype=float).reshape(-1, 3)
-        validate(self)
-
-    @property
-    def is_grid(self) -> bool:
-        return self.world.is_grid
-
-    @property
-    def bounds(self) -> tuple[float, float, float, float]:
-        return tuple(float(b) for b in self.world.bounds)
-
-    def true_world(self):
-        """The static world as it really is: the known map plus the unknown cells (grids)
-        or discs (circle worlds, without the planning safety margin). Unknown discs on a
-        grid are not included; see :func:`static_clearance`."""
-        return _true_world(self)
-
-
-# ------------------------------------------------------------------ true world
-def _true_world(sc: Scenario):
-    from .circles import CircleWorld
-
-    if sc.is_grid:
-        if not len(sc.unknown_cells):
-            return sc.world
-        from .grid import GridMap
-
-        occ = sc.world.occ.copy()
-        occ[sc.unknown_cells[:, 1], sc.unknown_cells[:, 0]] = True
-        return GridMap(occ, sc.world.resolution, sc.world.origin, f"{sc.world.name}+unknown")
-    circles = np.vstack([sc.world.circles, sc.unknown_circles]) if len(sc.unknown_circles) else sc.world.circles
-    return CircleWorld(sc.world.bounds, circles, 0.0, sc.world.name)
-
-
-def circle_distance(points, circles) -> np.ndarray:
-    """Signed distance (m) from points ``(..., 2)`` to the nearest of ``circles`` ``(k, 3)``
-    (``inf`` when there are none)."""
-    p = np.asarray(points, dtype=float)
-    c = np.asarray(circles, dtype=float).reshape(-1, 3)
-    if not len(c):
-        return np.full(p.shape[:-1], np.inf)
-    d = np.hypot(p[..., None, 0] - c[:, 0], p[..., None, 1] - c[:, 1]) - c[:, 2]
-    return d.min(axis=-1)
-
-
-def static_clearance(sc: Scenario, points) -> np.ndarray:
-    """Exact signed distance (m) from points to the true static world (known map,
-    unknown cells and unknown discs, and the map border)."""
-    d = np.asarray(sc.true_world().clearance(points), dtype=float)
-    if sc.is_grid and len(sc.unknown_circles):
-        d = np.minimum(d, circle_distance(points, sc.unknown_circles))
-    return d
-
-
-# ------------------------------------------------------------------ validation
-def validate(sc: Scenario) -> None:
-    """Check a scenario's values and geometry, raising ScenarioError with the fix."""
-    if not hasattr(sc.world, "bounds") or not hasattr(sc.world, "segments_free"):
-        raise ScenarioError(f"scenario world must be a GridMap or CircleWorld, got {type(sc.world).__name__}")
-    if not isinstance(sc.robot, RobotSpec):
-        raise ScenarioError(f"scenario robot must be a RobotSpec, got {type(sc.robot).__name__}")
-    if sc.start.shape != (3,) or not np.all(np.isfinite(sc.start)):
-        raise ScenarioError(f"start must be [x, y] or [x, y, heading_deg] with finite numbers, got {sc.start!r}")
-    if sc.goal.shape != (2,) or not np.all(np.isfinite(sc.goal)):
-        raise ScenarioError(f"goal must be [x, y] with finite numbers, got {sc.goal!r}")
-    for key in ("sensor_range", "dt", "time_limit", "goal_tolerance"):
-        _number(getattr(sc, key), key, positive=True)
-    if sc.dt > sc.time_limit:
-        raise ScenarioError(f"dt ({sc.dt:g} s) must not exceed time_limit ({sc.time_limit:g} s)")
-    if sc.time_limit / sc.dt > 10_000_000:
-        raise ScenarioError(f"time_limit / dt = {sc.time_limit / sc.dt:.3g} steps is too many; raise dt or lower time_limit")
-    xmin, ymin, xmax, ymax = sc.bounds
-    if len(sc.unknown_cells):
-        if not sc.is_grid:
-            raise ScenarioError("unknown_obstacles 'cells' need a grid map; on a circle world use {circle: [x, y, r]}")
-        bad = ~sc.world.in_map(sc.unknown_cells)
-        if np.any(bad):
-            c = sc.unknown_cells[np.argmax(bad)]
-            raise ScenarioError(f"unknown obstacle cell {c.tolist()} is outside the {sc.world.width}x{sc.world.height} map")
-    if len(sc.unknown_circles) and (not np.all(np.isfinite(sc.unknown_circles)) or np.any(sc.unknown_circles[:, 2] <= 0)):
-        raise ScenarioError("unknown obstacle circles must be [x, y, r] with finite centre and r > 0")
-    r = sc.robot.radius
-    for what, p in (("start", sc.start[:2]), ("goal", sc.goal)):
-        if not (xmin <= p[0] <= xmax and ymin <= p[1] <= ymax):
-            raise ScenarioError(f"{what} ({p[0]:g}, {p[1]:g}) is outside the map bounds "
-                                f"x in [{xmin:g}, {xmax:g}], y in [{ymin:g}, {ymax:g}]")
-        known = float(sc.world.clearance(p))
-        if known < r:
-            raise ScenarioError(f"{what} ({p[0]:g}, {p[1]:g}) is blocked or closer than the robot radius {r:g} m "
-                                f"to an obstacle of the map (clearance {known:.3g} m); move it into free space")
-        true = float(static_clearance(sc, p))
-        if true < r:
-            raise ScenarioError(f"an unknown obstacle overlaps the robot at the {what} ({p[0]:g}, {p[1]:g}) "
-                                f"(clearance {true:.3g} m < radius {r:g} m); move the obstacle or the {what}")
-    _check_random_draws(sc)
-    for i, ob in enumerate(sc.dynamic):
-        _check_mover(ob, i, sc.bounds)
-        pos, _ = ob.state(0.0, sc.bounds)
-        gap = float(np.hypot(*(pos - sc.start[:2]))) - ob.radius - r
-        if gap < 0:
-            raise ScenarioError(f"dynamic obstacle {i} at ({pos[0]:g}, {pos[1]:g}) overlaps the robot's start "
-                                f"(gap {gap:.3g} m); move it away by at least {-gap:.3g} m")
-
-
-def _check_random_draws(sc: Scenario) -> None:
-    """Refuse random obstacles and movers that no map of this size can hold."""
-    xmin, ymin, xmax, ymax = sc.bounds
-    span, area = max(xmax - xmin, ymax - ymin), (xmax - xmin) * (ymax - ymin)
-    blocks, movers = sc.random_obstacles or {}, sc.random_dynamic or {}
-    if blocks.get("count", 0):
-        count, size = blocks["count"], blocks["size"]
-        limit, size_limit, unit = MAX_RANDOM_OBSTACLES, span, "m"
-        if sc.is_grid:  # size in cells
-            w, h = sc.world.width, sc.world.height
-            limit, size_limit, unit = min(limit, w * h), max(w, h), "cells"
-        if count > limit:
-            raise ScenarioError(f"random_obstacles.count ({count}) is more than this map can take (at most {limit})")
-        if size > size_limit:
-            raise ScenarioError(f"random_obstacles.size ({size:g} {unit}) is larger than the map ({size_limit:g} {unit})")
-    if movers.get("count", 0):
-        count, radius = movers["count"], movers["radius"]
-        if radius > span / 2:
-            raise ScenarioError(f"random_dynamic.radius ({radius:g} m) is larger than half the map ({span / 2:g} m)")
-        # movers never touch, so their discs alone must fit in the map
-        limit = min(MAX_RANDOM_MOVERS, int(area / (math.pi * radius ** 2)))
-        if count > limit:
-            raise ScenarioError(f"random_dynamic.count ({count}) is more than {limit} discs of radius {radius:g} m "
-                                f"that fit apart in this map; lower count or radius")
-
-
-def _check_mover(ob: DynamicObstacle, i: int, bounds=None) -> None:
-    key = f"dynamic_obstacles[{i}]"
-    _number(ob.radius, f"{key}.radius", positive=True)
-    if (ob.waypoints is None) == (ob.start is None):
-        raise ScenarioError(f"{key} needs either waypoints (+ speed) or start (+ velocity)")
-    if ob.waypoints is not None:
-        _number(ob.speed, f"{key}.speed", non_negative=True)
-        _number(ob.phase, f"{key}.phase", non_negative=True)
-    else:
-        if ob.velocity is None or np.shape(ob.velocity) != (2,) or not np.all(np.isfinite(ob.velocity)):
-            raise ScenarioError(f"{key}.velocity must be [vx, vy] in m/s")
-        if ob.at_border not in BORDER_MODES:
-            raise ScenarioError(f"{key}.at_border must be one of {', '.join(BORDER_MODES)}, got {ob.at_border!r}")
-        if bounds is not None and ob.at_border != "pass":
-            xmin, ymin, xmax, ymax = bounds
-            if 2 * ob.radius > min(xmax - xmin, ymax - ymin):
-                raise ScenarioError(_misfit_message(key, ob.radius, bounds, ob.at_border))
-
-
-def _misfit_message(key: str, radius: float, bounds, at_border: str) -> str:
-    xmin, ymin, xmax, ymax = bounds
-    return (f"{key} (radius {radius:g} m) is wider than the {xmax - xmin:g} x {ymax - ymin:g} m map, so it cannot "
-            f"{at_border} at the border; use a radius of at most {min(xmax - xmin, ymax - ymin) / 2:g} m "
-            f"or at_border: pass")
 
 
 # --------------------------------------------------------------------- reading
@@ -503,11 +143,11 @@ def _read_unknown(items, world) -> tuple[np.ndarray, np.ndarray]:
     cells, circles = [], []
     for i, item in enumerate(items):
         key = f"unknown_obstacles[{i}]"
-        item = _mapping(item, key, ("cells", "circle"))
+        item = file_mapping(item, key, ("cells", "circle"))
         if len(item) != 1:
             raise ScenarioError(f"{key} must have exactly one of 'cells' or 'circle'")
         if "cells" in item:
-            pts = _points(item["cells"], f"{key}.cells")
+            pts = file_points(item["cells"], f"{key}.cells")
             if not np.all(pts == np.round(pts)):
                 raise ScenarioError(f"{key}.cells must be integer cell indices [ix, iy]")
             huge = np.any(np.abs(pts) > 2 ** 31, axis=1)  # would overflow the integer cast below
@@ -515,7 +155,7 @@ def _read_unknown(items, world) -> tuple[np.ndarray, np.ndarray]:
                 raise ScenarioError(f"{key}.cells: cell {pts[np.argmax(huge)].tolist()} is outside any map")
             cells.append(pts.astype(np.int64))
         else:
-            c = _vector(item["circle"], f"{key}.circle", (3,))
+            c = file_vector(item["circle"], f"{key}.circle", (3,))
             if c[2] <= 0:
                 raise ScenarioError(f"{key}.circle radius must be > 0, got {c[2]:g}")
             circles.append(c)
@@ -531,10 +171,10 @@ def _read_movers(items) -> list[DynamicObstacle]:
     out = []
     for i, item in enumerate(items):
         key = f"dynamic_obstacles[{i}]"
-        item = _mapping(item, key, ("radius", "waypoints", "speed", "loop", "phase", "start", "velocity", "at_border"))
+        item = file_mapping(item, key, ("radius", "waypoints", "speed", "loop", "phase", "start", "velocity", "at_border"))
         if "radius" not in item:
             raise ScenarioError(f"{key} is missing 'radius' (metres)")
-        radius = _number(item["radius"], f"{key}.radius", positive=True)
+        radius = file_number(item["radius"], f"{key}.radius", positive=True)
         if "waypoints" in item:
             extra = {"start", "velocity", "at_border"} & set(item)
             if extra:
@@ -544,9 +184,9 @@ def _read_movers(items) -> list[DynamicObstacle]:
             loop = item.get("loop", True)
             if not isinstance(loop, bool):
                 raise ScenarioError(f"{key}.loop must be true or false, got {loop!r}")
-            out.append(DynamicObstacle(radius, waypoints=_points(item["waypoints"], f"{key}.waypoints"),
-                                       speed=_number(item["speed"], f"{key}.speed", non_negative=True), loop=loop,
-                                       phase=_number(item.get("phase", 0.0), f"{key}.phase", non_negative=True)))
+            out.append(DynamicObstacle(radius, waypoints=file_points(item["waypoints"], f"{key}.waypoints"),
+                                       speed=file_number(item["speed"], f"{key}.speed", non_negative=True), loop=loop,
+                                       phase=file_number(item.get("phase", 0.0), f"{key}.phase", non_negative=True)))
         elif "start" in item:
             extra = {"speed", "loop", "phase"} & set(item)
             if extra:
@@ -556,8 +196,8 @@ def _read_movers(items) -> list[DynamicObstacle]:
             mode = item.get("at_border", "bounce")
             if mode not in BORDER_MODES:
                 raise ScenarioError(f"{key}.at_border must be one of {', '.join(BORDER_MODES)}, got {mode!r}")
-            out.append(DynamicObstacle(radius, start=_vector(item["start"], f"{key}.start"),
-                                       velocity=_vector(item["velocity"], f"{key}.velocity"), at_border=mode))
+            out.append(DynamicObstacle(radius, start=file_vector(item["start"], f"{key}.start"),
+                                       velocity=file_vector(item["velocity"], f"{key}.velocity"), at_border=mode))
         else:
             raise ScenarioError(f"{key} needs 'waypoints' + 'speed' or 'start' + 'velocity'")
     return out
@@ -566,7 +206,7 @@ def _read_movers(items) -> list[DynamicObstacle]:
 def _read_random(spec, key: str, allowed: dict[str, Any]) -> dict | None:
     if spec is None:
         return None
-    spec = dict(_mapping(spec, key, tuple(allowed)))
+    spec = dict(file_mapping(spec, key, tuple(allowed)))
     if "count" not in spec:
         raise ScenarioError(f"{key} is missing 'count'")
     out = dict(allowed)
@@ -578,9 +218,9 @@ def _read_random(spec, key: str, allowed: dict[str, Any]) -> dict | None:
         if k == "count":
             continue
         if isinstance(allowed[k], tuple):
-            out[k] = _range(v, f"{key}.{k}")
+            out[k] = file_range(v, f"{key}.{k}")
         else:
-            out[k] = _number(v, f"{key}.{k}", positive=k in ("size", "radius"), non_negative=True)
+            out[k] = file_number(v, f"{key}.{k}", positive=k in ("size", "radius"), non_negative=True)
     return out
 
 
@@ -596,7 +236,7 @@ def scenario_from_dict(data: dict, base_dir: str | os.PathLike | None = None, so
         raise ScenarioError(f"scenario is missing required key(s) {missing}; see DESIGN.md 'Scenario YAML'")
     res = data.get("resolution")
     if res is not None:
-        res = _number(res, "resolution", positive=True)
+        res = file_number(res, "resolution", positive=True)
     world = _read_map(data["map"], res, Path(base_dir) if base_dir is not None else None)
     robot_spec = data.get("robot", {}) or {}
     if not isinstance(robot_spec, dict):
@@ -607,22 +247,22 @@ def scenario_from_dict(data: dict, base_dir: str | os.PathLike | None = None, so
     for k, v in robot_spec.items():
         if k == "model" or (k == "jerk_max" and v is None):
             continue
-        _number(v, f"robot.{k}")
+        file_number(v, f"robot.{k}")
     try:
         robot = RobotSpec.from_dict(robot_spec)
     except OptplanError as exc:
         raise ScenarioError(f"robot: {exc}") from None
-    start = _vector(data["start"], "start", (2, 3))
+    start = file_vector(data["start"], "start", (2, 3))
     if len(start) == 3:
         start[2] = math.radians(start[2])
-    goal = _vector(data["goal"], "goal")
+    goal = file_vector(data["goal"], "goal")
     cells, circles = _read_unknown(data.get("unknown_obstacles"), world)
     kwargs = {}
     for key in ("sensor_range", "dt", "time_limit", "goal_tolerance"):
         if key in data:
-            kwargs[key] = _number(data[key], key, positive=True)
+            kwargs[key] = file_number(data[key], key, positive=True)
     if "timing_jitter" in data:
-        kwargs["timing_jitter"] = _number(data["timing_jitter"], "timing_jitter", non_negative=True)
+        kwargs["timing_jitter"] = file_number(data["timing_jitter"], "timing_jitter", non_negative=True)
     for key in ("name", "description"):
         if key in data:
             if not isinstance(data[key], str):
