@@ -240,3 +240,17 @@ def test_float_segments_ending_exactly_on_a_grid_line_are_free():
     gt = op.GridMap(occ.T.copy())
     assert segments_free(gt, A[:, ::-1], B[:, ::-1]).all()
     assert op.validate_path(g, [[1.4052449648204721, 2.5895367670496596], [4.331689761992734, 3.0]])
+
+
+def test_wrap_angle_is_one_function_with_a_half_open_interval():
+    """One definition serves the simulator, the critics, the mechanisms and the reference DWA."""
+    from optplan.local import critics, mechanisms, reference
+    from optplan.sim import kinematics
+    from optplan.world.geometry import wrap_angle
+
+    assert kinematics.wrap_angle is critics.wrap_angle is mechanisms.wrap_angle is reference.wrap_angle is wrap_angle
+    a = np.linspace(-20.0, 20.0, 4001)
+    w = wrap_angle(a)
+    assert np.all((w >= -np.pi) & (w < np.pi))
+    assert np.allclose(np.cos(w), np.cos(a)) and np.allclose(np.sin(w), np.sin(a))
+    assert wrap_angle(np.pi) == -np.pi and wrap_angle(-np.pi) == -np.pi and wrap_angle(0.0) == 0.0

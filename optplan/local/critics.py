@@ -17,12 +17,8 @@ from typing import ClassVar
 
 import numpy as np
 
+from ..world.geometry import wrap_angle
 from .rollout import Step
-
-
-def wrap_angle(a):
-    """Angle(s) wrapped to ``(-pi, pi]``."""
-    return np.pi - np.mod(np.pi - np.asarray(a, dtype=float), 2.0 * np.pi)
 
 
 def body_direction(v, vy):

@@ -14,8 +14,9 @@ from typing import ClassVar
 
 import numpy as np
 
+from ..world.geometry import wrap_angle
 from .base import LocalContext
-from .critics import body_direction, wrap_angle
+from .critics import body_direction
 from .hooks import Mechanism, PlannerView
 from .sweep_gate import SweepGate
 from .window import Window

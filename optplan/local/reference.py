@@ -20,12 +20,9 @@ import math
 
 import numpy as np
 
+from ..world.geometry import wrap_angle
 from ..world.robot import RobotSpec
 from .base import LocalContext
-
-
-def _wrap(a: float) -> float:
-    return math.pi - (math.pi - a) % (2.0 * math.pi)
 
 
 def reference_dwa(robot: RobotSpec, ctx: LocalContext, *, n_v: int = 11, n_w: int = 21, horizon: float = 3.0,
@@ -86,7 +83,7 @@ def reference_dwa(robot: RobotSpec, ctx: LocalContext, *, n_v: int = 11, n_w: in
                 continue
             if meets_mover:  # a trajectory into a predicted mover is discarded
                 continue
-            heading = math.pi - abs(_wrap(math.atan2(gy - y, gx - x) - th))
+            heading = math.pi - abs(wrap_angle(math.atan2(gy - y, gx - x) - th))
             clearance = min(max(min_gap, 0.0), cap)
             records.append((v, w, heading, clearance, v))
 

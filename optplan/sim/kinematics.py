@@ -22,11 +22,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ParameterError
-
-
-def wrap_angle(theta):
-    """Angle(s) wrapped to ``[-pi, pi)`` radians."""
-    return (np.asarray(theta) + np.pi) % (2 * np.pi) - np.pi
+from ..world.geometry import wrap_angle
 
 
 def step_pose(model: str, x, y, theta, v, w, dt: float, vy=0.0):

@@ -519,3 +519,8 @@ def convex_corners(grid) -> tuple[np.ndarray, np.ndarray]:
     sx = np.where(br[Y, X] | tr[Y, X], 1, -1)
     sy = np.where(tl[Y, X] | tr[Y, X], 1, -1)
     return np.stack([X, Y], axis=1).astype(float), np.stack([sx, sy], axis=1)
+
+
+def wrap_angle(theta):
+    """Angle(s) in radians wrapped to ``[-pi, pi)``."""
+    return (np.asarray(theta, dtype=float) + np.pi) % (2 * np.pi) - np.pi
