@@ -20,7 +20,6 @@ how an interrupted experiment resumes.
 """
 from __future__ import annotations
 
-import functools
 import json
 import os
 import socket
@@ -31,169 +30,14 @@ from contextlib import contextmanager
 from typing import Any, Callable, Iterable, Mapping
 
 from ..errors import ParameterError
+# each kind runs its own records (optplan/bench/kinds); the target loaders stay importable from here
+from .kinds.optimize import function_target
+from .kinds.plan import plan_target
 
 EXECUTORS_HELP = "local | dask://HOST:PORT | dask-local"
 
 
 # ------------------------------------------------------------------- one run (worker side)
-def plan_target(target_json: str):
-    """``(world, start, goal)`` of a plan target, cached per process by the content of its
-    files as well as by its description, so an edited map file is read again."""
-    from .inputs import inputs_digest
-
-    return _load_plan_target(target_json, inputs_digest("plan", json.loads(target_json)))
-
-
-@functools.lru_cache(maxsize=32)
-def _load_plan_target(target_json: str, inputs: str):
-    import numpy as np
-
-    t = json.loads(target_json)
-    if "paper_map" in t:
-        from ..world.papermaps import paper_map
-
-        return paper_map(t["paper_map"])
-    from ..world.loaders import load_map
-
-    return load_map(t["map"]), np.array(t["start"], float), np.array(t["goal"], float)
-
-
-@functools.lru_cache(maxsize=32)
-def function_target(target_json: str):
-    """The benchmark function of an optimize target, from its spec as sorted JSON
-    (``{"function": "F1", "shifted": bool, "dim": n}``); cached per process."""
-    from ..formulations.functions import get_function
-
-    t = json.loads(target_json)
-    return get_function(t["function"], shifted=bool(t.get("shifted")), dim=t.get("dim"))
-
-
-def _run_plan(rec) -> tuple[Any, dict]:
-    from ..planning import plan
-
-    world, start, goal = plan_target(json.dumps(rec.target_spec, sort_keys=True))
-    res = plan(world, start, goal, algorithm=rec.algorithm, refine=rec.refine, seed=rec.seed, **rec.params)
-    return res, _gap_split(world, start, goal, res, float(rec.params.get("clearance", 0.0)))
-
-
-def _gap_split(world, start, goal, res, clearance: float) -> dict:
-    """The run's class gap (the corridor), in-class gap (the shape) and whether its class is
-    the optimum's (1/0), from :func:`optplan.solvers.gaps.class_gaps`."""
-    from ..solvers.gaps import class_gaps
-    from .spec import SPLIT_METRICS  # the gap split stored with every plan run (issue 26)
-
-    d = class_gaps(world, start, goal, res.path, clearance=clearance)
-    return {k: (None if d[k] is None else float(d[k])) for k in SPLIT_METRICS}
-
-
-def _run_optimize(rec) -> tuple[Any, dict]:
-    from ..solvers.metaheuristics import optimize
-
-    F = function_target(json.dumps(rec.target_spec, sort_keys=True))
-    res = optimize(F, F.bounds, algorithm=rec.algorithm, seed=rec.seed, **rec.params)
-    return res, {"f_error": float(res.f - F.f_opt), "f_opt": float(F.f_opt)}
-
-
-@functools.lru_cache(maxsize=32)
-def _init_path(target_json: str, inputs: str, planner: str, clearance: float):
-    """The path of graph planner ``planner`` on a plan target with this content, at this
-    clearance: the start every solver of a ``program`` run with ``init:`` gets; planned once
-    per worker process (graph search is deterministic)."""
-    from ..planning import plan
-
-    world, start, goal = plan_target(target_json)
-    res = plan(world, start, goal, algorithm=planner, clearance=clearance)
-    if not res.feasible:
-        from ..errors import InfeasibleQueryError
-
-        raise InfeasibleQueryError(f"the {planner} path that should start the solvers is infeasible "
-                                   f"({res.message})")
-    return res.path
-
-
-def _run_program(rec) -> tuple[Any, dict]:
-    """Build the run's program on its map and solve it; the seed goes to solvers that take
-    one, the ``init`` path to solvers that take a start."""
-    from .inputs import inputs_digest
-    from .programs import build_program, solver_instance
-
-    target_json = json.dumps(rec.target_spec, sort_keys=True)
-    world, start, goal = plan_target(target_json)
-    prog = build_program(rec.program, world, start, goal)
-    solver = solver_instance(rec.algorithm)
-    known = solver.all_options()
-    options = dict(rec.params)
-    if "seed" in known:
-        options["seed"] = rec.seed
-    planner = rec.program.get("init")
-    if planner and "init" in known:
-        options["init"] = _init_path(target_json, inputs_digest("plan", rec.target_spec), planner,
-                                     prog.clearance).copy()
-    res = prog.solve(solver, **options)
-    extra: dict[str, Any] = {"violation": float(sum(res.violations.values())), "program_name": prog.name}
-    if res.stages:
-        from ..results import jsonable
-
-        extra["stages"] = json.dumps(jsonable(res.stages))
-    return res, extra
-
-
-def _scenario_inputs(target_json: str) -> str:
-    from .inputs import inputs_digest
-
-    return inputs_digest("simulate", json.loads(target_json))
-
-
-def _scenario_target(target_json: str, inputs: str | None = None):
-    """The scenario of a simulate target, cached per process by the content of its files
-    (``inputs``, computed when not given) as well as by its description."""
-    return _load_scenario_target(target_json, _scenario_inputs(target_json) if inputs is None else inputs)
-
-
-@functools.lru_cache(maxsize=16)
-def _load_scenario_target(target_json: str, inputs: str):
-    """The Scenario of a file or shipped name; a generated family's name stays a name (its
-    world depends on the run's seed: ``optplan.sim.closed_loop.scenario_for``)."""
-    from ..world.scenario import load_scenario
-    from ..worldgen.clutter import FAMILIES
-
-    name = json.loads(target_json)["scenario"]
-    return name if isinstance(name, str) and name in FAMILIES else load_scenario(name)
-
-
-@functools.lru_cache(maxsize=64)
-def _shared_global_plan(target_json: str, inputs: str, algorithm: str, refine: str | None, seed: int,
-                        options_json: str):
-    """The global plan of one (scenario with these file contents, planner, refine, seed), made once
-    per worker process and shared by the runs that differ only in the local planner
-    (``optplan.sim.experiments.plan_global``); planning is seeded, so sharing changes no number,
-    it only saves the metaheuristic's time."""
-    from ..sim.closed_loop import scenario_for
-    from ..sim.experiments import plan_global
-    from ..worldgen.clutter import family_options
-
-    target = _scenario_target(target_json, inputs)
-    options = json.loads(options_json) or family_options(target).get("global_options")
-    return plan_global(scenario_for(target, seed), algorithm, refine, seed, options)
-
-
-def _run_simulate(rec) -> tuple[Any, dict]:
-    from ..sim import simulate
-
-    target_json = json.dumps(rec.target_spec, sort_keys=True)
-    inputs = _scenario_inputs(target_json)
-    scenario = _scenario_target(target_json, inputs)
-    params = dict(rec.params)
-    plan = _shared_global_plan(target_json, inputs, rec.algorithm, rec.refine, rec.seed,
-                               json.dumps(params.get("global_options") or {}, sort_keys=True))
-    if plan is not None and "global_plan" not in params:
-        params["global_plan"] = plan
-    res = simulate(scenario, global_planner=rec.algorithm, local_planner=rec.local_planner, refine=rec.refine,
-                   seed=rec.seed, **params)
-    extra = {"success": bool(res.reached and res.collisions == 0)}
-    return res, extra
-
-
 def _exit_with_parent(parent_pid: int, period_s: float = 1.0) -> None:
     """In a worker: end the process once ``parent_pid`` (the bench process) is gone, so a
     ``kill -9`` of the bench leaves no orphan workers holding memory."""
@@ -239,10 +83,6 @@ def warm_modules(records: Iterable[Mapping[str, Any]]) -> tuple[str, ...]:
     return ("optplan.programs", *solver_modules(dict.fromkeys(programs)))
 
 
-_RUNNERS: dict[str, Callable] = {"plan": _run_plan, "optimize": _run_optimize, "simulate": _run_simulate,
-                                 "program": _run_program}
-
-
 def execute_run(record: Mapping[str, Any]) -> dict[str, Any]:
     """Run one record (a ``RunRecord.to_dict()``) and return its outcome.
 
@@ -258,7 +98,9 @@ def execute_run(record: Mapping[str, Any]) -> dict[str, Any]:
     key = record.get("key")
     try:
         rec = RunRecord.from_dict(record)
-        result, extra = _RUNNERS[rec.kind](rec)
+        from .kinds import get_kind
+
+        result, extra = get_kind(rec.kind).run(rec)
         d = result.to_dict()
         metrics = {k: v for k, v in d.items() if v is None or isinstance(v, (bool, int, float, str))}
         metrics.update(extra)

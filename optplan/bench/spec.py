@@ -44,30 +44,18 @@ from pathlib import Path
 from typing import Any, Mapping
 
 from ..checks import MAX_RUNS, population_budget, seed_bound
-from ..errors import ParameterError, ScenarioError, UnknownAlgorithmError
+from ..errors import ParameterError, ScenarioError
+from .kinds import KINDS as RUN_KINDS
+from .spec_fields import AlgorithmSpec, TargetSpec, as_list, check_keys, check_params, refine_name
 
 SPECS_DIR = Path(__file__).resolve().parent.parent / "data" / "specs"
 
-KINDS = ("plan", "simulate", "optimize", "program")
-TARGET_KEY = {"plan": "maps", "simulate": "scenarios", "optimize": "functions", "program": "maps"}
-DEFAULT_METRIC = {"plan": "length", "simulate": "time_s", "optimize": "f", "program": "cost"}
-# numbers a run stores beside its result's own fields (bench/runner.py computes them)
-SPLIT_METRICS = ("class_gap", "in_class_gap", "optimal_class")
-EXTRA_METRICS = {"plan": SPLIT_METRICS, "simulate": ("success",), "optimize": ("f_error", "f_opt"),
-                 "program": ("violation",)}
-RESULT_OF_KIND = {"plan": "PlanResult", "simulate": "SimResult", "optimize": "OptimizeResult",
-                  "program": "ProgramResult"}
-PROGRAM_KEYS = ("program", "args", "init")   # kind program only
-REFINE_NAMES = ("none", "casadi", "qp")
-
+KINDS = tuple(RUN_KINDS)   # the registered run kinds (optplan/bench/kinds)
 TOP_KEYS = {"name", "title", "paper", "part", "report", "kind", "maps", "scenarios", "functions", "shifted", "dim",
             "algorithms", "params", "refine", "local_planners", "runs", "seed", "seeds", "reference", "metric",
-            "alpha", "quick", "notes", "order", *PROGRAM_KEYS}
+            "alpha", "quick", "notes", "order", *{k for kind in RUN_KINDS.values() for k in kind.own_keys}}
 QUICK_KEYS = {"runs", "params", "maps", "scenarios", "functions", "algorithms", "refine", "local_planners", "seeds",
               "title", "reference", "args"}
-ALGO_KEYS = {"name", "label", "params", "runs"}
-MAX_PARAMS = 200  # per algorithm entry; every parameter is a column of the results table
-MAP_KEYS = {"name", "map", "start", "goal", "scen", "queries"}
 
 
 # ----------------------------------------------------------------------------- records
@@ -137,24 +125,6 @@ class RunRecord:
         return cls(d["experiment"], d["kind"], d["target"], dict(d["target_spec"]), d["algorithm"], d["label"],
                    d["refine"], d["local_planner"], int(d["seed"]), dict(d["params"]), str(d.get("inputs") or ""),
                    dict(d.get("program") or {}))
-
-
-@dataclass(frozen=True)
-class AlgorithmSpec:
-    """One algorithm entry: registry ``name``, table ``label``, merged ``params``, optional own ``runs``."""
-
-    name: str
-    label: str
-    params: Mapping[str, Any]
-    runs: int | None = None
-
-
-@dataclass(frozen=True)
-class TargetSpec:
-    """One map, scenario or function: a short ``name`` and what identifies it."""
-
-    name: str
-    spec: Mapping[str, Any]
 
 
 @dataclass
@@ -263,11 +233,11 @@ def load_spec(source: str | Path | Mapping[str, Any], quick: bool = False, runs:
             raise ScenarioError(f"spec {path} must be a YAML mapping (name:, kind:, maps:, algorithms:, ...), "
                                 f"got {type(raw).__name__}")
     where = f"spec {path}" if path else "spec"
-    _check_keys(raw, TOP_KEYS, where)
+    check_keys(raw, TOP_KEYS, where)
     if raw.get("quick") is not None:  # checked whether or not --quick is asked for
         if not isinstance(raw["quick"], dict):
             raise ScenarioError(f"{where}: 'quick' must be a mapping of overrides")
-        _check_keys(raw["quick"], QUICK_KEYS, f"{where} quick:")
+        check_keys(raw["quick"], QUICK_KEYS, f"{where} quick:")
     if quick and raw.get("quick"):
         q = raw["quick"]
         for k, v in q.items():
@@ -285,81 +255,54 @@ def load_spec(source: str | Path | Mapping[str, Any], quick: bool = False, runs:
     return _parse(raw, path, where)
 
 
-def _check_keys(d: Mapping, allowed: set, where: str) -> None:
-    unknown = sorted(set(d) - allowed)
-    if unknown:
-        raise ScenarioError(f"{where}: unknown key(s) {', '.join(map(repr, unknown))}; allowed: "
-                            f"{', '.join(sorted(allowed))}")
-
-
-def _as_list(value, what: str, where: str) -> list:
-    if value is None:
-        return []
-    if isinstance(value, (str, int, float, dict)):
-        return [value]
-    if isinstance(value, list):
-        return value
-    raise ScenarioError(f"{where}: '{what}' must be a list, got {type(value).__name__}")
-
-
 def _parse(raw: dict, path: Path | None, where: str) -> ExperimentSpec:
     name = str(raw.get("name") or (path.stem if path else "experiment"))
-    kind = raw.get("kind")
-    if kind is None:
-        present = ["program"] if raw.get("program") else \
-            [k for k, key in TARGET_KEY.items() if k != "program" and raw.get(key)]
+    kind_name = raw.get("kind")
+    if kind_name is None:
+        # a kind's first own key names it (program:); else the one kind whose targets are given
+        present = [k.name for k in RUN_KINDS.values() if k.own_keys and raw.get(k.own_keys[0])] or \
+            [k.name for k in RUN_KINDS.values() if not k.own_keys and raw.get(k.target_key)]
         if len(present) != 1:
-            raise ScenarioError(f"{where}: say what to run with 'kind: plan|simulate|optimize|program' and give its "
+            raise ScenarioError(f"{where}: say what to run with 'kind: {'|'.join(RUN_KINDS)}' and give its "
                                 f"targets ('maps', 'scenarios' or 'functions')")
-        kind = present[0]
-    if kind not in KINDS:
-        raise ScenarioError(f"{where}: kind must be one of {', '.join(KINDS)}, got {kind!r}")
-    for other_kind, key in TARGET_KEY.items():
-        if key != TARGET_KEY[kind] and raw.get(key):
-            raise ScenarioError(f"{where}: '{key}' belongs to kind {other_kind!r}, but this spec is kind {kind!r}")
-    if kind != "program":
-        given = [k for k in PROGRAM_KEYS if raw.get(k) is not None]
+        kind_name = present[0]
+    if not isinstance(kind_name, str) or kind_name not in RUN_KINDS:
+        raise ScenarioError(f"{where}: kind must be one of {', '.join(RUN_KINDS)}, got {kind_name!r}")
+    kind = RUN_KINDS[kind_name]
+    for other in RUN_KINDS.values():
+        if other.target_key != kind.target_key and raw.get(other.target_key):
+            raise ScenarioError(f"{where}: '{other.target_key}' belongs to kind {other.name!r}, but this spec is "
+                                f"kind {kind.name!r}")
+    for other in RUN_KINDS.values():
+        given = [k for k in other.own_keys if k not in kind.own_keys and raw.get(k) is not None]
         if given:
             raise ScenarioError(f"{where}: {', '.join(map(repr, given))} "
-                                f"{'applies' if len(given) == 1 else 'apply'} only to kind program")
+                                f"{'applies' if len(given) == 1 else 'apply'} only to kind {other.name}")
     base_dir = path.parent if path else Path.cwd()
-    targets = _parse_targets(kind, raw, base_dir, where, path is not None)
+    if not as_list(raw.get(kind.target_key), kind.target_key, where):
+        raise ScenarioError(f"{where}: no '{kind.target_key}' given; list at least one")
+    targets = kind.targets(raw, base_dir, where, path is not None)
+    names = [t.name for t in targets]
+    if len(set(names)) != len(names):
+        raise ScenarioError(f"{where}: target names repeat ({', '.join(names)}); give each map entry a 'name'")
 
     shared = raw.get("params") or {}
     if not isinstance(shared, dict):
         raise ScenarioError(f"{where}: 'params' must be a mapping of keyword arguments, e.g. {{pop: 30, iters: 500}}")
-    _check_params(shared, where)
-    program: dict[str, Any] = {}
-    if kind == "program":
-        from .programs import check_program
+    check_params(shared, where)
+    algos, program = kind.algorithms(raw, shared, where)
 
-        if not raw.get("program"):
-            raise ScenarioError(f"{where}: a program spec names its program: 'program: smoothing', a paper "
-                                f"program (li2023, chen2025, ...) or 'program: module:function'")
-        program = check_program(raw["program"], raw.get("args"), raw.get("init"), where)
-        algos = _parse_solvers(raw.get("algorithms"), shared, where)
-    else:
-        algos = _parse_algorithms(kind, raw.get("algorithms"), shared, where)
-
-    refine = [_refine_name(r, where) for r in _as_list(raw.get("refine", [None]), "refine", where)] or [None]
-    if kind in ("optimize", "program") and refine != [None]:
-        raise ScenarioError(f"{where}: 'refine' applies to op.plan's paths; a{'n' if kind == 'optimize' else ''} "
-                            f"{kind} spec cannot refine (a program chains solvers instead: [msiar-gwo, ipopt])")
-    local = _as_list(raw.get("local_planners"), "local_planners", where)
-    if kind == "simulate":
-        if not local:
-            raise ScenarioError(f"{where}: a simulate spec needs 'local_planners', e.g. [dwa, qp-dwa]")
-        local = [_check_local(lp, where) for lp in local]
-    elif local:
-        raise ScenarioError(f"{where}: 'local_planners' only apply to kind simulate")
-    else:
-        local = [None]
+    refine = [refine_name(r, where) for r in as_list(raw.get("refine", [None]), "refine", where)] or [None]
+    if not kind.refines and refine != [None]:
+        raise ScenarioError(f"{where}: 'refine' applies to op.plan's paths; a{'n' if kind.name == 'optimize' else ''} "
+                            f"{kind.name} spec cannot refine (a program chains solvers instead: [msiar-gwo, ipopt])")
+    local = kind.local_planners(raw, where)
 
     seeds = _parse_seeds(raw, where)
-    metric = raw.get("metric") or DEFAULT_METRIC[kind]
-    if metric not in metric_names(kind):
-        raise ParameterError(f"{where}: unknown metric {metric!r} for kind {kind}; valid: "
-                             f"{', '.join(metric_names(kind))}")
+    metric = raw.get("metric") or kind.default_metric
+    if metric not in kind.metric_names():
+        raise ParameterError(f"{where}: unknown metric {metric!r} for kind {kind.name}; valid: "
+                             f"{', '.join(kind.metric_names())}")
     alpha = raw.get("alpha", 0.05)
     if not isinstance(alpha, (int, float)) or not 0 < alpha < 1:
         raise ParameterError(f"{where}: alpha must be a number in (0, 1), got {alpha!r}")
@@ -370,92 +313,16 @@ def _parse(raw: dict, path: Path | None, where: str) -> ExperimentSpec:
         raise ParameterError(f"{where}: reference {ref_label!r} is not one of the algorithm labels "
                              f"({', '.join(labels)})")
     if isinstance(reference, dict):
-        _check_keys(reference, {"algorithm", "refine", "local_planner"}, f"{where} reference:")
-        reference = {"algorithm": ref_label, "refine": _refine_name(reference.get("refine"), where),
+        check_keys(reference, {"algorithm", "refine", "local_planner"}, f"{where} reference:")
+        reference = {"algorithm": ref_label, "refine": refine_name(reference.get("refine"), where),
                      "local_planner": reference.get("local_planner")}
     _check_title(raw.get("title"), {"runs", "name", *shared}, where)
     return ExperimentSpec(
-        name=name, kind=kind, targets=targets, algorithms=algos, refine=refine, local_planners=local, seeds=seeds,
+        name=name, kind=kind.name, targets=targets, algorithms=algos, refine=refine, local_planners=local, seeds=seeds,
         reference=reference, metric=metric, alpha=float(alpha), title=str(raw.get("title") or ""),
         paper=raw.get("paper"), part=raw.get("part"), report=str(raw.get("report") or "summary"),
         notes=str(raw.get("notes") or ""), params=dict(shared), source=path, order=_order(raw.get("order", 0), where),
         program=program)
-
-
-def metric_names(kind: str) -> list[str]:
-    """The numbers a run of ``kind`` stores, any of which a spec's ``metric:`` may name: the
-    numeric fields of the kind's result, the extra numbers the runner adds, and ``wall_s``."""
-    import dataclasses
-
-    from .. import results
-
-    cls = getattr(results, RESULT_OF_KIND[kind])
-    numeric = {"bool", "int", "float", "float | None", "int | None"}
-    names = [f.name for f in dataclasses.fields(cls) if f.type in numeric and f.name != "seed"]
-    return sorted({*names, *EXTRA_METRICS[kind], "wall_s"})
-
-
-def _parse_targets(kind: str, raw: dict, base_dir: Path, where: str, from_file: bool = False) -> list[TargetSpec]:
-    key = TARGET_KEY[kind]
-    items = _as_list(raw.get(key), key, where)
-    if not items:
-        raise ScenarioError(f"{where}: no '{key}' given; list at least one")
-    out = []
-    if kind in ("plan", "program"):
-        from ..world.papermaps import catalogue
-
-        cat = catalogue()
-        for it in items:
-            if isinstance(it, str):
-                if it not in cat:
-                    raise ScenarioError(f"{where}: unknown paper map {it!r}; use a name from "
-                                        f"optplan/data/maps/paper_maps.yaml ({', '.join(sorted(cat))}) or "
-                                        f"{{name:, map: FILE, start: [x, y], goal: [x, y]}}")
-                out.append(TargetSpec(it, {"paper_map": it}))
-            elif isinstance(it, dict) and "scen" in it:
-                out += _scen_targets(it, base_dir, from_file, where)
-            elif isinstance(it, dict):
-                _check_keys(it, MAP_KEYS - {"scen", "queries"}, f"{where} map entry")
-                if "map" not in it or "start" not in it or "goal" not in it:
-                    raise ScenarioError(f"{where}: a map entry needs 'map', 'start' and 'goal' (or 'scen'), got {it}")
-                start, goal = _point(it["start"], "start", where), _point(it["goal"], "goal", where)
-                m = _spec_file(it["map"], base_dir, from_file, "map", where)
-                nm = str(it.get("name") or Path(m).stem)
-                _check_map_target(m, start, goal, f"{where} map {nm!r}")
-                out.append(TargetSpec(nm, {"map": m, "start": start, "goal": goal}))
-            else:
-                raise ScenarioError(f"{where}: a map is a paper map name or a mapping, got {it!r}")
-    elif kind == "simulate":
-        for it in items:
-            if not isinstance(it, str):
-                raise ScenarioError(f"{where}: a scenario is a shipped scenario name or a YAML file path, got {it!r}")
-            resolved = base_dir / it
-            sc = _spec_file(it, base_dir, from_file, "scenario", where) if resolved.is_file() else it
-            if not resolved.is_file():
-                from ..world.scenario import scenario_names
-                from ..worldgen.clutter import FAMILIES  # generated families: a new world per seed
-
-                if Path(it).stem not in scenario_names() and it not in FAMILIES:
-                    raise ScenarioError(f"{where}: scenario {it!r} is neither a file (relative to the spec), a "
-                                        f"shipped scenario ({', '.join(scenario_names()) or 'none shipped'}) nor "
-                                        f"a generated family ({', '.join(FAMILIES)})")
-            out.append(TargetSpec(Path(it).stem if it.endswith((".yaml", ".yml")) else it, {"scenario": sc}))
-    else:
-        from ..formulations.functions import NAMES
-
-        shifted = bool(raw.get("shifted", False))
-        dim = raw.get("dim")
-        if dim is not None and (not isinstance(dim, int) or dim < 1):
-            raise ParameterError(f"{where}: dim must be a positive integer, got {dim!r}")
-        for it in items:
-            fname = str(it).upper()
-            if fname not in NAMES:
-                raise ScenarioError(f"{where}: unknown benchmark function {it!r}; known: {', '.join(NAMES)}")
-            out.append(TargetSpec(fname, {"function": fname, "shifted": shifted, "dim": dim}))
-    names = [t.name for t in out]
-    if len(set(names)) != len(names):
-        raise ScenarioError(f"{where}: target names repeat ({', '.join(names)}); give each map entry a 'name'")
-    return out
 
 
 def _check_title(title, allowed: set, where: str) -> None:
@@ -478,275 +345,6 @@ def _check_title(title, allowed: set, where: str) -> None:
                             f"params ({', '.join(sorted(allowed - {'runs', 'name'})) or 'none given'})")
 
 
-def _spec_file(name, base_dir: Path, from_file: bool, what: str, where: str) -> str:
-    """The absolute path of a file a spec names (relative to the spec's folder), or the name
-    itself when no such file exists (a shipped map). A spec file may only read files in its
-    own folder and below: ``../`` and absolute paths leading elsewhere are refused, so a
-    spec from somewhere else cannot make bench read arbitrary files."""
-    if not isinstance(name, str) or not name:
-        raise ScenarioError(f"{where}: a {what} is a file name or a shipped name, got {name!r}")
-    resolved = base_dir / name
-    if not resolved.exists():
-        return name
-    real, root = resolved.resolve(), base_dir.resolve()
-    if from_file and real != root and root not in real.parents:
-        raise ScenarioError(f"{where}: {what} {name!r} lies outside the spec's folder {root}; a spec may only "
-                            f"name files in its own folder (copy the file next to the spec)")
-    if not real.is_file():
-        raise ScenarioError(f"{where}: {what} {name!r} is not a file")
-    return str(real)
-
-
-def _check_map_target(m: str, start, goal, where: str):
-    """Load a map target now, so a bad map or query stops the spec before any run."""
-    from ..errors import OptplanError
-    from ..world.loaders import load_map
-
-    try:
-        world = load_map(m)
-        if start is not None:
-            world.check_query_point(start, "start")
-            world.check_query_point(goal, "goal")
-    except OptplanError as exc:
-        raise ScenarioError(f"{where}: {exc}") from None
-    return world
-
-
-def _scen_targets(it: dict, base_dir: Path, from_file: bool, where: str) -> list[TargetSpec]:
-    """Targets from a Moving AI ``.scen`` file: ``{scen: FILE.scen, map: FILE.map,
-    queries: [0, 5] | N}`` (``map`` defaults to the file the scenario names, next to it;
-    ``queries`` to every query, an integer N to the first N)."""
-    from ..errors import OptplanError
-    from ..world.loaders import load_scen, scen_query
-
-    _check_keys(it, MAP_KEYS - {"start", "goal"}, f"{where} scen entry")
-    scen = _spec_file(it["scen"], base_dir, from_file, "scen file", where)
-    try:
-        entries = load_scen(scen)
-    except OptplanError as exc:
-        raise ScenarioError(f"{where}: {exc}") from None
-    if not entries:
-        raise ScenarioError(f"{where}: {scen} holds no queries")
-    m = it.get("map")
-    if m is None:  # the scenario's own map name, looked up next to the .scen file
-        m = str(Path(scen).parent / Path(entries[0].map_name).name)
-        if not Path(m).is_file():
-            raise ScenarioError(f"{where}: {scen} names map {entries[0].map_name!r}, which is not next to it; "
-                                f"give 'map:'")
-    else:
-        m = _spec_file(m, base_dir, from_file, "map", where)
-    q = it.get("queries", len(entries))
-    if isinstance(q, int) and not isinstance(q, bool) and q >= 1:
-        picks = list(range(min(q, len(entries))))
-    elif isinstance(q, list) and q and all(isinstance(i, int) and not isinstance(i, bool) for i in q):
-        picks = q
-    else:
-        raise ScenarioError(f"{where}: 'queries' is a positive count or a list of query indices, got {q!r}")
-    world = _check_map_target(m, None, None, f"{where} map {m!r}")
-    stem = str(it.get("name") or Path(scen).name.split(".")[0])
-    out = []
-    for i in picks:
-        try:
-            start, goal = scen_query(world, scen, i)
-            world.check_query_point(start, f"query {i} start")
-            world.check_query_point(goal, f"query {i} goal")
-        except OptplanError as exc:
-            raise ScenarioError(f"{where}: {exc}") from None
-        out.append(TargetSpec(f"{stem}_q{i}", {"map": m, "start": list(start), "goal": list(goal)}))
-    return out
-
-
-def _point(v, what: str, where: str) -> list[float]:
-    if not isinstance(v, (list, tuple)) or len(v) < 2 or not all(isinstance(c, (int, float)) for c in v[:2]):
-        raise ScenarioError(f"{where}: {what} must be [x, y] in metres, got {v!r}")
-    return [float(v[0]), float(v[1])]
-
-
-def _check_params(params: Mapping, where: str) -> None:
-    if len(params) > MAX_PARAMS:
-        raise ScenarioError(f"{where}: {len(params)} parameters; the bound is {MAX_PARAMS} (each becomes a column of "
-                            f"the results database, and SQLite allows 2000 columns per table)")
-    for k, v in params.items():
-        if k in ("seed", "algorithm", "refine", "local_planner", "global_planner"):
-            raise ScenarioError(f"{where}: {k!r} is set by the spec grid ('seeds', 'algorithms', 'refine', "
-                                f"'local_planners'), not by 'params'")
-        if k in ("pop", "iters", "max_evals") and v is not None and (not isinstance(v, int) or isinstance(v, bool)
-                                                                     or v < 1):
-            raise ParameterError(f"{where}: {k} must be a positive integer (or null), got {v!r}")
-    try:
-        population_budget(params.get("pop"), params.get("iters"), params.get("max_evals"))
-    except ParameterError as exc:
-        raise ParameterError(f"{where}: {exc}") from None
-    for k, v in params.items():
-        try:
-            json.dumps(v)
-        except TypeError:
-            raise ScenarioError(f"{where}: parameter {k!r} must be plain YAML data, got {v!r}") from None
-
-
-def _keyword_names(fn) -> set[str]:
-    import inspect
-
-    return {n for n, p in inspect.signature(fn).parameters.items()
-            if p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)}
-
-
-def accepted_params(kind: str, algorithm: str) -> set[str] | None:
-    """Keyword names a run of ``kind`` with ``algorithm`` accepts as ``params``, or ``None``
-    when they cannot be listed (then the run itself checks them)."""
-    if kind not in ("plan", "optimize"):
-        return None
-    from ..solvers.metaheuristics import get_algorithm, optimize
-
-    if kind == "optimize":
-        names = _keyword_names(optimize)
-    else:
-        from ..planning import plan
-        from ..registry import GRAPH_METHODS
-        from ..solvers.graph import shortest_path
-        from ..solvers.paths import plan_path
-
-        names = _keyword_names(plan) | _keyword_names(plan_path)
-        if algorithm in GRAPH_METHODS:
-            return names | _keyword_names(shortest_path)
-    try:
-        return names | set(get_algorithm(algorithm).defaults())
-    except Exception:  # a planner that is not an engine algorithm (ACO, the path GAs): not listed
-        return None
-
-
-def _check_param_names(kind: str, algorithm: str, params: Mapping, where: str) -> None:
-    """A misspelt parameter is found when the spec is loaded, not when every run fails."""
-    import difflib
-
-    try:  # op.plan's and op.optimize's default budget where the spec gives none
-        population_budget(params.get("pop", 30), params.get("iters", 500), params.get("max_evals"))
-    except ParameterError as exc:
-        raise ParameterError(f"{where} {algorithm}: {exc}") from None
-    known = accepted_params(kind, algorithm)
-    if known is None:
-        return
-    known -= {"world", "start", "goal", "f", "bounds", "algorithm", "seed", "refine", "callback"}
-    unknown = sorted(set(params) - known)
-    if unknown:
-        hints = [f"{u!r} (did you mean {difflib.get_close_matches(u, known, 1)[0]!r}?)"
-                 if difflib.get_close_matches(u, known, 1) else repr(u) for u in unknown]
-        raise ScenarioError(f"{where}: {algorithm} does not take the parameter(s) {', '.join(hints)}; it takes "
-                            f"{', '.join(sorted(known))}")
-
-
-def _known_algorithms(kind: str) -> list[str]:
-    if kind == "optimize":
-        from ..solvers.metaheuristics import algorithm_names
-
-        return list(algorithm_names())
-    from ..registry import GRAPH_METHODS
-    from ..solvers.paths import algorithm_names
-
-    return sorted(set(GRAPH_METHODS) | set(algorithm_names()))
-
-
-def _parse_algorithms(kind: str, items, shared: Mapping, where: str) -> list[AlgorithmSpec]:
-    items = _as_list(items, "algorithms", where)
-    if not items:
-        raise ScenarioError(f"{where}: no 'algorithms' given; list at least one (see 'optplan algorithms')")
-    known = _known_algorithms(kind)
-    out = []
-    for it in items:
-        if isinstance(it, str):
-            it = {"name": it}
-        if not isinstance(it, dict) or "name" not in it:
-            raise ScenarioError(f"{where}: an algorithm is a name or {{name:, label:, params:, runs:}}, got {it!r}")
-        _check_keys(it, ALGO_KEYS, f"{where} algorithm {it.get('name')!r}")
-        nm = str(it["name"]).lower()
-        if nm not in known:
-            raise UnknownAlgorithmError(f"{where}: unknown algorithm {it['name']!r} for kind {kind}; known: "
-                                        f"{', '.join(known)}")
-        own = it.get("params") or {}
-        if not isinstance(own, dict):
-            raise ScenarioError(f"{where}: params of {nm!r} must be a mapping")
-        _check_params(own, where)
-        runs = it.get("runs")
-        if runs is not None and (not isinstance(runs, int) or isinstance(runs, bool) or runs < 1):
-            raise ParameterError(f"{where}: runs of {nm!r} must be a positive integer, got {runs!r}")
-        _check_param_names(kind, nm, {**shared, **own}, where)
-        out.append(AlgorithmSpec(nm, str(it.get("label") or nm), {**shared, **own}, runs))
-    labels = [a.label for a in out]
-    if len(set(labels)) != len(labels):
-        raise ScenarioError(f"{where}: algorithm labels repeat ({', '.join(labels)}); give repeated algorithms "
-                            f"distinct 'label's")
-    return out
-
-
-def _parse_solvers(items, shared: Mapping, where: str) -> list[AlgorithmSpec]:
-    """The solver entries of a program spec: a name, a list of names (a chain), or
-    ``{name: name-or-list, label:, params:, runs:}``. Each solver gets the shared options it
-    takes (as ``op.compare`` does) and its own, all checked by the solver now; a shared
-    option that no solver takes is an error. Deterministic solvers (no seed) run once per
-    map unless the entry gives ``runs``."""
-    from .programs import check_solver_params, is_stochastic, solver_name, solver_options, solver_stages
-
-    items = _as_list(items, "algorithms", where)
-    if not items:
-        raise ScenarioError(f"{where}: no 'algorithms' given; list program solvers or chains, e.g. "
-                            f"[msiar-gwo, ipopt, [msiar-gwo, ipopt]] (op.PathProgram's solvers)")
-    if "init" in shared:
-        raise ScenarioError(f"{where}: 'init' is set by the spec's 'init:' key (a graph planner), not by 'params'")
-    out, used = [], set()
-    for it in items:
-        if isinstance(it, (str, list)):
-            it = {"name": it}
-        if not isinstance(it, dict) or "name" not in it:
-            raise ScenarioError(f"{where}: a solver is a name, a list of names (a chain) or "
-                                f"{{name:, label:, params:, runs:}}, got {it!r}")
-        _check_keys(it, ALGO_KEYS, f"{where} solver {it.get('name')!r}")
-        nm = solver_name(solver_stages(it["name"], where))
-        own = it.get("params") or {}
-        if not isinstance(own, dict):
-            raise ScenarioError(f"{where}: params of {nm!r} must be a mapping")
-        if "init" in own:
-            raise ScenarioError(f"{where}: 'init' is set by the spec's 'init:' key (a graph planner), not by "
-                                f"the params of {nm!r}")
-        _check_params(own, where)
-        known = solver_options(nm)
-        used |= known
-        params = check_solver_params(nm, {**{k: v for k, v in shared.items() if k in known}, **own}, where)
-        runs = it.get("runs")
-        if runs is not None and (not isinstance(runs, int) or isinstance(runs, bool) or runs < 1):
-            raise ParameterError(f"{where}: runs of {nm!r} must be a positive integer, got {runs!r}")
-        if runs is None and not is_stochastic(nm):
-            runs = 1   # no seed: every seed would give the same run
-        out.append(AlgorithmSpec(nm, str(it.get("label") or nm), params, runs))
-    unused = sorted(set(shared) - used)
-    if unused:
-        raise ParameterError(f"{where}: no solver of this spec has option {', '.join(map(repr, unused))} "
-                             f"(op.show_options(name) lists a solver's options)")
-    labels = [a.label for a in out]
-    if len(set(labels)) != len(labels):
-        raise ScenarioError(f"{where}: solver labels repeat ({', '.join(labels)}); give repeated solvers "
-                            f"distinct 'label's")
-    return out
-
-
-def _refine_name(r, where: str) -> str | None:
-    if r is None or r is False or r == "none":
-        return None
-    if r not in REFINE_NAMES:
-        raise ParameterError(f"{where}: refine must be one of {', '.join(REFINE_NAMES)}, got {r!r}")
-    return str(r)
-
-
-def _check_local(lp, where: str) -> str:
-    if not isinstance(lp, str):
-        raise ScenarioError(f"{where}: a local planner is a name, got {lp!r}")
-    from ..local import algorithm_names
-
-    names = list(algorithm_names())
-    if lp.lower() not in names:
-        raise UnknownAlgorithmError(f"{where}: unknown local planner {lp!r}; known: {', '.join(names)}")
-    return lp.lower()
-
-
 def _order(v, where: str) -> int:
     if not isinstance(v, int) or isinstance(v, bool):
         raise ScenarioError(f"{where}: order (position among a paper's specs) must be an integer, got {v!r}")
@@ -755,7 +353,7 @@ def _order(v, where: str) -> int:
 
 def _parse_seeds(raw: dict, where: str) -> list[int]:
     if "seeds" in raw and raw["seeds"] is not None:
-        seeds = _as_list(raw["seeds"], "seeds", where)
+        seeds = as_list(raw["seeds"], "seeds", where)
         if not seeds or not all(isinstance(s, int) and not isinstance(s, bool) and s >= 0 for s in seeds):
             raise ParameterError(f"{where}: seeds must be a non-empty list of non-negative integers, got {seeds!r}")
         if len(set(seeds)) != len(seeds):

@@ -19,6 +19,7 @@ from typing import Any
 
 import numpy as np
 
+from .kinds import get_kind
 from .spec import ExperimentSpec, RunRecord
 from .stats import TOO_FEW, compare, summary, too_few_note
 from .tables import Table
@@ -71,11 +72,7 @@ class ExperimentResults:
         row = self.rows.get(rec.key)
         if row is None or row["status"] != "ok":
             return False
-        if self.spec.kind in ("plan", "program"):
-            return bool(row.get("feasible"))
-        if self.spec.kind == "simulate":
-            return bool(row.get("reached")) and not row.get("collisions")
-        return True
+        return get_kind(self.spec.kind).successful(row)
 
     def values(self, recs: list[RunRecord], metric: str | None = None, successful_only: bool = True) -> np.ndarray:
         """``metric`` of the (successful) runs among ``recs`` (NULLs dropped)."""

@@ -69,7 +69,9 @@ def experiment_plots(res: ExperimentResults, out_dir: str | Path, metric: str | 
             files.append(out_dir / f"{_safe(spec.name)}_{_safe(t.name)}_box.png")
             box_plot(vals, files[-1], title=f"{t.name}: {metric}", ylabel=metric, reference_line=ref_line)
         histories, paths, finals = {}, {}, {}
-        final_metric = {"plan": "length", "program": "cost"}.get(spec.kind)
+        from ..bench.kinds import get_kind
+
+        final_metric = get_kind(spec.kind).final_metric
         for g, recs in groups.items():
             ok = [r for r in recs if res.successful(r)] or [r for r in recs if r.key in res.rows
                                                              and res.rows[r.key]["status"] == "ok"]

@@ -1,0 +1,67 @@
+"""Kind ``optimize``: ``op.optimize`` on a benchmark function F1-F18 (chen2025 §4.1); every
+run counts, and stores its error to the known optimum."""
+from __future__ import annotations
+
+import functools
+import json
+from pathlib import Path
+from typing import Any, ClassVar
+
+from ...errors import ParameterError, ScenarioError
+from ..spec_fields import TargetSpec, as_list, keyword_names
+from .base import RunKind
+
+
+@functools.lru_cache(maxsize=32)
+def function_target(target_json: str):
+    """The benchmark function of an optimize target, from its spec as sorted JSON
+    (``{"function": "F1", "shifted": bool, "dim": n}``); cached per process."""
+    from ...formulations.functions import get_function
+
+    t = json.loads(target_json)
+    return get_function(t["function"], shifted=bool(t.get("shifted")), dim=t.get("dim"))
+
+
+class OptimizeKind(RunKind):
+    """Metaheuristics on plain benchmark functions."""
+
+    name: ClassVar[str] = "optimize"
+    target_key: ClassVar[str] = "functions"
+    default_metric: ClassVar[str] = "f"
+    result_type: ClassVar[str] = "OptimizeResult"
+    extra_metrics: ClassVar[tuple[str, ...]] = ("f_error", "f_opt")
+
+    def targets(self, raw: dict, base_dir: Path, where: str, from_file: bool) -> list[TargetSpec]:
+        from ...formulations.functions import NAMES
+
+        shifted = bool(raw.get("shifted", False))
+        dim = raw.get("dim")
+        if dim is not None and (not isinstance(dim, int) or dim < 1):
+            raise ParameterError(f"{where}: dim must be a positive integer, got {dim!r}")
+        out = []
+        for it in as_list(raw.get(self.target_key), self.target_key, where):
+            fname = str(it).upper()
+            if fname not in NAMES:
+                raise ScenarioError(f"{where}: unknown benchmark function {it!r}; known: {', '.join(NAMES)}")
+            out.append(TargetSpec(fname, {"function": fname, "shifted": shifted, "dim": dim}))
+        return out
+
+    def known_algorithms(self) -> list[str]:
+        from ...solvers.metaheuristics import algorithm_names
+
+        return list(algorithm_names())
+
+    def accepted_params(self, algorithm: str) -> set[str] | None:
+        from ...solvers.metaheuristics import get_algorithm, optimize
+
+        try:
+            return keyword_names(optimize) | set(get_algorithm(algorithm).defaults())
+        except Exception:  # not an engine algorithm: not listed
+            return None
+
+    def run(self, rec) -> tuple[Any, dict]:
+        from ...solvers.metaheuristics import optimize
+
+        F = function_target(json.dumps(rec.target_spec, sort_keys=True))
+        res = optimize(F, F.bounds, algorithm=rec.algorithm, seed=rec.seed, **rec.params)
+        return res, {"f_error": float(res.f - F.f_opt), "f_opt": float(F.f_opt)}
