@@ -437,3 +437,21 @@ def test_the_inputs_of_shipped_targets_and_ros_maps_are_found(tmp_path):
     data[-1] ^= 0xFF   # one pixel of the image changes; the metadata file does not
     image.write_bytes(bytes(data))
     assert inputs_digest("plan", target) != before
+
+
+def test_gap_is_measured_against_the_optimum_at_the_runs_clearance():
+    """A spec planning with params.clearance compares its lengths with the optimum at that
+    clearance: the visibility planner itself then has gap 0 (against the clearance-0 optimum
+    it would look several per cent worse)."""
+    from optplan.bench.experiment import run_experiment
+    from optplan.bench.summary import exact_optimum_of
+
+    spec = {"kind": "plan", "maps": ["chen2025_20"], "algorithms": [{"name": "visibility", "runs": 1}],
+            "params": {"clearance": 0.3}, "runs": 1}
+    res = run_experiment(spec, workers=1, progress=False)
+    table = summary_tables(res)[0]
+    col = table.header.index("mean gap [%]")
+    assert table.rows[0][col] == "0.00"
+    target = res.spec.targets[0].spec
+    assert exact_optimum_of(target, 0.3) > exact_optimum_of(target)
+    assert any("at clearance 0.3 m" in n for n in table.notes)

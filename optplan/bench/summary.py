@@ -143,20 +143,27 @@ def load_results(spec: ExperimentSpec, store) -> ExperimentResults:
 
 
 @functools.lru_cache(maxsize=64)
-def _exact_optimum(target_json: str, inputs: str) -> float:
+def _exact_optimum(target_json: str, inputs: str, clearance: float = 0.0) -> float:
     from .global_runs import exact_optimum
-    from .runner import plan_target
+    from .kinds.plan import plan_target
 
     world, start, goal = plan_target(target_json)
-    return exact_optimum(world, start, goal)
+    return exact_optimum(world, start, goal, clearance)
 
 
-def exact_optimum_of(target_spec) -> float:
-    """Length (metres) of the exact any-angle optimum of a plan target, cached per process
-    (by the content of its map file too, so an edited map gets its own optimum)."""
+def exact_optimum_of(target_spec, clearance: float = 0.0) -> float:
+    """Length (metres) of the exact any-angle optimum of a plan target at ``clearance`` (with a
+    clearance, the visibility planner's conservative optimum), cached per process (by the
+    content of its map file too, so an edited map gets its own optimum)."""
     from .inputs import inputs_digest
 
-    return _exact_optimum(json.dumps(dict(target_spec), sort_keys=True), inputs_digest("plan", target_spec))
+    return _exact_optimum(json.dumps(dict(target_spec), sort_keys=True), inputs_digest("plan", target_spec),
+                          float(clearance))
+
+
+def _clearance_of(recs) -> float:
+    """The clearance the runs of one group plan with (``params.clearance``, default 0)."""
+    return float(recs[0].params.get("clearance", 0.0) or 0.0) if recs else 0.0
 
 
 def _fmt(x: float) -> str:
@@ -179,9 +186,8 @@ def summary_tables(res: ExperimentResults, metric: str | None = None) -> list[Ta
         too_few = False
         head = ["algorithm", "runs", "failed", "success", f"best {metric}", f"mean {metric}", f"worst {metric}",
                 f"std {metric}"]
-        optimum = None
+        optima: dict[float, float] = {}
         if with_gap:
-            optimum = exact_optimum_of(target.spec)
             head += ["best gap [%]", "mean gap [%]", "mean class gap [%]", "mean in-class gap [%]", "optimal class"]
         if spec.reference is not None:
             head += ["p vs reference", "sign"]
@@ -196,7 +202,11 @@ def summary_tables(res: ExperimentResults, metric: str | None = None) -> list[Ta
                 cells += [_fmt(s["best"]), _fmt(s["mean"]), _fmt(s["worst"]), _fmt(s["std"])]
             else:
                 cells += ["-"] * 4
-            if with_gap:
+            if with_gap:  # against the optimum at the clearance this group plans with
+                clearance = _clearance_of(recs)
+                if clearance not in optima:
+                    optima[clearance] = exact_optimum_of(target.spec, clearance)
+                optimum = optima[clearance]
                 cells += ([f"{100 * (vals.min() / optimum - 1):.2f}", f"{100 * (vals.mean() / optimum - 1):.2f}"]
                           if len(vals) else ["-", "-"])
                 cells += _split_cells(res, recs)
@@ -204,12 +214,14 @@ def summary_tables(res: ExperimentResults, metric: str | None = None) -> list[Ta
             cells += ref_cells
             too_few |= few
             table.rows.append(cells)
-        if optimum is not None:
-            table.notes.append(f"exact optimum (any-angle, same start/goal): {optimum:.4f} m; gap = class gap (the "
+        if optima:
+            at = "; ".join(f"{v:.4f} m" + (f" at clearance {c:g} m (corners grown as squares: conservative)" if c else "")
+                           for c, v in sorted(optima.items()))
+            table.notes.append(f"exact optimum (any-angle, same start/goal): {at}; gap = class gap (the "
                                "corridor: the run's h-signature class optimum vs the optimum) + in-class gap (the "
                                "shape: the path vs its class optimum)")
         if spec.kind == "optimize":
-            from .runner import function_target
+            from .kinds.optimize import function_target
 
             F = function_target(json.dumps(dict(target.spec), sort_keys=True))
             table.notes.append(f"known optimum of {target.name}: {F.f_opt:.6g}")

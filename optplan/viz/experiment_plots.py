@@ -63,7 +63,7 @@ def experiment_plots(res: ExperimentResults, out_dir: str | Path, metric: str | 
         if spec.kind == "plan" and metric == "length":
             from ..bench.summary import exact_optimum_of
 
-            ref_line = exact_optimum_of(t.spec)
+            ref_line = exact_optimum_of(t.spec, float(spec.params.get("clearance", 0.0) or 0.0))
         vals = {names[g]: res.values(recs, metric) for g, recs in groups.items()}
         if any(len(v) for v in vals.values()):
             files.append(out_dir / f"{_safe(spec.name)}_{_safe(t.name)}_box.png")
