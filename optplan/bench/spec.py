@@ -43,7 +43,7 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Mapping
 
-from ..checks import MAX_RUNS, population_budget, seed_bound
+from ..checks import MAX_RUNS, seed_bound
 from ..errors import ParameterError, ScenarioError
 from .kinds import KINDS as RUN_KINDS
 from .spec_fields import AlgorithmSpec, TargetSpec, as_list, check_keys, check_params, refine_name
