@@ -37,6 +37,7 @@ from ...errors import InfeasibleQueryError
 from ..gridpath.moves import move_table
 
 SQRT2 = math.sqrt(2.0)
+CLOSED = -math.inf
 
 
 def octile(dx: float, dy: float) -> float:
@@ -86,8 +87,11 @@ def astar_cells(table, sources, targets, source_bias=None, target_bias=None):
         h = np.maximum(h - slack, 0.0)
     H = array("d", h.tobytes())
     H.append(0.0)  # the virtual goal, flat index n
-    # dist[c] is -1 once c is expanded (closed): no move improves it, no heap entry matches it
+    # dist[c] is -1 once c is expanded (closed): no heap entry matches it. bar[c] is
+    # dist[c] - 1e-12, the value a move must beat (-inf once closed: nothing beats it),
+    # kept next to dist so that the test of every move is one comparison
     dist = [math.inf] * (n + 1)
+    bar = [math.inf] * (n + 1)
     parent = [-1] * (n + 1)
     goal = bytearray(n + 1)
     biases = target_bias if target_bias is not None else [0.0] * len(targets)
@@ -99,6 +103,7 @@ def astar_cells(table, sources, targets, source_bias=None, target_bias=None):
     for s, b in zip(sources, source_bias if source_bias is not None else [0.0] * len(sources)):
         s = int(s)
         dist[s] = float(b)
+        bar[s] = dist[s] - 1e-12
         heap.append((H[s] + dist[s], dist[s], s))
     if len(heap) > 1:
         heapq.heapify(heap)
@@ -117,18 +122,18 @@ def astar_cells(table, sources, targets, source_bias=None, target_bias=None):
             if single:
                 reached, cost = c, d + extra[c]
                 break
-            dist[c] = -1.0
+            dist[c], bar[c] = -1.0, CLOSED
             nd = d + extra[c]  # a path on through one target to another is longer than stopping
             if nd < dist[n]:
                 dist[n], parent[n] = nd, c
                 push(heap, (nd, nd, n))
             continue
-        dist[c] = -1.0
+        dist[c], bar[c] = -1.0, CLOSED
         for off, w in moves[masks[c]]:
             t = c + off
             nd = d + w
-            if nd < dist[t] - 1e-12:
-                dist[t] = nd
+            if nd < bar[t]:
+                dist[t], bar[t] = nd, nd - 1e-12
                 parent[t] = c
                 push(heap, (nd + H[t], nd, t))
     if reached < 0:
