@@ -173,6 +173,7 @@ def _taut(a: np.ndarray, b: np.ndarray, w: np.ndarray) -> np.ndarray:
 SAMPLE_STEPS = np.r_[np.arange(0.5, 8.01, 0.5), np.arange(9.0, 16.01, 1.0), 2.0 ** np.arange(4.5, 11.01, 0.5)]
 SAMPLE_BUDGET = 1_000_000  # sample points per block
 SAMPLE_STAGES = ((0.0, 3.0), (3.0, 8.5), (8.5, 32.0), (32.0, np.inf))
+ONE_PASS_SAMPLES = 20_000  # up to this many samples in all, every step in one lookup
 
 
 def _surely_blocked(grid, origin: np.ndarray, D: np.ndarray, length: np.ndarray) -> np.ndarray:
@@ -182,6 +183,10 @@ def _surely_blocked(grid, origin: np.ndarray, D: np.ndarray, length: np.ndarray)
     the rounding. Segments it does not reject still get the exact rule. The steps are
     tried in stages (near ones first, on every candidate; farther ones on the survivors),
     each stage one vectorised lookup, in blocks of :data:`SAMPLE_BUDGET` samples."""
+    if len(D) * len(SAMPLE_STEPS) <= ONE_PASS_SAMPLES:
+        # few candidates: one lookup of every step costs less than the stages' calls (a
+        # step beyond a segment's end is masked off by t < 1, as in the stages)
+        return _sample_hits(grid, origin, D, length, SAMPLE_STEPS) if len(D) else np.zeros(0, dtype=bool)
     out = np.zeros(len(D), dtype=bool)
     live = np.arange(len(D))
     for lo, hi in SAMPLE_STAGES:
