@@ -183,11 +183,15 @@ def _surely_blocked(grid, origin: np.ndarray, D: np.ndarray, length: np.ndarray)
     the rounding. Segments it does not reject still get the exact rule. The steps are
     tried in stages (near ones first, on every candidate; farther ones on the survivors),
     each stage one vectorised lookup, in blocks of :data:`SAMPLE_BUDGET` samples."""
+    out = np.zeros(len(D), dtype=bool)
     if len(D) * len(SAMPLE_STEPS) <= ONE_PASS_SAMPLES:
         # few candidates: one lookup of every step costs less than the stages' calls (a
-        # step beyond a segment's end is masked off by t < 1, as in the stages)
-        return _sample_hits(grid, origin, D, length, SAMPLE_STEPS) if len(D) else np.zeros(0, dtype=bool)
-    out = np.zeros(len(D), dtype=bool)
+        # step beyond a segment's end is masked off by t < 1, as in the stages; segments
+        # of no length are skipped, as there)
+        k = np.nonzero(length > 1e-6)[0]
+        if len(k):
+            out[k] = _sample_hits(grid, origin, D[k], length[k], SAMPLE_STEPS)
+        return out
     live = np.arange(len(D))
     for lo, hi in SAMPLE_STAGES:
         S = SAMPLE_STEPS[(SAMPLE_STEPS >= lo) & (SAMPLE_STEPS < hi)]
