@@ -75,6 +75,13 @@ def segments_free_chunked(grid, A: np.ndarray, B: np.ndarray, clearance: float =
     ok = np.zeros(n, dtype=bool)
     if n == 0:
         return ok
+    # no segment spans more than the map (plus the clearance's growth): a batch that fits
+    # the budget even so is one call, which is what the split below would make of it
+    widest = grid.width + grid.height + 2.0
+    if clearance > 0:
+        widest += 4.0 * clearance / grid.resolution * (1.0 + max(grid.width, grid.height))
+    if n * widest <= SPAN_BUDGET:
+        return np.asarray(segments_free(grid, A, B, clearance), dtype=bool)
     span = np.abs(grid.to_grid(B) - grid.to_grid(A)).sum(axis=1) + 2.0
     if clearance > 0:
         span += 4.0 * clearance / grid.resolution * (1.0 + np.abs(grid.to_grid(B) - grid.to_grid(A)).max(axis=1))
