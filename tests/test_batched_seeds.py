@@ -75,3 +75,12 @@ def test_per_run_stops_fall_back_to_separate_runs():
 def test_bad_seeds_raise_parameter_errors(seeds, match):
     with pytest.raises(op.ParameterError, match=match):
         op.optimize(RASTRIGIN, RASTRIGIN.bounds, algorithm="gwo", pop=10, iters=5, seeds=seeds)
+
+
+@pytest.mark.parametrize("algorithm", ["gwo", "pso"])
+def test_a_batch_of_one_is_the_single_run(algorithm):
+    # one loop drives both: a batch of one seed is the single run, number for number
+    (batched,) = op.optimize(RASTRIGIN, RASTRIGIN.bounds, algorithm=algorithm, pop=9, iters=None, max_evals=400,
+                             seeds=[7])
+    assert_same_run(batched, op.optimize(RASTRIGIN, RASTRIGIN.bounds, algorithm=algorithm, pop=9, iters=None,
+                                         max_evals=400, seed=7))

@@ -44,6 +44,8 @@ def test_every_segment_value_and_move_mask_equals_the_full_tables(clearance):
         H = world.height
         for j in range(enc.dim - 1):
             np.testing.assert_array_equal(lazy.moves(j, np.arange(H)), pruned[j])
+            np.testing.assert_array_equal(lazy.moves_into(j, np.arange(H)), pruned[j].T)
+        np.testing.assert_array_equal(lazy.last_moves(), last)
         # the reachability pass and the band decide a small share of the segments
         assert (lazy.state != 0).mean() < 0.5
 
@@ -85,3 +87,13 @@ def test_population_scores_equal_the_full_table_sums(preset, constraint):
     np.testing.assert_array_equal(f, f_ref)
     np.testing.assert_array_equal(v, np.add.reduce((coll + pen).take(idx), axis=1))
     assert (v > 0).any() and (v == 0).any()
+
+
+@pytest.mark.parametrize("algorithm", ["ga", "iga"])
+def test_path_gas_decide_segments_on_demand_not_in_full_tables(algorithm):
+    world = city_map(48, seed=2)
+    free = np.argwhere(~world.occ)
+    s, g = world.cell_center(free[0][::-1]), world.cell_center(free[-1][::-1])
+    r = op.plan(world, s, g, algorithm=algorithm, seed=3, pop=12, iters=15)
+    assert r.feasible and bool(op.validate_path(world, r.path))
+    assert not any(isinstance(k, tuple) and k[0] in ("column_tables", "column_transitions") for k in world._cache)

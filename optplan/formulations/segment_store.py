@@ -261,6 +261,24 @@ class ColumnSegments:
         mask[a, b] = self.collisions(self._inner_index(j, u[a], b)) == 0
         return mask[inv.ravel()]
 
+    def moves_into(self, j: int, r2: np.ndarray) -> np.ndarray:
+        """``(len(r2), H)``: the rows of column ``j`` with a free move to rows ``r2`` of
+        column ``j + 1``, where those rows are alive (columns ``r2`` of
+        ``feasible_transitions()[1][j]``)."""
+        H = self.H
+        rows = np.arange(H)
+        u, inv = np.unique(np.asarray(r2, dtype=np.int64), return_inverse=True)
+        cand = self.may_be_free(j, rows[None, :], u[:, None]) & self.alive()[j + 1][u][:, None]
+        a, b = np.nonzero(cand)
+        mask = np.zeros((len(u), H), dtype=bool)
+        mask[a, b] = self.collisions(self._inner_index(j, b, u[a])) == 0
+        return mask[inv.ravel()]
+
+    def last_moves(self) -> np.ndarray:
+        """``(H,)``: the segment from row ``r`` of the last column to the goal is free
+        (``feasible_transitions()[2]``)."""
+        return self.collisions(self.H + self.n_inner + np.arange(self.H)) == 0
+
 
 def column_segments(enc, clearance: float, penetration_fn=None) -> ColumnSegments:
     """The :class:`ColumnSegments` of ``enc`` (its columns, start and goal) for

@@ -235,4 +235,7 @@ def _columns_represent(world, s, g, clearance: float) -> bool:
     enc = ColumnNodes(world, s, g)
     if enc.dim == 0:
         return bool(world.segments_free(s[None], g[None], clearance)[0])
-    return bool(enc.feasible_transitions(clearance)[0].any())
+    from ..formulations.segment_store import column_segments
+
+    # decided on demand (the full tables, feasible_transitions, took 70 s and 9 GB on 256x256)
+    return bool(column_segments(enc, clearance).first_moves().any())

@@ -9,6 +9,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+import math
+
 import numpy as np
 
 from ..world.polyline import resample_path
@@ -64,11 +66,23 @@ def resample(path: np.ndarray, n: int) -> np.ndarray:
     return resample_path(path, n)
 
 
+# a long path gets enough points that no segment spans more than this many spacings
+# (8 x a quarter cell = 2 cells on grids): with a fixed cap, a corner-to-corner path on a
+# 256x256 map had 4-cell segments that cut the corners of its streets and failed
+MAX_SEGMENT_SPACINGS = 8
+
+
 def default_points(path: np.ndarray, spacing: float) -> int:
     """Number of points for a path: about one per ``spacing`` metres, rounded up to
-    a multiple of 10 (so paths of similar length share one built NLP), 20 to 100."""
+    a multiple of 10 (so paths of similar length share one built NLP), at least 20.
+
+    The cap is 100 points (the solve time grows with them) unless the path is so long
+    that 100 points would make segments longer than ``MAX_SEGMENT_SPACINGS`` spacings;
+    then it gets one point per that length instead, so the cap grows with the path,
+    not with the map."""
     L = float(np.hypot(*np.diff(np.asarray(path, float), axis=0).T).sum())
-    return int(np.clip(10 * np.ceil((L / spacing + 1) / 10), 20, 100))
+    cap = max(100, 10 * math.ceil((L / (MAX_SEGMENT_SPACINGS * spacing) + 1) / 10))
+    return int(np.clip(10 * np.ceil((L / spacing + 1) / 10), 20, cap))
 
 
 def check_seed_ends(world, seed_path, clearance: float) -> tuple[np.ndarray, SmoothResult | None]:

@@ -37,6 +37,7 @@ from ...errors import InfeasibleQueryError
 from ..gridpath.moves import move_table
 
 SQRT2 = math.sqrt(2.0)
+CLOSED = -math.inf
 
 
 def octile(dx: float, dy: float) -> float:
@@ -75,8 +76,9 @@ def astar_cells(table, sources, targets, source_bias=None, target_bias=None):
     W, n = table.width, table.width * table.height
     masks, moves = table.masks, table.moves_by_mask
     targets = [int(t) for t in targets]
+    single = len(targets) == 1
     ay, ax = divmod(targets[0], W)
-    slack = max(octile(t % W - ax, t // W - ay) for t in targets)
+    slack = 0.0 if single else max(octile(t % W - ax, t // W - ay) for t in targets)
     # the heuristic of every cell: a slice of the table's octile window (the same float
     # operations as the scalar formula), copied into an array('d'), not n Python floats
     Ht = table.height
@@ -85,23 +87,30 @@ def astar_cells(table, sources, targets, source_bias=None, target_bias=None):
         h = np.maximum(h - slack, 0.0)
     H = array("d", h.tobytes())
     H.append(0.0)  # the virtual goal, flat index n
-    # dist[c] is -1 once c is expanded (closed): no move improves it, no heap entry matches it
+    # dist[c] is -1 once c is expanded (closed): no heap entry matches it. bar[c] is
+    # dist[c] - 1e-12, the value a move must beat (-inf once closed: nothing beats it),
+    # kept next to dist so that the test of every move is one comparison
     dist = [math.inf] * (n + 1)
+    bar = [math.inf] * (n + 1)
     parent = [-1] * (n + 1)
     goal = bytearray(n + 1)
-    extra = dict(zip(targets, target_bias if target_bias is not None else [0.0] * len(targets)))
+    biases = target_bias if target_bias is not None else [0.0] * len(targets)
+    extra = {targets[0]: biases[0]} if single else dict(zip(targets, biases))
     for t in targets:
         goal[t] = 1
     goal[n] = 1
-    single = len(targets) == 1
     heap = []
     for s, b in zip(sources, source_bias if source_bias is not None else [0.0] * len(sources)):
         s = int(s)
         dist[s] = float(b)
+        bar[s] = dist[s] - 1e-12
         heap.append((H[s] + dist[s], dist[s], s))
-    heapq.heapify(heap)
+    if len(heap) > 1:
+        heapq.heapify(heap)
     pop, push = heapq.heappop, heapq.heappush
-    expanded, reached, cost = 0, -1, math.inf
+    reached, cost = -1, math.inf
+    # no counter in the loop: every expanded cell is closed (-1.0, never a distance), so the
+    # count is taken once at the end
     while heap:
         _, d, c = pop(heap)
         if d != dist[c]:
@@ -110,30 +119,32 @@ def astar_cells(table, sources, targets, source_bias=None, target_bias=None):
             if c == n:  # the virtual goal: its parent is the best target
                 reached, cost = parent[n], d
                 break
-            expanded += 1
             if single:
                 reached, cost = c, d + extra[c]
                 break
-            dist[c] = -1.0
+            dist[c], bar[c] = -1.0, CLOSED
             nd = d + extra[c]  # a path on through one target to another is longer than stopping
             if nd < dist[n]:
                 dist[n], parent[n] = nd, c
                 push(heap, (nd, nd, n))
             continue
-        dist[c] = -1.0
-        expanded += 1
+        dist[c], bar[c] = -1.0, CLOSED
         for off, w in moves[masks[c]]:
             t = c + off
             nd = d + w
-            if nd < dist[t] - 1e-12:
-                dist[t] = nd
+            if nd < bar[t]:
+                dist[t], bar[t] = nd, nd - 1e-12
                 parent[t] = c
                 push(heap, (nd + H[t], nd, t))
     if reached < 0:
         return None
+    expanded = dist.count(-1.0) + int(single)   # a single target is expanded, not closed
     cells = [reached]
-    while (c := parent[cells[-1]]) >= 0:
-        cells.append(c)
+    append = cells.append
+    c = parent[reached]
+    while c >= 0:
+        append(c)
+        c = parent[c]
     cells.reverse()
     return cells, cost, expanded
 
@@ -185,6 +196,15 @@ def _closure_cells(W: int, H: int, q) -> list[int]:
             for ix in ((fx - 1, fx) if x == fx else (fx,)) if 0 <= ix < W]
 
 
+def _occupancy_bytes(grid) -> bytes:
+    """One byte per cell by flat index, 1 = blocked (cached on the map): indexing ``bytes``
+    gives a Python int, where indexing the boolean array builds a numpy scalar."""
+    occ = grid._cache.get("occupancy_bytes")
+    if occ is None:
+        occ = grid._cache["occupancy_bytes"] = grid.occ.reshape(-1).astype(np.uint8).tobytes()
+    return occ
+
+
 def _end_cells(grid, q: tuple[float, float], clearance: float) -> tuple[list[int], float, list[float]]:
     """The cells the point ``q`` (grid units) is joined to (flat indices), the join length
     (cells, the same for all) and each join's tie bias (0 for the cell that holds ``q``
@@ -194,8 +214,8 @@ def _end_cells(grid, q: tuple[float, float], clearance: float) -> tuple[list[int
     from the point to its centre is free under the exact rule. Without clearance that
     segment lies in the closed free cell and ends inside it, so the rule holds and is
     not evaluated."""
-    W, H = grid.occ.shape[1], grid.occ.shape[0]
-    occ = grid.occ.reshape(-1)
+    W, H = grid.width, grid.height
+    occ = _occupancy_bytes(grid)
     cells = [c for c in _closure_cells(W, H, q) if not occ[c]]
     if cells and clearance > 0:
         centres = grid.cell_center(np.array([(c % W, c // W) for c in cells]))
@@ -252,7 +272,9 @@ def cell_path(grid, start, goal, *, method: str = "astar", corner_cutting: bool 
     table = move_table(grid, corner_cutting, clearance)
     s, g = np.asarray(start, float), np.asarray(goal, float)
     res, (ox, oy) = grid.resolution, grid.origin
-    qs, qg = (((float(p[0]) - ox) / res, (float(p[1]) - oy) / res) for p in (s, g))  # grid units, as to_grid
+    # the per-query arithmetic on Python floats: numpy scalars cost more than the small searches
+    sx, sy, gx, gy = float(s[0]), float(s[1]), float(g[0]), float(g[1])
+    qs, qg = ((sx - ox) / res, (sy - oy) / res), ((gx - ox) / res, (gy - oy) / res)  # grid units, as to_grid
     ends = []
     for p, q, what in ((s, qs, "start"), (g, qg, "goal")):
         cells, join, bias = _end_cells(grid, q, clearance)
@@ -264,24 +286,26 @@ def cell_path(grid, start, goal, *, method: str = "astar", corner_cutting: bool 
         ends.append((cells, join, bias))
     (sc, sj, bs), (gc, gj, bg) = ends
     if clearance > 0:  # the cells a point shares with the other, whether or not its centre keeps the clearance
-        occ, W, H = grid.occ.reshape(-1), grid.width, grid.height
+        occ, W, H = _occupancy_bytes(grid), grid.width, grid.height
         shared = ({c for c in _closure_cells(W, H, qs) if not occ[c]}
                   & {c for c in _closure_cells(W, H, qg) if not occ[c]})
     else:
         shared = set(sc) & set(gc)
     # in one closed free cell the straight segment is free without clearance (the cell is convex)
     if shared and (clearance == 0 or bool(grid.segments_free(s, g, clearance))):
-        return CellPath(np.stack([s, g]), math.hypot(*(g - s)), 0, True)
+        return CellPath(np.stack([s, g]), math.hypot(gx - sx, gy - sy), 0, True)
     search = astar_cells if method == "astar" else dijkstra_cells
     found = search(table, sc, gc, bs, bg)
     if found is None:
         raise _unreachable(corner_cutting)
     flat, cost, expanded = found
     cost -= bs[sc.index(flat[0])] + bg[gc.index(flat[-1])]
-    P = np.empty((len(flat) + 2, 2))
-    cell_centres(grid).take(np.fromiter(flat, np.intp, len(flat)), axis=0, out=P[1:-1])
-    P[0] = s
-    P[-1] = g
     # an end at a cell centre is that centre: no repeated point
-    P = P[1 if sj == 0 else 0:len(P) - 1 if gj == 0 else len(P)]
+    first, last = int(sj != 0), int(gj != 0)
+    P = np.empty((len(flat) + first + last, 2))
+    cell_centres(grid).take(flat, axis=0, out=P[first:len(P) - last])
+    if first:
+        P[0] = sx, sy
+    if last:
+        P[-1] = gx, gy
     return CellPath(P, (sj + cost + gj) * res, expanded)

@@ -61,6 +61,13 @@ def segments_free_chunked(grid, A: np.ndarray, B: np.ndarray, clearance: float =
     ok = np.zeros(n, dtype=bool)
     if n == 0:
         return ok
+    # no segment spans more than the map (plus the clearance's growth): a batch that fits
+    # the budget even so is one call, which is what the split below would make of it
+    widest = grid.width + grid.height + 2.0
+    if clearance > 0:
+        widest += 4.0 * clearance / grid.resolution * (1.0 + max(grid.width, grid.height))
+    if n * widest <= SPAN_BUDGET:
+        return np.asarray(segments_free(grid, A, B, clearance), dtype=bool)
     span = np.abs(grid.to_grid(B) - grid.to_grid(A)).sum(axis=1) + 2.0
     if clearance > 0:
         span += 4.0 * clearance / grid.resolution * (1.0 + np.abs(grid.to_grid(B) - grid.to_grid(A)).max(axis=1))
@@ -159,6 +166,7 @@ def _taut(a: np.ndarray, b: np.ndarray, w: np.ndarray) -> np.ndarray:
 SAMPLE_STEPS = np.r_[np.arange(0.5, 8.01, 0.5), np.arange(9.0, 16.01, 1.0), 2.0 ** np.arange(4.5, 11.01, 0.5)]
 SAMPLE_BUDGET = 1_000_000  # sample points per block
 SAMPLE_STAGES = ((0.0, 3.0), (3.0, 8.5), (8.5, 32.0), (32.0, np.inf))
+ONE_PASS_SAMPLES = 20_000  # up to this many samples in all, every step in one lookup
 
 
 def _surely_blocked(grid, origin: np.ndarray, D: np.ndarray, length: np.ndarray) -> np.ndarray:
@@ -169,6 +177,14 @@ def _surely_blocked(grid, origin: np.ndarray, D: np.ndarray, length: np.ndarray)
     tried in stages (near ones first, on every candidate; farther ones on the survivors),
     each stage one vectorised lookup, in blocks of :data:`SAMPLE_BUDGET` samples."""
     out = np.zeros(len(D), dtype=bool)
+    if len(D) * len(SAMPLE_STEPS) <= ONE_PASS_SAMPLES:
+        # few candidates: one lookup of every step costs less than the stages' calls (a
+        # step beyond a segment's end is masked off by t < 1, as in the stages; segments
+        # of no length are skipped, as there)
+        k = np.nonzero(length > 1e-6)[0]
+        if len(k):
+            out[k] = _sample_hits(grid, origin, D[k], length[k], SAMPLE_STEPS)
+        return out
     live = np.arange(len(D))
     for lo, hi in SAMPLE_STAGES:
         S = SAMPLE_STEPS[(SAMPLE_STEPS >= lo) & (SAMPLE_STEPS < hi)]
@@ -192,8 +208,9 @@ def _sample_hits(grid, origin, D, length, S) -> np.ndarray:
     fx, fy = qx - cx, qy - cy
     deep = on & (fx > 1e-6) & (fx < 1 - 1e-6) & (fy > 1e-6) & (fy < 1 - 1e-6)
     pad = grid.padded  # padded[iy + 1, ix + 1]; samples lie in the map, clipping only guards rounding
-    ix = np.clip(cx.astype(np.int64) + 1, 0, grid.width + 1)
-    iy = np.clip(cy.astype(np.int64) + 1, 0, grid.height + 1)
+    # two ufuncs, not np.clip: its Python wrapper costs more than the work on these blocks
+    ix = np.minimum(np.maximum(cx.astype(np.int64) + 1, 0), grid.width + 1)
+    iy = np.minimum(np.maximum(cy.astype(np.int64) + 1, 0), grid.height + 1)
     return np.any(deep & pad[iy, ix], axis=1)
 
 

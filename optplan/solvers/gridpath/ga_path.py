@@ -34,6 +34,7 @@ import numpy as np
 from ...errors import ParameterError
 from ...formulations.encodings import ColumnNodes
 from ...formulations.problem import PathProblem
+from ...formulations.segment_store import ColumnSegments, column_segments
 from ...rng import as_generator
 from ...world.postprocess import key_points, remove_collinear
 from ..archive import ARCHIVE_EVERY, archive_alternatives
@@ -91,27 +92,28 @@ def _crossover(rows: np.ndarray, pc: np.ndarray, rng: np.random.Generator) -> np
     return out
 
 
-def _mutate(rows: np.ndarray, pm: np.ndarray, first: np.ndarray, inner: np.ndarray, last: np.ndarray,
-            rng: np.random.Generator) -> np.ndarray:
-    """Redraw one gene per mutating individual among rows whose two moves stay free."""
+def _mutate(rows: np.ndarray, pm: np.ndarray, moves: ColumnSegments, rng: np.random.Generator) -> np.ndarray:
+    """Redraw one gene per mutating individual among rows whose two moves stay free
+    (``moves``: the map's segments, decided for the rows asked about)."""
     n, d = rows.shape
     out = rows.copy()
     who = np.nonzero(rng.random(n) < pm)[0]
     if who.size == 0:
         return out
     j = rng.integers(0, d, size=who.size)
-    H = first.size
+    H = moves.H
     ok = np.ones((who.size, H), dtype=bool)
     has_prev = j > 0
-    ok[~has_prev] &= first[None, :]
-    if has_prev.any():
-        w = who[has_prev]
-        ok[has_prev] &= inner[j[has_prev] - 1, rows[w, j[has_prev] - 1], :]
+    ok[~has_prev] &= moves.first_moves()[None, :]
+    # one query per column: the moves out of the previous gene, and into the next one
+    for col in np.unique(j[has_prev]):
+        k = np.nonzero(has_prev & (j == col))[0]
+        ok[k] &= moves.moves(int(col) - 1, rows[who[k], col - 1])
     has_next = j < d - 1
-    if has_next.any():
-        w = who[has_next]
-        ok[has_next] &= inner[j[has_next], :, rows[w, j[has_next] + 1]]
-    ok[~has_next] &= last[None, :]
+    for col in np.unique(j[has_next]):
+        k = np.nonzero(has_next & (j == col))[0]
+        ok[k] &= moves.moves_into(int(col), rows[who[k], col + 1])
+    ok[~has_next] &= moves.last_moves()[None, :]
     any_ok = ok.any(axis=1)
     choice = np.argmax(ok * rng.random(ok.shape), axis=1)
     out[who[any_ok], j[any_ok]] = choice[any_ok]
@@ -180,7 +182,9 @@ def ga_path(problem: PathProblem, *, pop: int = 50, iters: int | None = 200, see
     budget = Budget(iterations=iters, evaluations=max_evals, stagnation=params.stall if params.improved else None)
     horizon = iters if iters is not None else max(1, max_evals // pop - 1)  # T of li2023 eq 5
     rng = as_generator(seed)
-    first, inner, last = enc.feasible_transitions(problem.clearance)
+    # the moves the operators may take, decided for the rows they ask about (not a table of
+    # every segment of the map: (d - 1) H^2 of them)
+    moves = column_segments(enc, problem.clearance)
     nfev = 0
 
     def sample(k: int) -> np.ndarray:
@@ -230,7 +234,7 @@ def ga_path(problem: PathProblem, *, pop: int = 50, iters: int | None = 200, see
         w = ps / ps.sum()
         parents = rng.choice(pop, size=pop - k_el, p=w)
         kids = _crossover(rows[parents], pc[parents], rng)
-        kids = _mutate(kids, pm[parents], first, inner, last, rng)
+        kids = _mutate(kids, pm[parents], moves, rng)
         Xk = kids + 0.5
         fk = evaluate(Xk)
         if params.improved:

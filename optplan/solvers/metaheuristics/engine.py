@@ -78,9 +78,8 @@ def pick(A: np.ndarray, order: np.ndarray) -> np.ndarray:
     (``order`` of shape ``(R, k)``) the rows of each run's own ``order``."""
     if order.ndim == 1:
         return A[order]
-    if A.ndim == order.ndim:
-        return np.take_along_axis(A, order, axis=-1)
-    return np.take_along_axis(A, order[..., None], axis=-2)
+    # plain fancy indexing: take_along_axis costs more in Python than the copy at these sizes
+    return A[np.arange(len(order))[:, None], order]
 
 
 def pooled_archive(snapshots) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -280,6 +279,23 @@ def run(algorithm: Algorithm, problem: Problem, *, pop: int, iters: int | None =
         X0 = np.asarray(init, dtype=float)
     if X0.shape != (pop, problem.dim):
         raise ParameterError(f"initial population must have shape ({pop}, {problem.dim}), got {X0.shape}")
+    out = _loop(algorithm, state, X0, callback=callback, progress=progress, archive_every=archive_every)
+    message = out[4]
+    if state.nan_seen:
+        message += "; the objective returned NaN for some points (treated as +inf)"
+    if state.best_v > 0 and np.isfinite(state.best_v):
+        message += f"; no feasible point found (least violation {state.best_v:.3g})"
+    return out[:4] + (message, out[5])
+
+
+def _loop(algorithm: Algorithm, state: State, X0: np.ndarray, *, callback=None, progress: bool = False,
+          archive_every: int | None = None):
+    """The population loop, written once for a single run (:class:`State`) and for R
+    runs at once (:class:`BatchState`, whose best values are arrays; it is never given
+    per-run controls: stagnation, target, callback, progress or archive)."""
+    budget = state.budget
+    batched = isinstance(state, BatchState)
+    watch = budget.stagnation is not None or budget.target is not None   # never for a batch
     status, message = "max_iters", "iteration budget spent"
     history, history_nfev = [], []
     try:
@@ -287,7 +303,7 @@ def run(algorithm: Algorithm, problem: Problem, *, pop: int, iters: int | None =
         algorithm.setup(state)
     except BudgetExhausted:
         pass
-    history.append(state.best_f)
+    history.append(state.best_f.copy() if batched else state.best_f)
     history_nfev.append(state.nfev)
     if archive_every:
         state.snapshot()
@@ -303,20 +319,21 @@ def run(algorithm: Algorithm, problem: Problem, *, pop: int, iters: int | None =
             algorithm.step(state)
         except BudgetExhausted:
             pass
-        history.append(state.best_f)
+        history.append(state.best_f.copy() if batched else state.best_f)
         history_nfev.append(state.nfev)
         if archive_every and state.it % archive_every == 0:
             state.snapshot()
-        if state.best_f < last_best:
-            last_best, last_improvement = state.best_f, state.it
         if progress and time.perf_counter() - t_report > 0.5:
             t_report = time.perf_counter()
             print(f"\r{algorithm.name}: iteration {state.it}, evaluations {state.nfev}, best {state.best_f:.6g}",
                   end="", file=sys.stderr, flush=True)
-        why = budget.converged(state.it - last_improvement, state.best_f, state.best_v == 0)
-        if why is not None:
-            status, message = why
-            break
+        if watch:
+            if state.best_f < last_best:
+                last_best, last_improvement = state.best_f, state.it
+            why = budget.converged(state.it - last_improvement, state.best_f, state.best_v == 0)
+            if why is not None:
+                status, message = why
+                break
         if callback is not None and callback(state) is False:
             status, message = "callback", "stopped by the callback"
             break
@@ -324,10 +341,6 @@ def run(algorithm: Algorithm, problem: Problem, *, pop: int, iters: int | None =
         state.snapshot()  # the final population
     if progress:
         print(file=sys.stderr)
-    if state.nan_seen:
-        message += "; the objective returned NaN for some points (treated as +inf)"
-    if state.best_v > 0 and np.isfinite(state.best_v):
-        message += f"; no feasible point found (least violation {state.best_v:.3g})"
     return state, np.asarray(history), np.asarray(history_nfev, dtype=np.int64), status, message, state.it
 
 
@@ -417,13 +430,14 @@ class BatchState(State):
         if isinstance(out, tuple):
             fk = np.asarray(out[0], dtype=float).reshape(-1)
             vk = np.asarray(out[1], dtype=float).reshape(-1)
-            vk = np.where(np.isnan(vk), np.inf, vk)
+            if math.isnan(np.add.reduce(vk)):
+                vk = np.where(np.isnan(vk), np.inf, vk)
         else:
             fk, vk = np.asarray(out, dtype=float).reshape(-1), np.zeros(R * k)
         if fk.shape != (R * k,) or vk.shape != (R * k,):
             raise ParameterError(f"the objective must return shape ({R * k},) for {R * k} rows, got {fk.shape}")
         fk, vk = fk.reshape(R, k), vk.reshape(R, k)
-        if not np.isfinite(fk).all():
+        if not math.isfinite(np.add.reduce(fk, axis=None)) and not np.isfinite(fk).all():
             self.nan_seen = self.nan_seen | np.isnan(fk).any(axis=1)   # per run
             fk = np.where(np.isfinite(fk), fk, np.inf)
         self.nfev += k
@@ -434,7 +448,8 @@ class BatchState(State):
         return np.concatenate([fk, pad], axis=1), np.concatenate([vk, pad], axis=1)
 
     def _offer(self, X, f, v) -> None:
-        i = np.lexsort((f, v), axis=-1)[:, 0]
+        # argmin is the first of lexsort's order when nothing is violated
+        i = f.argmin(axis=1) if not v.any() else np.lexsort((f, v), axis=-1)[:, 0]
         rows = np.arange(len(f))
         fi, vi = f[rows, i], v[rows, i]
         win = better(fi, vi, self.best_f, self.best_v)
@@ -446,7 +461,10 @@ class BatchState(State):
         if idx is not None:  # pragma: no cover - batchable algorithms use whole-population greedy
             raise ParameterError("greedy(idx=...) is not available in a batched run")
         win = better(Fnew, Vnew, self.F, self.V)
-        self.X[win], self.F[win], self.V[win] = Xnew[win], Fnew[win], Vnew[win]
+        # copyto with a mask: boolean-index assignment gathers and scatters the rows
+        np.copyto(self.X, Xnew, where=win[..., None])
+        np.copyto(self.F, Fnew, where=win)
+        np.copyto(self.V, Vnew, where=win)
         return win
 
 
@@ -472,24 +490,4 @@ def run_batched(algorithm: Algorithm, problem: Problem, *, pop: int, seeds, budg
         X0 = np.broadcast_to(np.asarray(init, dtype=float), (R, pop, problem.dim)).copy()
     if X0.shape != (R, pop, problem.dim):
         raise ParameterError(f"initial population must have shape ({pop}, {problem.dim}), got {X0.shape[1:]}")
-    history, history_nfev = [], []
-    try:
-        state.X, state.F, state.V = state.eval_new(X0)
-        algorithm.setup(state)
-    except BudgetExhausted:
-        pass
-    history.append(state.best_f.copy())
-    history_nfev.append(state.nfev)
-    while True:
-        why = budget.spent(state.it, state.nfev)
-        if why is not None:
-            status, message = why
-            break
-        state.it += 1
-        try:
-            algorithm.step(state)
-        except BudgetExhausted:
-            pass
-        history.append(state.best_f.copy())
-        history_nfev.append(state.nfev)
-    return state, np.asarray(history), np.asarray(history_nfev, dtype=np.int64), status, message, state.it
+    return _loop(algorithm, state, X0)

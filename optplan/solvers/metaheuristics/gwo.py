@@ -63,6 +63,17 @@ class GWO(Algorithm):
 
     def update_leaders(self, X, F, V) -> None:
         if F.ndim == 2:  # a batched run: each run's three best of its leaders and new wolves
+            if not (V.any() or self.leader_v.any()):
+                # unconstrained: a stable sort of the values is rank()'s order, and only runs
+                # whose new best beats their third leader change
+                move = F.min(axis=1) < self.leader_f[:, 2]
+                if not move.any():
+                    return
+                allF = np.concatenate([self.leader_f[move], F[move]], axis=-1)
+                order = np.argsort(allF, axis=-1, kind="stable")[:, :3]
+                allX = np.concatenate([self.leaders[move], X[move]], axis=-2)
+                self.leaders[move], self.leader_f[move] = pick(allX, order), pick(allF, order)
+                return
             allX = np.concatenate([self.leaders, X], axis=-2)
             allF = np.concatenate([self.leader_f, F], axis=-1)
             allV = np.concatenate([self.leader_v, V], axis=-1)
@@ -96,10 +107,9 @@ class GWO(Algorithm):
         A = r[..., 0, :, :, :]
         A *= 2 * a
         A -= a                                                # A = 2 a r1 - a
-        C = r[..., 1, :, :, :]
-        C *= 2                                                # C = 2 r2
         L = self.leaders[..., :, None, :]                     # ([R,] 3, 1, d)
-        gap = np.multiply(C, L, out=C)
+        # C L = (2 r2) L computed as r2 (2 L): both round the exact 2 r2 L once, one pass fewer
+        gap = np.multiply(r[..., 1, :, :, :], 2 * L, out=r[..., 1, :, :, :])
         gap -= state.X[..., None, :, :]
         np.abs(gap, out=gap)
         gap *= A
