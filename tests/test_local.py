@@ -284,6 +284,21 @@ def test_mechanisms_see_a_read_only_view_and_publish_what_they_learn():
     assert make_local_planner("dwa", robot, DT).initial_heading is None  # no such mechanism
 
 
+def test_mechanisms_are_sorted_by_the_roles_they_play():
+    from optplan.local.hooks import CapsWindow, FiltersSamples, Mechanism, Roles, TakesOver
+
+    roles = {n: make_local_planner(n, RobotSpec(), DT).roles for n in ("missa-dwa", "idwa", "iga-dwa", "qp-dwa")}
+    assert [m.name for m in roles["missa-dwa"].caps_window] == ["adaptive_velocity"]
+    assert [m.name for m in roles["idwa"].filters] == ["velocity_obstacle"] and not roles["idwa"].resets
+    assert [m.name for m in roles["iga-dwa"].takes_over] == ["initial_heading", "brake_and_wait"]  # preset order
+    assert not roles["iga-dwa"].filters and not roles["iga-dwa"].caps_window
+    gate = roles["qp-dwa"]
+    assert [m.name for m in gate.predicts] == [m.name for m in gate.filters] == ["sweep_gate"]
+    # the base declares no hooks: a mechanism plays only the roles whose methods it writes
+    assert not any(isinstance(Mechanism(), r) for r in (CapsWindow, TakesOver, FiltersSamples))
+    assert Roles.of([]) == Roles()
+
+
 @pytest.mark.parametrize("name", NAMES)
 def test_every_preset_declares_the_mover_sweep_capability(name):
     planner = make_local_planner(name, RobotSpec(), DT)

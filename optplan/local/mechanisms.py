@@ -1,8 +1,9 @@
 """The papers' DWA mechanisms: the parts of their variants that are not cost terms.
 
-Each one hooks into the control step as :mod:`optplan.local.hooks` describes:
-hou2024's adaptive velocity (``adjust_window``), yang2023's velocity obstacles
-(``filter``), li2023's brake-and-wait and initial heading (``override``). This
+Each one plays roles of :mod:`optplan.local.hooks` in the control step: hou2024's
+adaptive velocity (:class:`~optplan.local.hooks.CapsWindow`), yang2023's velocity
+obstacles (:class:`~optplan.local.hooks.FiltersSamples`), li2023's brake-and-wait and
+initial heading (:class:`~optplan.local.hooks.TakesOver`). This
 project's sweep gate of ``qp-dwa`` lives in :mod:`optplan.local.sweep_gate`.
 :data:`MECHANISMS` names them all for the presets.
 """
@@ -14,9 +15,11 @@ from typing import ClassVar
 
 import numpy as np
 
+from ..world.robot import RobotState
 from .base import LocalContext
 from .critics import body_direction, wrap_angle
 from .hooks import Mechanism, PlannerView
+from .rollout import Step
 from .sweep_gate import SweepGate
 from .window import Window
 
@@ -50,7 +53,7 @@ class AdaptiveVelocity(Mechanism):
     w_r: float | None = field(default=None, init=False)
     phi: float | None = field(default=None, init=False)
 
-    def reset(self, view, state, global_path) -> None:
+    def reset(self, view: PlannerView, state: RobotState, global_path: np.ndarray) -> None:
         self.v_r = self.w_r = self.phi = None
 
     def navigable_fraction(self, view: PlannerView, ctx: LocalContext) -> float:
@@ -63,7 +66,7 @@ class AdaptiveVelocity(Mechanism):
             free &= np.abs(z - complex(x, y)) > rad + R
         return float(free.mean())
 
-    def adjust_window(self, view, ctx, window) -> Window:
+    def adjust_window(self, view: PlannerView, ctx: LocalContext, window: Window) -> Window:
         robot = view.robot
         phi = self.navigable_fraction(view, ctx)
         if self.v_r is None:
@@ -118,7 +121,7 @@ class VelocityObstacle(Mechanism):
             hit &= t_in <= self.horizon
         return np.where(hit, t_in, np.inf)
 
-    def filter(self, view, step) -> np.ndarray | None:
+    def filter(self, view: PlannerView, step: Step) -> np.ndarray | None:
         ctx, roll = step.ctx, step.roll
         if len(step.mover_r) == 0:
             return None
@@ -143,7 +146,11 @@ class VelocityObstacle(Mechanism):
         step.aux["vo_rejected"] = int((~keep).sum())
         return keep
 
-    def report(self, step) -> dict:
+    def strict_filter(self, view: PlannerView, step: Step) -> np.ndarray | None:
+        """The same test: it has no fallback to leave out."""
+        return self.filter(view, step)
+
+    def report(self, step: Step) -> dict:
         threat = step.aux.get("vo_threat")
         return {} if threat is None else {"vo_threat": threat}
 
@@ -207,7 +214,7 @@ class BrakeAndWait(Mechanism):
         gap = np.hypot(*(p + t[:, None] * seg - q).T) - r - robot_radius
         return bool(np.any(gap < self.margin))
 
-    def override(self, view, ctx, window):
+    def override(self, view: PlannerView, ctx: LocalContext, window: Window) -> tuple[float, float, dict] | None:
         k = self.threats(ctx, view.robot.radius)
         if len(k) == 0:
             return None
@@ -233,7 +240,7 @@ class InitialHeading(Mechanism):
     aligned: bool = field(default=True, init=False)
     heading: float | None = field(default=None, init=False)
 
-    def reset(self, view, state, global_path) -> None:
+    def reset(self, view: PlannerView, state: RobotState, global_path: np.ndarray) -> None:
         p = np.asarray(global_path, dtype=float).reshape(-1, 2)
         d = np.hypot(p[:, 0] - state.x, p[:, 1] - state.y)
         nearest = int(np.argmin(d)) if len(d) else 0
@@ -245,7 +252,7 @@ class InitialHeading(Mechanism):
         self.heading = math.atan2(y1 - state.y, x1 - state.x)
         self.aligned = abs(wrap_angle(self.heading - state.theta)) <= self.tol
 
-    def override(self, view, ctx, window):
+    def override(self, view: PlannerView, ctx: LocalContext, window: Window) -> tuple[float, float, dict] | None:
         if self.aligned or self.heading is None:
             return None
         err = float(wrap_angle(self.heading - ctx.state.theta))
