@@ -17,6 +17,8 @@ CASES = [
     (["yang2023_ipso_idwa.py", "--part", "global", "--quick"], ["| ipso |", "Table 3 analog"]),
     (["yuan2021_iba_dwa.py", "--part", "global", "--quick"], ["| iba |", "mu = 0.1", "Claims of the paper"]),
     (["li2023_iga_idwa.py", "--part", "global", "--quick"], ["| iga |", "Table 2 analog"]),
+    (["yuan2021_iba_dwa.py", "--part", "switch-time", "--quick", "--runs", "2"],
+     ["§4.2 claim", "| 0 |", "re-plan [s]"]),
     (["li2023_iga_idwa.py", "--part", "convergence", "--quick", "--runs", "2"],
      ["Figures 13-14 analog", "| li2023_30 | IGA | population std |", "Claim of §6.1"]),
 ]
