@@ -15,6 +15,7 @@ from typing import ClassVar
 
 import numpy as np
 
+from ..world.polyline import segment_point_distances
 from ..world.robot import RobotState
 from .base import LocalContext
 from .critics import body_direction, wrap_angle
@@ -166,7 +167,8 @@ class BrakeAndWait(Mechanism):
     ``d_s``, ``v_s`` and ``front_angle`` are left to the user by the paper; the defaults are ours.
 
     Waiting is only safe off the mover's track: the paper assumes the robot stops before the
-    crossing. When the robot already stands inside a threat's swept corridor (its straight
+    crossing. When the robot would come to rest (braking at ``a_max`` from its speed) inside,
+    or already stands inside, a threat's swept corridor (its straight
     track over the next ``d_s / speed`` seconds, widened by both radii and ``margin``), it
     does not wait there to be run over; the step is left to the DWA, whose trajectories avoid
     the predicted movers.
@@ -203,24 +205,30 @@ class BrakeAndWait(Mechanism):
             threat &= on_lane | approaching
         return np.flatnonzero(threat)
 
-    def in_swept_corridor(self, ctx: LocalContext, movers: np.ndarray, robot_radius: float) -> bool:
-        """Whether the robot's position lies on the straight track of any of ``movers`` (rows
+    def in_swept_corridor(self, ctx: LocalContext, movers: np.ndarray, robot_radius: float,
+                          stop_distance: float = 0.0) -> bool:
+        """Whether the robot, braking from where it is along its direction of travel over
+        ``stop_distance`` m, comes onto the straight track of any of ``movers`` (rows
         ``x, y, vx, vy, r``) over the time they need to cover ``d_s``."""
-        q = np.array([ctx.state.x, ctx.state.y])
+        state = ctx.state
+        way = np.exp(1j * (state.theta + body_direction(state.v, state.vy))) * np.linspace(0.0, stop_distance, 6)
+        stops = np.column_stack([state.x + way.real, state.y + way.imag])
         p, v, r = movers[:, :2], movers[:, 2:4], movers[:, 4]
         horizon = self.d_s / np.maximum(np.hypot(v[:, 0], v[:, 1]), self.v_s)
-        seg = v * horizon[:, None]
-        t = np.clip(np.einsum("ij,ij->i", q - p, seg) / np.maximum(np.einsum("ij,ij->i", seg, seg), 1e-12), 0.0, 1.0)
-        gap = np.hypot(*(p + t[:, None] * seg - q).T) - r - robot_radius
-        return bool(np.any(gap < self.margin))
+        ends = p + v * horizon[:, None]
+        gap = np.array([segment_point_distances(np.stack([p[k], ends[k]]), stops).min() for k in range(len(p))])
+        return bool(np.any(gap - r - robot_radius < self.margin))
 
     def override(self, view: PlannerView, ctx: LocalContext, window: Window) -> tuple[float, float, dict] | None:
         k = self.threats(ctx, view.robot.radius)
         if len(k) == 0:
             return None
         movers = np.asarray(ctx.dynamic, dtype=float).reshape(-1, 5)[k]
-        if self.in_swept_corridor(ctx, movers, view.robot.radius):
-            return None  # waiting here would be waiting to be hit
+        robot, speed = view.robot, math.hypot(ctx.state.v, ctx.state.vy)
+        # where the brake leaves the robot: the window sheds a_max dt per period
+        stop = speed * view.dt + speed * speed / (2 * robot.a_max) if robot.a_max > 0 else 0.0
+        if self.in_swept_corridor(ctx, movers, robot.radius, stop):
+            return None  # waiting there would be waiting to be hit
         return 0.0, 0.0, {"mode": "brake-and-wait", "waiting_for": [int(i) for i in k]}
 
 
