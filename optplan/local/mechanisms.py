@@ -171,7 +171,8 @@ class BrakeAndWait(Mechanism):
     or already stands inside, a threat's swept corridor (its straight
     track over the next ``d_s / speed`` seconds, widened by both radii and ``margin``), it
     does not wait there to be run over; the step is left to the DWA, whose trajectories avoid
-    the predicted movers.
+    the predicted movers. ``judge_at_rest=False`` judges the corridor where the robot stands
+    only (the earlier reading, which let a robot brake onto the track).
     """
 
     name: ClassVar[str] = "brake_and_wait"
@@ -181,6 +182,7 @@ class BrakeAndWait(Mechanism):
     cross_angle: float = 3 * math.pi / 4
     margin: float = 0.05
     clear_when_leaving: bool = True
+    judge_at_rest: bool = True
 
     def threats(self, ctx: LocalContext, robot_radius: float = 0.0) -> np.ndarray:
         """Indices of the movers that meet the four conditions and are still in front of the
@@ -226,7 +228,7 @@ class BrakeAndWait(Mechanism):
         movers = np.asarray(ctx.dynamic, dtype=float).reshape(-1, 5)[k]
         robot, speed = view.robot, math.hypot(ctx.state.v, ctx.state.vy)
         # where the brake leaves the robot: the window sheds a_max dt per period
-        stop = speed * view.dt + speed * speed / (2 * robot.a_max) if robot.a_max > 0 else 0.0
+        stop = speed * view.dt + speed * speed / (2 * robot.a_max) if robot.a_max > 0 and self.judge_at_rest else 0.0
         if self.in_swept_corridor(ctx, movers, robot.radius, stop):
             return None  # waiting there would be waiting to be hit
         return 0.0, 0.0, {"mode": "brake-and-wait", "waiting_for": [int(i) for i in k]}
