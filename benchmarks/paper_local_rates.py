@@ -62,8 +62,10 @@ def main(argv=None) -> int:
     ap.add_argument("--options", default="{}", help="JSON: op.simulate options")
     ap.add_argument("--cache", default=None, help="directory for the global plans")
     ap.add_argument("--workers", type=int, default=1)
+    ap.add_argument("--only", default=None, help="run only the scenarios whose name ends with this")
     a = ap.parse_args(argv)
     preset, scenarios, planner, gopts = EXPERIMENTS[a.paper]
+    scenarios = [sc for sc in scenarios if a.only is None or sc.endswith(a.only)]
     lo, hi = (int(x) for x in a.seeds.split("-"))
     jobs = [(preset, sc, planner, gopts, s, json.loads(a.params), json.loads(a.options), a.cache)
             for sc in scenarios for s in range(lo, hi + 1)]

@@ -262,6 +262,21 @@ def test_iga_dwa_does_not_wait_on_the_movers_track(field):
     assert planner.command(ctx_at(field, st, goal, [off_track], path)).info["mode"] == "brake-and-wait"
 
 
+def test_iga_dwa_does_not_brake_onto_the_movers_track(field):
+    """Braking at a_max from 1 m/s takes 2.6 m: a robot that would come to rest on the track of
+    the crossing mover 1.2 m ahead is not made to wait there; judged where it stands (the
+    earlier reading, ``judge_at_rest=False``) it brakes onto the track."""
+    robot = RobotSpec(a_max=0.2)
+    st = RobotState(2.0, 5.0, 0.0, 1.0, 0.0)
+    path = [[2.0, 5.0], [9.5, 5.0]]
+    crossing = [3.2, 4.4, 0.0, 0.5, 0.3]
+    for at_rest, waits in ((True, False), (False, True)):
+        planner = make_local_planner("iga-dwa", robot, DT, brake_and_wait={"judge_at_rest": at_rest})
+        planner.reset(st, path)
+        mode = planner.command(ctx_at(field, st, (9.5, 5.0), [crossing], path)).info["mode"]
+        assert (mode == "brake-and-wait") is waits
+
+
 def test_iga_dwa_turns_to_the_first_subgoal_first(field):
     planner = make_local_planner("iga-dwa", RobotSpec(), DT)
     st = RobotState(2.0, 5.0, 0.0, 0.0, 0.0)
