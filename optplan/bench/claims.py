@@ -254,4 +254,10 @@ CLAIMS: tuple[Claim, ...] = (
       for a in ({"chen2025_20": 28.5610, "chen2025_30": 44.0835, "chen2025_40": 68.6196}[m],)),
     *(Claim("chen2025_paths", f"Table {t}", "MSIAR-GWO varies less than GWO", m, "less_spread", "msiar-gwo", "gwo")
       for t, m in ((9, "chen2025_20"), (10, "chen2025_30"), (11, "chen2025_40"))),
+    # chen2025 §4.1, Tables 4-5 (mean best value of 20 runs, 500 iterations, pop 30; the headline
+    # run shifts F1-F13, chen2025.md says why)
+    *(Claim("chen2025_functions", f"Table {t}", quote, f, "less", "msiar-gwo", o, "f")
+      for t, fs, quote in ((4, ("F5", "F6", "F7"), "MSIAR-GWO is always in first place in F5-F7"),
+                           (5, ("F12", "F13"), "in F12 and F13 MSIAR-GWO shows an absolute advantage"))
+      for f in fs for o in ("gwo", "aro", "dbo", "woa", "igwo")),
 )
