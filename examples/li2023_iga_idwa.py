@@ -9,6 +9,13 @@ judged. It runs the shipped spec li2023_global, exactly as
 
     python examples/li2023_iga_idwa.py --part global [--runs 20] [--quick]
 
+--part convergence: Figures 13-14, the best fitness and the standard deviation of the
+population's fitness per generation of TGA and IGA (population 50, 200 generations as
+li2023_global, --runs seeds, default 5) on the three maps, and the claim of §6.1 that IGA's
+population keeps the larger spread, judged on each run's mean standard deviation.
+
+    python examples/li2023_iga_idwa.py --part convergence [--runs 5]
+
 --part local: Experiment I (11x11 map, static: traditional DWA vs the IGA-DWA
 fusion and every other preset, li2023_exp1) and Experiment II (2-5 moving
 obstacles, li2023_exp2_2..5) with the Figure 17 analog: mean path length of the
@@ -29,7 +36,7 @@ from optplan.bench.command import reproduce
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--part", choices=["global", "local"], default="global")
+    ap.add_argument("--part", choices=["global", "local", "convergence"], default="global")
     ap.add_argument("--runs", type=int, default=20, help="runs per algorithm and map (default 20)")
     ap.add_argument("--quick", action="store_true", help="one map, 3 runs, short budgets (for tests)")
     ap.add_argument("--iters", type=int, default=None, help="--part local: iterations of the global planner")
@@ -37,8 +44,62 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     if args.part == "local":
         return part_local(args)
+    if args.part == "convergence":
+        return part_convergence(5 if args.runs == 20 else args.runs, quick=args.quick)
     return reproduce("li2023", "global", quick=args.quick, runs=None if args.quick or args.runs == 20 else args.runs,
                      workers=1)
+
+
+def population_curves(map_name: str, improved: bool, seed: int, pop: int = 50, iters: int = 200):
+    """``(best, std)`` per generation of one GA run on a li2023 map: the best fitness so far
+    and the standard deviation of the population's finite fitness values (IGA scores a
+    colliding chromosome as infinite and replaces it; those are left out of its spread)."""
+    from optplan.formulations.encodings import ColumnNodes
+    from optplan.formulations.problem import PathProblem
+    from optplan.solvers.gridpath.ga_path import GAParams, ga_path
+    from optplan.world.papermaps import paper_map
+
+    world, start, goal = paper_map(map_name)
+    problem = PathProblem(ColumnNodes(world, start, goal), "li2023", clearance=0.0)
+    snaps: list = []
+    _, _, history, _, _ = ga_path(problem, pop=pop, iters=iters, seed=seed, params=GAParams(improved=improved),
+                                  snapshots=snaps, archive_every=1)
+    std = np.array([np.std(f[np.isfinite(f)]) if np.isfinite(f).sum() > 1 else 0.0 for _, f in snaps])
+    return np.asarray(history, float), std
+
+
+def part_convergence(runs: int, quick: bool = False) -> int:
+    from optplan.bench.claims import judge_less
+
+    maps = ["li2023_30"] if quick else ["li2023_30", "li2023_60", "li2023_90"]
+    iters = 40 if quick else 200
+    marks = [g for g in (0, 10, 20, 40, 80, 120, 160, 200) if g <= iters]
+    print(f"## li2023 Figures 13-14 analog: best fitness and population fitness std per generation "
+          f"(population 50, {iters} generations, seeds 0..{runs - 1}, median over seeds)\n")
+    print("| map | algorithm | curve | " + " | ".join(f"gen {g}" for g in marks) + " |")
+    print("|---|---|---|" + "---|" * len(marks))
+    verdicts = []
+    for m in maps:
+        mean_std = {}
+        for name, improved in (("TGA", False), ("IGA", True)):
+            curves = [population_curves(m, improved, seed, iters=iters) for seed in range(runs)]
+            n = min(min(len(b) for b, _ in curves), min(len(s) for _, s in curves))
+            best = np.median([b[:n] for b, _ in curves], axis=0)
+            std = np.median([s[:n] for _, s in curves], axis=0)
+            cell = lambda a, g: f"{a[g]:.2f}" if g < n else "-"  # noqa: E731 (IGA may stop early, §4.5)
+            print(f"| {m} | {name} | best fitness | " + " | ".join(cell(best, g) for g in marks) + " |")
+            print(f"| {m} | {name} | population std | " + " | ".join(cell(std, g) for g in marks) + " |")
+            mean_std[name] = [float(np.mean(s)) for _, s in curves]
+        figure, verdict = judge_less(mean_std["TGA"], mean_std["IGA"], None)
+        verdicts.append((m, figure, verdict))
+    print("\n## Claim of §6.1 (Figure 14): IGA's population fitness std stays larger than TGA's\n")
+    print("| map | TGA mean std below IGA's (reduction, 95 % interval, p) | verdict |")
+    print("|---|---|---|")
+    for m, figure, verdict in verdicts:
+        print(f"| {m} | {figure} | {verdict} |")
+    print("\n(each run's std is averaged over its generations; IGA stops at its §4.5 stall rule, so its curves "
+          "may be shorter; the medians are over the generations every run reached)")
+    return 0
 
 
 def part_local(args) -> int:

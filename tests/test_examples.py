@@ -5,6 +5,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
@@ -16,6 +17,10 @@ CASES = [
     (["yang2023_ipso_idwa.py", "--part", "global", "--quick"], ["| ipso |", "Table 3 analog"]),
     (["yuan2021_iba_dwa.py", "--part", "global", "--quick"], ["| iba |", "mu = 0.1", "Claims of the paper"]),
     (["li2023_iga_idwa.py", "--part", "global", "--quick"], ["| iga |", "Table 2 analog"]),
+    (["yuan2021_iba_dwa.py", "--part", "switch-time", "--quick", "--runs", "2"],
+     ["§4.2 claim", "| 0 |", "re-plan [s]"]),
+    (["li2023_iga_idwa.py", "--part", "convergence", "--quick", "--runs", "2"],
+     ["Figures 13-14 analog", "| li2023_30 | IGA | population std |", "Claim of §6.1"]),
 ]
 
 
@@ -30,3 +35,16 @@ def test_quick_example_prints_its_tables(tmp_path, args, needles):
         assert n in proc.stdout
     # every feasible-count cell says how many runs were feasible, never hides failures
     assert "nan" not in proc.stdout.lower().replace("nan)", "")
+
+
+def test_population_curves_follow_the_run_and_reproduce():
+    sys.path.insert(0, str(EXAMPLES))
+    try:
+        from li2023_iga_idwa import population_curves
+    finally:
+        sys.path.remove(str(EXAMPLES))
+    best, std = population_curves("li2023_30", improved=False, seed=3, iters=15)
+    assert len(best) == len(std) == 16                   # the initial population and 15 generations
+    assert (std >= 0).all() and std[0] > 0 and np.all(np.diff(best) <= 1e-12)  # best so far never rises
+    again = population_curves("li2023_30", improved=False, seed=3, iters=15)
+    assert np.array_equal(best, again[0]) and np.array_equal(std, again[1])

@@ -262,6 +262,21 @@ def test_iga_dwa_does_not_wait_on_the_movers_track(field):
     assert planner.command(ctx_at(field, st, goal, [off_track], path)).info["mode"] == "brake-and-wait"
 
 
+def test_iga_dwa_does_not_brake_onto_the_movers_track(field):
+    """Braking at a_max from 1 m/s takes 2.6 m: a robot that would come to rest on the track of
+    the crossing mover 1.2 m ahead is not made to wait there; judged where it stands (the
+    earlier reading, ``judge_at_rest=False``) it brakes onto the track."""
+    robot = RobotSpec(a_max=0.2)
+    st = RobotState(2.0, 5.0, 0.0, 1.0, 0.0)
+    path = [[2.0, 5.0], [9.5, 5.0]]
+    crossing = [3.2, 4.4, 0.0, 0.5, 0.3]
+    for at_rest, waits in ((True, False), (False, True)):
+        planner = make_local_planner("iga-dwa", robot, DT, brake_and_wait={"judge_at_rest": at_rest})
+        planner.reset(st, path)
+        mode = planner.command(ctx_at(field, st, (9.5, 5.0), [crossing], path)).info["mode"]
+        assert (mode == "brake-and-wait") is waits
+
+
 def test_iga_dwa_turns_to_the_first_subgoal_first(field):
     planner = make_local_planner("iga-dwa", RobotSpec(), DT)
     st = RobotState(2.0, 5.0, 0.0, 0.0, 0.0)
@@ -282,6 +297,21 @@ def test_mechanisms_see_a_read_only_view_and_publish_what_they_learn():
     (turn,) = [m for m in planner.mechanisms if m.name == "initial_heading"]
     assert turn.heading == planner.initial_heading == pytest.approx(math.pi / 2)
     assert make_local_planner("dwa", robot, DT).initial_heading is None  # no such mechanism
+
+
+def test_mechanisms_are_sorted_by_the_roles_they_play():
+    from optplan.local.hooks import CapsWindow, FiltersSamples, Mechanism, Roles, TakesOver
+
+    roles = {n: make_local_planner(n, RobotSpec(), DT).roles for n in ("missa-dwa", "idwa", "iga-dwa", "qp-dwa")}
+    assert [m.name for m in roles["missa-dwa"].caps_window] == ["adaptive_velocity"]
+    assert [m.name for m in roles["idwa"].filters] == ["velocity_obstacle"] and not roles["idwa"].resets
+    assert [m.name for m in roles["iga-dwa"].takes_over] == ["initial_heading", "brake_and_wait"]  # preset order
+    assert not roles["iga-dwa"].filters and not roles["iga-dwa"].caps_window
+    gate = roles["qp-dwa"]
+    assert [m.name for m in gate.predicts] == [m.name for m in gate.filters] == ["sweep_gate"]
+    # the base declares no hooks: a mechanism plays only the roles whose methods it writes
+    assert not any(isinstance(Mechanism(), r) for r in (CapsWindow, TakesOver, FiltersSamples))
+    assert Roles.of([]) == Roles()
 
 
 @pytest.mark.parametrize("name", NAMES)

@@ -33,7 +33,7 @@ from ..errors import ParameterError
 from ..world.robot import Command, RobotSpec, RobotState
 from .base import LocalContext, MoverSweepSource
 from .critics import CRITICS, Critic
-from .hooks import Mechanism, PlannerView
+from .hooks import Mechanism, PlannerView, Roles
 from .mechanisms import MECHANISMS, InitialHeading
 from .rollout import Rollouts, Step, assess, rollout, rollout_ramped, static_gradient
 from .window import Window, dynamic_window, sample_grid
@@ -160,6 +160,7 @@ class DWAPlanner(MoverSweepSource):
             w = self._number(f"weight of {cname}", w, allow_zero=True)
             self.terms.append((self._build(CRITICS[cname], p, cname), w))
         self.mechanisms: list[Mechanism] = [self._build(MECHANISMS[m], p, m) for m, p in mechs.items()]
+        self.roles = Roles.of(self.mechanisms)
         self.rollout_dt = self.options["rollout_dt"] or self.dt
         self.steps = max(1, int(round(self.options["horizon"] / self.rollout_dt)))
         self.omni = bool(self.options["omni"]) and robot.model == "omni" and robot.vy_max > 0
@@ -203,7 +204,7 @@ class DWAPlanner(MoverSweepSource):
     def reset(self, state: RobotState, global_path: np.ndarray) -> None:
         """Forget the previous run (adaptive limits, alignment, previous command)."""
         self.last = None
-        for m in self.mechanisms:
+        for m in self.roles.resets:
             m.reset(self.view, state, global_path)
 
     @property
@@ -218,7 +219,7 @@ class DWAPlanner(MoverSweepSource):
     def window(self, ctx: LocalContext) -> Window:
         """The dynamic window for this step, after the mechanisms' caps."""
         win = dynamic_window(self.robot, ctx.state, self.options["lookahead"] or ctx.dt, omni=self.omni)
-        for m in self.mechanisms:
+        for m in self.roles.caps_window:
             win = m.adjust_window(self.view, ctx, win)
         return win
 
@@ -246,7 +247,7 @@ class DWAPlanner(MoverSweepSource):
         o = self.options
 
         def predict(centres: np.ndarray, t: np.ndarray) -> np.ndarray:
-            for m in self.mechanisms:
+            for m in self.roles.predicts:
                 centres = m.predict(self.view, ctx, centres, t)
             return centres
 
@@ -259,7 +260,7 @@ class DWAPlanner(MoverSweepSource):
     def choose(self, step: Step) -> tuple[int | None, dict]:
         """Index of the best candidate sample (``None`` if none is admissible) and diagnostics."""
         legal = np.ones(step.roll.n, dtype=bool)
-        for m in self.mechanisms:
+        for m in self.roles.filters:
             keep = m.filter(self.view, step)
             if keep is not None:
                 legal &= keep
@@ -337,7 +338,7 @@ class DWAPlanner(MoverSweepSource):
         win = self.window(ctx)
         info: dict[str, Any] = {"planner": self.name}
         step = None
-        for m in self.mechanisms:
+        for m in self.roles.takes_over:
             took = m.override(self.view, ctx, win)
             if took is not None:
                 v, w, extra = took
@@ -349,7 +350,7 @@ class DWAPlanner(MoverSweepSource):
             best, extra = self.choose(step)
             info.update(extra)
             info["n_samples"] = step.roll.n
-            for m in self.mechanisms:
+            for m in self.roles.filters:
                 info.update(m.report(step))
             if best is None:
                 u = win.clip(0.0, 0.0, 0.0)  # brake as hard as the window allows

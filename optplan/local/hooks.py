@@ -1,28 +1,32 @@
 """The contract between the DWA core (``dwa.py``) and its mechanisms.
 
-A mechanism is a part of a paper's DWA variant that is not a cost term. It hooks into
-one place of the control step:
+A mechanism is a part of a paper's DWA variant that is not a cost term. It plays one or
+more small roles in the control step, each a protocol of its own:
 
-* ``adjust_window``: narrows the dynamic window (hou2024's adaptive velocity, eq 23-24);
-* ``override``: replaces the sampled choice by a fixed manoeuvre for this step
+* :class:`Resets`: forgets the previous run (``reset``);
+* :class:`CapsWindow`: narrows the dynamic window (hou2024's adaptive velocity, eq 23-24);
+* :class:`TakesOver`: replaces the sampled choice by a fixed manoeuvre for this step
   (li2023's brake-and-wait, §5.4, and initial heading, eq 11);
-* ``predict``: replaces the constant-velocity prediction of movers whose motion it knows
-  better (the sweep gate, once it has seen where a mover turns round);
-* ``filter``: removes samples and reports findings to the cost terms through
-  ``step.aux`` (yang2023's velocity-obstacle test, eq 12-14; the sweep gate of
-  ``qp-dwa``); ``strict_filter`` is the same test without any fallback (``qp-dwa``
-  checks its refined command with it); ``report`` copies what a filter found into
-  ``Command.info``.
+* :class:`PredictsMovers`: replaces the constant-velocity prediction of movers whose
+  motion it knows better (the sweep gate, once it has seen where a mover turns round);
+* :class:`FiltersSamples`: judges the current sample set (a :class:`~optplan.local.rollout.Step`)
+  and reports findings to the cost terms through ``step.aux`` (yang2023's
+  velocity-obstacle test, eq 12-14; the sweep gate of ``qp-dwa``); ``strict_filter`` is
+  the same test without any fallback (``qp-dwa`` checks its refined command with it);
+  ``report`` copies what the filter found into ``Command.info``.
 
-Every hook gets a :class:`PlannerView` - the robot, the control period and the
-planner's options, read-only - not the planner: a mechanism keeps its own state and
-publishes what it learns through its own typed attributes (``InitialHeading.heading``,
-``SweepGate.tracks``), which the planner reads.
+A mechanism class subclasses :class:`Mechanism` (its registry ``name``) and implements
+the methods of the roles it plays; :class:`Roles` sorts a planner's mechanisms by role
+once, at construction, and the planner calls each role in the order of the preset.
+Every hook gets a :class:`PlannerView` - the robot, the control period and the planner's
+options, read-only - and the context or sample set of this step, never the planner: a
+mechanism keeps its own state and publishes what it learns through its own typed
+attributes (``InitialHeading.heading``, ``SweepGate.tracks``), which the planner reads.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, ClassVar, Mapping
+from typing import Any, ClassVar, Mapping, Protocol, runtime_checkable
 
 import numpy as np
 
@@ -48,35 +52,77 @@ class PlannerView:
 
 
 class Mechanism:
-    """A hook into the control step (see the module docstring). Hooks default to no-ops."""
+    """Base of the mechanisms: the name the presets use (``mechanisms.MECHANISMS``).
+
+    It declares no hooks; a subclass implements those of the roles it plays."""
 
     name: ClassVar[str] = ""
+
+
+@runtime_checkable
+class Resets(Protocol):
+    """Role: keeps state across steps and forgets it at the start of a run."""
 
     def reset(self, view: PlannerView, state: RobotState, global_path: np.ndarray) -> None:
         """Forget the previous run."""
 
+
+@runtime_checkable
+class CapsWindow(Protocol):
+    """Role: narrows the dynamic window of this step."""
+
     def adjust_window(self, view: PlannerView, ctx: LocalContext, window: Window) -> Window:
         """The window for this step (narrowed or as it is)."""
-        return window
+
+
+@runtime_checkable
+class TakesOver(Protocol):
+    """Role: may replace the sampled choice by a fixed manoeuvre."""
 
     def override(self, view: PlannerView, ctx: LocalContext, window: Window) -> tuple[float, float, dict] | None:
         """``(v_desired, w_desired, info)`` to clip into the window instead of sampling, or ``None``."""
-        return None
+
+
+@runtime_checkable
+class PredictsMovers(Protocol):
+    """Role: predicts some movers better than constant velocity."""
 
     def predict(self, view: PlannerView, ctx: LocalContext, centres: np.ndarray, t: np.ndarray) -> np.ndarray:
         """Predicted mover centres ``(K, H)`` complex at the rollout times ``t`` (one row per
         row of ``ctx.dynamic``); ``centres`` is the prediction so far, which may be updated in place."""
-        return centres
+
+
+@runtime_checkable
+class FiltersSamples(Protocol):
+    """Role: judges the current sample set."""
 
     def filter(self, view: PlannerView, step: Step) -> np.ndarray | None:
         """Mask of samples to keep (``None`` = all)."""
-        return None
 
     def strict_filter(self, view: PlannerView, step: Step) -> np.ndarray | None:
         """``filter`` without any relaxation it applies when nothing passes: judges a single
         trajectory on its own (``qp-dwa`` checks its refined command with it)."""
-        return self.filter(view, step)
 
     def report(self, step: Step) -> dict:
-        """What this step's ``filter`` found, for ``Command.info`` (empty by default)."""
-        return {}
+        """What this step's ``filter`` found, for ``Command.info`` (may be empty)."""
+
+
+@dataclass(frozen=True)
+class Roles:
+    """A planner's mechanisms sorted by the roles they play (each tuple in preset order)."""
+
+    resets: tuple[Resets, ...] = ()
+    caps_window: tuple[CapsWindow, ...] = ()
+    takes_over: tuple[TakesOver, ...] = ()
+    predicts: tuple[PredictsMovers, ...] = ()
+    filters: tuple[FiltersSamples, ...] = ()
+
+    @classmethod
+    def of(cls, mechanisms) -> "Roles":
+        """Sort ``mechanisms`` (an iterable of :class:`Mechanism`) by role."""
+        ms = tuple(mechanisms)
+        return cls(resets=tuple(m for m in ms if isinstance(m, Resets)),
+                   caps_window=tuple(m for m in ms if isinstance(m, CapsWindow)),
+                   takes_over=tuple(m for m in ms if isinstance(m, TakesOver)),
+                   predicts=tuple(m for m in ms if isinstance(m, PredictsMovers)),
+                   filters=tuple(m for m in ms if isinstance(m, FiltersSamples)))

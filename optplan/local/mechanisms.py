@@ -1,8 +1,9 @@
 """The papers' DWA mechanisms: the parts of their variants that are not cost terms.
 
-Each one hooks into the control step as :mod:`optplan.local.hooks` describes:
-hou2024's adaptive velocity (``adjust_window``), yang2023's velocity obstacles
-(``filter``), li2023's brake-and-wait and initial heading (``override``). This
+Each one plays roles of :mod:`optplan.local.hooks` in the control step: hou2024's
+adaptive velocity (:class:`~optplan.local.hooks.CapsWindow`), yang2023's velocity
+obstacles (:class:`~optplan.local.hooks.FiltersSamples`), li2023's brake-and-wait and
+initial heading (:class:`~optplan.local.hooks.TakesOver`). This
 project's sweep gate of ``qp-dwa`` lives in :mod:`optplan.local.sweep_gate`.
 :data:`MECHANISMS` names them all for the presets.
 """
@@ -15,9 +16,12 @@ from typing import ClassVar
 import numpy as np
 
 from ..world.geometry import wrap_angle
+from ..world.polyline import segment_point_distances
+from ..world.robot import RobotState
 from .base import LocalContext
 from .critics import body_direction
 from .hooks import Mechanism, PlannerView
+from .rollout import Step
 from .sweep_gate import SweepGate
 from .window import Window
 
@@ -51,7 +55,7 @@ class AdaptiveVelocity(Mechanism):
     w_r: float | None = field(default=None, init=False)
     phi: float | None = field(default=None, init=False)
 
-    def reset(self, view, state, global_path) -> None:
+    def reset(self, view: PlannerView, state: RobotState, global_path: np.ndarray) -> None:
         self.v_r = self.w_r = self.phi = None
 
     def navigable_fraction(self, view: PlannerView, ctx: LocalContext) -> float:
@@ -64,7 +68,7 @@ class AdaptiveVelocity(Mechanism):
             free &= np.abs(z - complex(x, y)) > rad + R
         return float(free.mean())
 
-    def adjust_window(self, view, ctx, window) -> Window:
+    def adjust_window(self, view: PlannerView, ctx: LocalContext, window: Window) -> Window:
         robot = view.robot
         phi = self.navigable_fraction(view, ctx)
         if self.v_r is None:
@@ -119,7 +123,7 @@ class VelocityObstacle(Mechanism):
             hit &= t_in <= self.horizon
         return np.where(hit, t_in, np.inf)
 
-    def filter(self, view, step) -> np.ndarray | None:
+    def filter(self, view: PlannerView, step: Step) -> np.ndarray | None:
         ctx, roll = step.ctx, step.roll
         if len(step.mover_r) == 0:
             return None
@@ -144,7 +148,11 @@ class VelocityObstacle(Mechanism):
         step.aux["vo_rejected"] = int((~keep).sum())
         return keep
 
-    def report(self, step) -> dict:
+    def strict_filter(self, view: PlannerView, step: Step) -> np.ndarray | None:
+        """The same test: it has no fallback to leave out."""
+        return self.filter(view, step)
+
+    def report(self, step: Step) -> dict:
         threat = step.aux.get("vo_threat")
         return {} if threat is None else {"vo_threat": threat}
 
@@ -160,10 +168,12 @@ class BrakeAndWait(Mechanism):
     ``d_s``, ``v_s`` and ``front_angle`` are left to the user by the paper; the defaults are ours.
 
     Waiting is only safe off the mover's track: the paper assumes the robot stops before the
-    crossing. When the robot already stands inside a threat's swept corridor (its straight
+    crossing. When the robot would come to rest (braking at ``a_max`` from its speed) inside,
+    or already stands inside, a threat's swept corridor (its straight
     track over the next ``d_s / speed`` seconds, widened by both radii and ``margin``), it
     does not wait there to be run over; the step is left to the DWA, whose trajectories avoid
-    the predicted movers.
+    the predicted movers. ``judge_at_rest=False`` judges the corridor where the robot stands
+    only (the earlier reading, which let a robot brake onto the track).
     """
 
     name: ClassVar[str] = "brake_and_wait"
@@ -173,6 +183,7 @@ class BrakeAndWait(Mechanism):
     cross_angle: float = 3 * math.pi / 4
     margin: float = 0.05
     clear_when_leaving: bool = True
+    judge_at_rest: bool = True
 
     def threats(self, ctx: LocalContext, robot_radius: float = 0.0) -> np.ndarray:
         """Indices of the movers that meet the four conditions and are still in front of the
@@ -197,24 +208,30 @@ class BrakeAndWait(Mechanism):
             threat &= on_lane | approaching
         return np.flatnonzero(threat)
 
-    def in_swept_corridor(self, ctx: LocalContext, movers: np.ndarray, robot_radius: float) -> bool:
-        """Whether the robot's position lies on the straight track of any of ``movers`` (rows
+    def in_swept_corridor(self, ctx: LocalContext, movers: np.ndarray, robot_radius: float,
+                          stop_distance: float = 0.0) -> bool:
+        """Whether the robot, braking from where it is along its direction of travel over
+        ``stop_distance`` m, comes onto the straight track of any of ``movers`` (rows
         ``x, y, vx, vy, r``) over the time they need to cover ``d_s``."""
-        q = np.array([ctx.state.x, ctx.state.y])
+        state = ctx.state
+        way = np.exp(1j * (state.theta + body_direction(state.v, state.vy))) * np.linspace(0.0, stop_distance, 6)
+        stops = np.column_stack([state.x + way.real, state.y + way.imag])
         p, v, r = movers[:, :2], movers[:, 2:4], movers[:, 4]
         horizon = self.d_s / np.maximum(np.hypot(v[:, 0], v[:, 1]), self.v_s)
-        seg = v * horizon[:, None]
-        t = np.clip(np.einsum("ij,ij->i", q - p, seg) / np.maximum(np.einsum("ij,ij->i", seg, seg), 1e-12), 0.0, 1.0)
-        gap = np.hypot(*(p + t[:, None] * seg - q).T) - r - robot_radius
-        return bool(np.any(gap < self.margin))
+        ends = p + v * horizon[:, None]
+        gap = np.array([segment_point_distances(np.stack([p[k], ends[k]]), stops).min() for k in range(len(p))])
+        return bool(np.any(gap - r - robot_radius < self.margin))
 
-    def override(self, view, ctx, window):
+    def override(self, view: PlannerView, ctx: LocalContext, window: Window) -> tuple[float, float, dict] | None:
         k = self.threats(ctx, view.robot.radius)
         if len(k) == 0:
             return None
         movers = np.asarray(ctx.dynamic, dtype=float).reshape(-1, 5)[k]
-        if self.in_swept_corridor(ctx, movers, view.robot.radius):
-            return None  # waiting here would be waiting to be hit
+        robot, speed = view.robot, math.hypot(ctx.state.v, ctx.state.vy)
+        # where the brake leaves the robot: the window sheds a_max dt per period
+        stop = speed * view.dt + speed * speed / (2 * robot.a_max) if robot.a_max > 0 and self.judge_at_rest else 0.0
+        if self.in_swept_corridor(ctx, movers, robot.radius, stop):
+            return None  # waiting there would be waiting to be hit
         return 0.0, 0.0, {"mode": "brake-and-wait", "waiting_for": [int(i) for i in k]}
 
 
@@ -234,7 +251,7 @@ class InitialHeading(Mechanism):
     aligned: bool = field(default=True, init=False)
     heading: float | None = field(default=None, init=False)
 
-    def reset(self, view, state, global_path) -> None:
+    def reset(self, view: PlannerView, state: RobotState, global_path: np.ndarray) -> None:
         p = np.asarray(global_path, dtype=float).reshape(-1, 2)
         d = np.hypot(p[:, 0] - state.x, p[:, 1] - state.y)
         nearest = int(np.argmin(d)) if len(d) else 0
@@ -246,7 +263,7 @@ class InitialHeading(Mechanism):
         self.heading = math.atan2(y1 - state.y, x1 - state.x)
         self.aligned = abs(wrap_angle(self.heading - state.theta)) <= self.tol
 
-    def override(self, view, ctx, window):
+    def override(self, view: PlannerView, ctx: LocalContext, window: Window) -> tuple[float, float, dict] | None:
         if self.aligned or self.heading is None:
             return None
         err = float(wrap_angle(self.heading - ctx.state.theta))

@@ -176,7 +176,7 @@ class QPDWAPlanner(DWAPlanner):
             a3 = (acc[0], acc[1], acc[2] if self.n_u == 3 else 0.0)
             win = dynamic_window(self.robot, ctx.state, ctx.dt, omni=self.omni, accel=a3, jerk=self.jerk,
                                  a_lin=self.a_lin)
-        for m in self.mechanisms:
+        for m in self.roles.caps_window:
             win = m.adjust_window(self.view, ctx, win)
         return win
 
@@ -235,7 +235,7 @@ class QPDWAPlanner(DWAPlanner):
 
     def _legal_after_filters(self, check: Step) -> bool:
         """Whether the (single) trajectory of ``check`` passes the preset's filters."""
-        for m in self.mechanisms:
+        for m in self.roles.filters:
             keep = m.strict_filter(self.view, check)
             if keep is not None and not keep[0]:
                 return False

@@ -1,0 +1,31 @@
+"""Hashes of closed-loop trajectories: one run per local preset on a scenario of its paper,
+seeds 0 and 1, A* global path, the scenario's own time limit.
+
+A refactoring of the local layer that must not change behaviour prints the same lines
+before and after (compare with ``diff``).
+
+    PYTHONPATH=$PWD python benchmarks/local_trajectory_hashes.py
+"""
+from __future__ import annotations
+
+import hashlib
+
+import numpy as np
+
+from optplan.sim.closed_loop import simulate
+
+CASES = [("dwa", "li2023_exp1"), ("iga-dwa", "li2023_exp2_3"), ("idwa", "yang2023_idwa_crossing"),
+         ("missa-dwa", "hou2024_dynamic1"), ("ba-dwa", "yuan2021_added_obstacles"), ("qp-dwa", "hou2024_dynamic4")]
+
+
+def main() -> None:
+    for planner, scenario in CASES:
+        for seed in (0, 1):
+            r = simulate(scenario, local_planner=planner, seed=seed)
+            traj = np.ascontiguousarray(r.trajectory, dtype=float)
+            print(planner, scenario, seed, r.status, traj.shape, hashlib.sha256(traj.tobytes()).hexdigest()[:16],
+                  flush=True)
+
+
+if __name__ == "__main__":
+    main()
