@@ -250,6 +250,41 @@ def test_paper_program_is_the_fitness_the_planner_optimises():
     assert prog.evaluate(res.path)[0] == pytest.approx(float(res.history[-1]), rel=1e-12)
 
 
+def test_op_plan_solves_the_paper_program_through_the_program_solvers():
+    """op.plan's column-node run is the paper program solved by the program swarm solver,
+    its segment tables a checked acceleration: the same run on the program's own view
+    (no tables) gives the same history and path."""
+    from optplan.world.papermaps import paper_map
+
+    world, s, g = paper_map("hou2024_env1")
+    res = op.plan(world, s, g, algorithm="gwo", pop=10, iters=20, seed=0, preset="li2023", postprocess="none")
+    prog = op.paper_program("li2023", world, s, g, variables=op.ColumnNodes())
+    assert prog.acceleration is None
+    own = prog.solve("gwo", pop=10, iters=20, seed=0)
+    np.testing.assert_allclose(own.history, res.history, rtol=1e-12)
+    assert own.cost == pytest.approx(float(res.history[-1]), rel=1e-12)
+    assert own.nfev == res.nfev
+
+
+def test_an_acceleration_that_changes_the_objective_is_refused():
+    from optplan.formulations.paper_programs import planner_program
+    from optplan.solvers.paths import make_problem
+    from optplan.world.papermaps import paper_map
+
+    world, s, g = paper_map("hou2024_env1")
+    problem = make_problem(world, s, g, preset="li2023", constraint="feasibility")
+    prog = planner_program(problem, "li2023")
+    assert prog.acceleration_name == "column segment tables"
+    X = prog.variables.initial_population(6, np.random.default_rng(3), 0.0)
+    for a, b in zip(prog.population(X), prog.own_population(X)):
+        np.testing.assert_allclose(a, b, rtol=1e-12)
+    other = op.paper_program("li2023", world, s, g, variables=op.ColumnNodes())
+    wrong = make_problem(world, s, g, preset="chen2025", constraint="feasibility")   # another fitness
+    with pytest.raises(op.ParameterError, match="does not evaluate program"):
+        other.accelerate(wrong.evaluate, name="chen2025 tables")
+    assert other.acceleration is None
+
+
 def test_refinement_reports_when_it_raises_the_planners_fitness():
     from optplan.world.papermaps import paper_map
 

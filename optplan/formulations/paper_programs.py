@@ -74,3 +74,21 @@ def li2023_cell_program(world, start, goal, via: int = 4, clearance: float = 0.0
 
     return paper_program("li2023", world, start, goal, variables=CellSequence(via), clearance=clearance,
                          program_class=program_class)
+
+
+def planner_program(problem, preset, program_class=PathProgram) -> PathProgram | None:
+    """The paper program a column-node planner optimises, with the planner's segment tables
+    (``problem``, a :class:`~optplan.formulations.problem.PathProblem` in feasibility mode)
+    as its checked acceleration (:meth:`PathProgram.accelerate`): the swarm evaluates the
+    tables, and they are verified to give the program's own cost and violation. ``None``
+    where the planner's fitness is not this program: another encoding, the penalty mode
+    (the paper's penalised fitness) or a preset given as an object."""
+    from .encodings import ColumnNodes as ColumnEncoding
+
+    enc = problem.encoding
+    if not (isinstance(preset, str) and preset in PRESETS and isinstance(enc, ColumnEncoding) and enc.snap
+            and problem.preset.constraint == "feasibility" and enc.dim):
+        return None
+    prog = paper_program(preset, enc.world, enc.start, enc.goal, variables=ColumnNodes(), clearance=problem.clearance,
+                         program_class=program_class)
+    return prog.accelerate(problem.evaluate, name="column segment tables")
