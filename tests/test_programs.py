@@ -330,3 +330,20 @@ def test_ipopt_from_a_feasible_seed_on_a_grid_never_ends_worse():
     assert res.feasible and op.validate_path(grid, res.path, 0.1)
     assert res.cost < seed.cost - 0.05
     assert abs(prog.evaluate(res.path)[0] - res.cost) < 1e-9
+
+
+def test_a_clearance_term_on_a_grid_reads_a_path_local_strip_of_the_distance_spline():
+    """Clearance in the objective: IPOPT reads the distance field's spline near the start
+    path (a parameter), never a whole-map CasADi interpolant, and improves a feasible start."""
+    occ = np.zeros((64, 64), bool)
+    occ[20:40, 28:34] = True
+    grid = op.GridMap(occ)
+    prog = op.PathProgram(grid, (2.5, 30.5), (60.5, 30.5), variables=op.Points(12))
+    prog.minimize(T.length() + (-0.05) * T.clearance(per_segment=2).sum())
+    prog.subject_to(T.clearance() >= 0.2)
+    seed = op.plan(grid, (2.5, 30.5), (60.5, 30.5), algorithm="visibility", clearance=0.5)
+    start = prog.solve("pso", max_evals=10, seed=0, init=seed.path)
+    res = prog.solve("ipopt", init=start, max_iter=100)
+    assert res.feasible and res.cost <= start.cost + 1e-9
+    assert abs(prog.evaluate(res.path)[0] - res.cost) < 1e-9
+    assert not any(isinstance(k, tuple) and k[0] == "casadi_sdf" for k in grid._cache)

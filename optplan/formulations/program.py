@@ -270,7 +270,9 @@ class PathProgram:
 
         sym = ca.SX if isinstance(x, ca.SX) else ca.MX
         P = variables.decode_symbolic(x)
-        f = self._need_objective().symbolic(P, self.ctx).m
+        ctx = self.ctx
+        ctx.strip, ctx._field_param = (shapes or {}).get("strip"), None   # one strip parameter per problem
+        f = self._need_objective().symbolic(P, ctx).m
         rows, lb, ub, params, fills = [], [], [], [], []
         for c in self.constraints:
             if c.is_clearance:
@@ -287,6 +289,10 @@ class PathProgram:
             rows.append(g)
             lb.append(lo)
             ub.append(hi)
+        if ctx._field_param is not None:
+            # the distance field's strip around the start path (active["path"])
+            params.append(ctx._field_param)
+            fills.append(lambda margin, active: ctx.field_values(active["path"]))
         g = ca.vertcat(*rows) if rows else sym.zeros(0, 1)
         lbg = np.concatenate(lb) if lb else np.zeros(0)
         ubg = np.concatenate(ub) if ub else np.zeros(0)
@@ -296,6 +302,15 @@ class PathProgram:
             return np.concatenate([fn(margin, active) for fn in fills]) if fills else np.zeros(0)
 
         return f, g, lbg, ubg, p, fill_all
+
+    def reads_field(self) -> bool:
+        """Whether the symbolic view reads the distance field (a clearance term in the
+        objective or in a constraint other than ``clearance() >= c``): on grids that is
+        the strip parameter, which needs MX."""
+        from .expressions import Clearance
+
+        exprs = [self._need_objective()] + [c.expr for c in self.constraints if not c.is_clearance]
+        return any(isinstance(t, Clearance) for e in exprs for t in e.leaves())
 
     def surrogate_notes(self) -> list[str]:
         """Which terms a gradient solver replaces by a smooth surrogate, and how."""
