@@ -347,3 +347,16 @@ def test_a_clearance_term_on_a_grid_reads_a_path_local_strip_of_the_distance_spl
     assert res.feasible and res.cost <= start.cost + 1e-9
     assert abs(prog.evaluate(res.path)[0] - res.cost) < 1e-9
     assert not any(isinstance(k, tuple) and k[0] == "casadi_sdf" for k in grid._cache)
+
+
+def test_the_casadi_smoother_minimises_the_smoothing_programs_energy():
+    """smooth_path's energy is op.smoothing_program's objective: its reported objective is
+    the program's cost of the refined path."""
+    from optplan.solvers.nlp import smooth_path
+
+    world = circles_world()
+    seed = op.plan(world, (0.5, 0.5), (9.5, 9.5), algorithm="visibility", clearance=0.1)
+    out = smooth_path(world, seed.path, 0.1, n_points=30, w_smooth=0.5)
+    assert out.success
+    prog = op.smoothing_program(world, (0.5, 0.5), (9.5, 9.5), n=30, w_smooth=0.5, clearance=0.1)
+    assert prog.evaluate(out.path)[0] == pytest.approx(out.objective, rel=1e-12)

@@ -53,13 +53,20 @@ def paper_program(name: str, world, start, goal, variables: Variables | None = N
     return prog
 
 
+def smoothing_energy(w_smooth: float = 0.5) -> T.Expr:
+    """The refinement's energy ``sum |dp|^2 + w_smooth * sum |d2p|^2`` as one expression: the
+    objective of :func:`smoothing_program`, and the energy the CasADi smoother
+    (:func:`optplan.solvers.nlp.smooth_path`) minimises (it reads this expression's
+    symbolic view)."""
+    return T.squared_length() + float(w_smooth) * T.bending()
+
+
 def smoothing_program(world, start, goal, n: int = 50, w_smooth: float = 0.5, clearance: float = 0.0,
                       program_class=PathProgram) -> PathProgram:
-    """The refinement's energy ``sum |dp|^2 + w_smooth * sum |d2p|^2`` over ``n`` dense
-    points, subject to ``clearance() >= clearance``: quadratic, so IPOPT, SLSQP, OSQP
-    and cvxpy all take it."""
+    """The refinement's energy (:func:`smoothing_energy`) over ``n`` dense points, subject
+    to ``clearance() >= clearance``: quadratic, so IPOPT, SLSQP, OSQP and cvxpy all take it."""
     prog = program_class(world, start, goal, variables=Points(n), name=f"smoothing(n={n}, w={w_smooth:g})")
-    prog.minimize(T.squared_length() + float(w_smooth) * T.bending())
+    prog.minimize(smoothing_energy(w_smooth))
     prog.subject_to(T.clearance() >= float(clearance))
     return prog
 
