@@ -105,44 +105,6 @@ def _segment_point_dist2(ca, ax, ay, bx, by, qx, qy):
     return ex * ex + ey * ey
 
 
-def _box_dist2(ca, qx, qy, lox, loy, hix, hiy, eps):
-    """Smoothed squared distance from points ``q`` to boxes (element-wise)."""
-    dx = soft_plus(ca, lox - qx, eps) + soft_plus(ca, qx - hix, eps)
-    dy = soft_plus(ca, loy - qy, eps) + soft_plus(ca, qy - hiy, eps)
-    return dx * dx + dy * dy
-
-
-_ROW_FUNCTIONS: dict = {}
-
-
-def _row_function(name: str):
-    """One clearance row as a scalar CasADi function of its 7 numbers (SX inside), so MX
-    problems apply it by ``map``: IPOPT's Hessian is then derived once for one row, not
-    for every row of the path (most of a cold solve's set-up on the dense smoothing program)."""
-    fn = _ROW_FUNCTIONS.get(name)
-    if fn is None:
-        import casadi as ca
-
-        a = [ca.SX.sym(f"a{i}") for i in range(7)]
-        if name == "box":
-            out = _box_dist2(ca, *a)
-        else:   # segment (a0, a1) -> (a2, a3) to point (a4, a5), a6 unused
-            out = _segment_point_dist2(ca, a[0], a[1], a[2], a[3], a[4], a[5]) + 0 * a[6]
-        fn = _ROW_FUNCTIONS[name] = ca.Function(f"clearance_{name}", a, [out])
-    return fn
-
-
-def _rows(ca, sym, name: str, *args):
-    """Element-wise clearance rows of columns ``args``: written out in SX, mapped in MX."""
-    if sym is ca.SX:
-        if name == "box":
-            return _box_dist2(ca, *args)
-        return _segment_point_dist2(ca, *args[:6])
-    n = max(int(a.shape[0]) for a in args if hasattr(a, "shape"))
-    cols = [a if hasattr(a, "shape") and a.shape[0] == n else ca.repmat(a, n, 1) for a in args]
-    return _row_function(name).map(n)(*[c.T for c in cols]).T
-
-
 def clearance_rows(P: Sym, ctx, clearance: float, per_segment: int, sym, shapes: dict):
     """Constraint rows ``g >= 0`` that keep the path ``clearance + margin`` from obstacles.
 
@@ -191,19 +153,20 @@ def clearance_rows(P: Sym, ctx, clearance: float, per_segment: int, sym, shapes:
             blk = ca.reshape(at["boxes"], Mb, 4 * K)
             for k in range(K):
                 lox, loy, hix, hiy = (blk[:, 4 * k + j] for j in range(4))
-                rows.append(_rows(ca, sym, "box", qx, qy, lox, loy, hix, hiy, eps) - need * need)
+                dx = soft_plus(ca, lox - qx, eps) + soft_plus(ca, qx - hix, eps)
+                dy = soft_plus(ca, loy - qy, eps) + soft_plus(ca, qy - hiy, eps)
+                rows.append(dx * dx + dy * dy - need * need)
         if "corners" in at:
             Sc, K = shapes["corners"]
             blk = ca.reshape(at["corners"], Sc, 2 * K)
             for k in range(K):
-                rows.append(_rows(ca, sym, "segment", ax, ay, bx, by, blk[:, 2 * k], blk[:, 2 * k + 1], 0.0)
-                            - need * need)
+                rows.append(_segment_point_dist2(ca, ax, ay, bx, by, blk[:, 2 * k], blk[:, 2 * k + 1]) - need * need)
     elif "circles" in at:
         K = blocks["circles"] // (3 * S)
         blk = ca.reshape(at["circles"], S, 3 * K)
         for k in range(K):
             cx, cy, R = blk[:, 3 * k], blk[:, 3 * k + 1], blk[:, 3 * k + 2]
-            rows.append(_rows(ca, sym, "segment", ax, ay, bx, by, cx, cy, 0.0) - (R + need) ** 2)
+            rows.append(_segment_point_dist2(ca, ax, ay, bx, by, cx, cy) - (R + need) ** 2)
     g = ca.vertcat(*rows) if rows else sym.zeros(0, 1)
 
     def fill(margin: float, active: dict) -> np.ndarray:

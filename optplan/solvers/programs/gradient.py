@@ -147,13 +147,7 @@ class GradientSolver(ProgramSolver):
             return cache[key]
         # SX is several times faster; only a term reading the grid's distance field (its
         # spline strip, indexed by the path's position) needs MX
-        # Clearance rows are one small function mapped over the rows in MX: the derivatives are
-        # then derived for one row and expanded to SX after (see _nlpsol), instead of IPOPT's
-        # Hessian being derived over the whole SX graph (most of a cold solve's set-up:
-        # 1.3 s of 2.2 s on the dense smoothing program, n=120). Without clearance rows, SX
-        # directly; a term reading the grid's distance field (its strip, indexed by the
-        # path's position) stays MX, unexpanded.
-        needs_mx = strip is not None or any(c.is_clearance for c in program.constraints)
+        needs_mx = strip is not None
         sym = ca.MX if needs_mx else ca.SX
         x = sym.sym("x", variables.dim)
         f, g, lbg, ubg, p, fill = program.symbolic(variables, x, k, shapes)
@@ -167,8 +161,7 @@ class GradientSolver(ProgramSolver):
             ubg = np.concatenate([ubg, np.zeros(n)])
             p = ca.vertcat(p, cap_p)
         built = {"x": x, "p": p, "f": f, "g": g, "lbg": lbg, "ubg": ubg, "fill": fill, "cap": cap is not None,
-                 "g_of": ca.Function("g_of", [x, p], [g]), "solvers": {},
-                 "expand": sym is ca.MX and strip is None}
+                 "g_of": ca.Function("g_of", [x, p], [g]), "solvers": {}}
         cache[key] = built
         return built
 
@@ -213,23 +206,6 @@ def _strip_for(ctx, variables, x0, trust, P0, strip):
     return cap, radius
 
 
-def _nlpsol(built, opts: dict):
-    """An IPOPT instance of the built problem. Mapped MX problems (``built["expand"]``): the
-    derivatives CasADi derives in MX (cheap: once per row function) are expanded to SX and
-    handed to an SX instance, which evaluates them several times faster than MX would."""
-    import casadi as ca
-
-    nlp = {"x": built["x"], "p": built["p"], "f": built["f"], "g": built["g"]}
-    if not built["expand"]:
-        return ca.nlpsol("program", "ipopt", nlp, opts)
-    derived = ca.nlpsol("program_mx", "ipopt", nlp, {"print_time": False})
-    x, p = ca.SX.sym("x", built["x"].shape[0]), ca.SX.sym("p", built["p"].shape[0])
-    f, g = ca.Function("fg", [built["x"], built["p"]], [built["f"], built["g"]]).expand()(x, p)
-    given = {k: derived.get_function(f"nlp_{k}").expand() for k in ("grad_f", "jac_g", "hess_l")}
-    return ca.nlpsol("program", "ipopt", {"x": x, "p": p, "f": f, "g": g},
-                     {**opts, "grad_f": given["grad_f"], "jac_g": given["jac_g"], "hess_lag": given["hess_l"]})
-
-
 class IpoptSolver(GradientSolver):
     """CasADi + IPOPT (interior point, sparse exact Hessians)."""
 
@@ -250,7 +226,8 @@ class IpoptSolver(GradientSolver):
         okey = repr(sorted(opts.items()))
         solver = built["solvers"].get(okey)
         if solver is None:   # IPOPT options are fixed per instance: one instance per option set
-            solver = built["solvers"][okey] = _nlpsol(built, {"print_time": False, "ipopt": opts})
+            nlp = {"x": built["x"], "p": built["p"], "f": built["f"], "g": built["g"]}
+            solver = built["solvers"][okey] = ca.nlpsol("program", "ipopt", nlp, {"print_time": False, "ipopt": opts})
         sol = solver(x0=x0, p=pv, lbx=box[0], ubx=box[1], lbg=lbg, ubg=ubg)
         st = solver.stats()
         xs = np.asarray(sol["x"], float).reshape(-1)
@@ -273,10 +250,8 @@ class SlsqpSolver(GradientSolver):
         fns = built["solvers"].get("slsqp")
         if fns is None:
             x, p, f, g = built["x"], built["p"], built["f"], built["g"]
-            fns = (ca.Function("f", [x, p], [f, ca.gradient(f, x)]), ca.Function("g", [x, p], [g, ca.jacobian(g, x)]))
-            if built["expand"]:   # derived in MX over the mapped rows, evaluated as SX
-                fns = tuple(fn.expand() for fn in fns)
-            built["solvers"]["slsqp"] = fns
+            fns = built["solvers"]["slsqp"] = (ca.Function("f", [x, p], [f, ca.gradient(f, x)]),
+                                               ca.Function("g", [x, p], [g, ca.jacobian(g, x)]))
         F, G = fns
         lo_rows, hi_rows = np.isfinite(lbg), np.isfinite(ubg)
         count = {"f": 0}
