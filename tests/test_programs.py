@@ -250,6 +250,41 @@ def test_paper_program_is_the_fitness_the_planner_optimises():
     assert prog.evaluate(res.path)[0] == pytest.approx(float(res.history[-1]), rel=1e-12)
 
 
+def test_op_plan_solves_the_paper_program_through_the_program_solvers():
+    """op.plan's column-node run is the paper program solved by the program swarm solver,
+    its segment tables a checked acceleration: the same run on the program's own view
+    (no tables) gives the same history and path."""
+    from optplan.world.papermaps import paper_map
+
+    world, s, g = paper_map("hou2024_env1")
+    res = op.plan(world, s, g, algorithm="gwo", pop=10, iters=20, seed=0, preset="li2023", postprocess="none")
+    prog = op.paper_program("li2023", world, s, g, variables=op.ColumnNodes())
+    assert prog.acceleration is None
+    own = prog.solve("gwo", pop=10, iters=20, seed=0)
+    np.testing.assert_allclose(own.history, res.history, rtol=1e-12)
+    assert own.cost == pytest.approx(float(res.history[-1]), rel=1e-12)
+    assert own.nfev == res.nfev
+
+
+def test_an_acceleration_that_changes_the_objective_is_refused():
+    from optplan.formulations.paper_programs import planner_program
+    from optplan.solvers.paths import make_problem
+    from optplan.world.papermaps import paper_map
+
+    world, s, g = paper_map("hou2024_env1")
+    problem = make_problem(world, s, g, preset="li2023", constraint="feasibility")
+    prog = planner_program(problem, "li2023")
+    assert prog.acceleration_name == "column segment tables"
+    X = prog.variables.initial_population(6, np.random.default_rng(3), 0.0)
+    for a, b in zip(prog.population(X), prog.own_population(X)):
+        np.testing.assert_allclose(a, b, rtol=1e-12)
+    other = op.paper_program("li2023", world, s, g, variables=op.ColumnNodes())
+    wrong = make_problem(world, s, g, preset="chen2025", constraint="feasibility")   # another fitness
+    with pytest.raises(op.ParameterError, match="does not evaluate program"):
+        other.accelerate(wrong.evaluate, name="chen2025 tables")
+    assert other.acceleration is None
+
+
 def test_refinement_reports_when_it_raises_the_planners_fitness():
     from optplan.world.papermaps import paper_map
 
@@ -295,3 +330,33 @@ def test_ipopt_from_a_feasible_seed_on_a_grid_never_ends_worse():
     assert res.feasible and op.validate_path(grid, res.path, 0.1)
     assert res.cost < seed.cost - 0.05
     assert abs(prog.evaluate(res.path)[0] - res.cost) < 1e-9
+
+
+def test_a_clearance_term_on_a_grid_reads_a_path_local_strip_of_the_distance_spline():
+    """Clearance in the objective: IPOPT reads the distance field's spline near the start
+    path (a parameter), never a whole-map CasADi interpolant, and improves a feasible start."""
+    occ = np.zeros((64, 64), bool)
+    occ[20:40, 28:34] = True
+    grid = op.GridMap(occ)
+    prog = op.PathProgram(grid, (2.5, 30.5), (60.5, 30.5), variables=op.Points(12))
+    prog.minimize(T.length() + (-0.05) * T.clearance(per_segment=2).sum())
+    prog.subject_to(T.clearance() >= 0.2)
+    seed = op.plan(grid, (2.5, 30.5), (60.5, 30.5), algorithm="visibility", clearance=0.5)
+    start = prog.solve("pso", max_evals=10, seed=0, init=seed.path)
+    res = prog.solve("ipopt", init=start, max_iter=100)
+    assert res.feasible and res.cost <= start.cost + 1e-9
+    assert abs(prog.evaluate(res.path)[0] - res.cost) < 1e-9
+    assert not any(isinstance(k, tuple) and k[0] == "casadi_sdf" for k in grid._cache)
+
+
+def test_the_casadi_smoother_minimises_the_smoothing_programs_energy():
+    """smooth_path's energy is op.smoothing_program's objective: its reported objective is
+    the program's cost of the refined path."""
+    from optplan.solvers.nlp import smooth_path
+
+    world = circles_world()
+    seed = op.plan(world, (0.5, 0.5), (9.5, 9.5), algorithm="visibility", clearance=0.1)
+    out = smooth_path(world, seed.path, 0.1, n_points=30, w_smooth=0.5)
+    assert out.success
+    prog = op.smoothing_program(world, (0.5, 0.5), (9.5, 9.5), n=30, w_smooth=0.5, clearance=0.1)
+    assert prog.evaluate(out.path)[0] == pytest.approx(out.objective, rel=1e-12)

@@ -16,8 +16,10 @@ passes that rule on the first try.
   back what the smoothing overshoots.
 
 Which obstacles each piece is kept off is read off the current path
-(:func:`active_sets`) and re-read when a solve is repeated. As an objective term,
-clearance uses the signed distance field as a CasADi B-spline interpolant.
+(:func:`active_sets`) and re-read when a solve is repeated. As an objective term on
+grids, clearance reads the distance field's cubic spline from a strip around the
+start path (:func:`field_strip`, a parameter of the problem), so the set-up does not
+grow with the map.
 """
 from __future__ import annotations
 
@@ -27,19 +29,18 @@ from ..world.polyline import segment_point_distances
 from .namespaces import Sym
 
 
-def grid_sdf_interpolant(grid, subdiv: int = 4):
-    """CasADi B-spline interpolant of the grid's signed distance field (cached on the map)."""
-    import casadi as ca
+# grids: the distance spline is handed to a gradient solver for the tiles within this many
+# cells of the start path plus the farthest a solve may move it (the solver's strip)
+STRIP_CELLS = 6.0
 
-    from ..world.fields import grid_distance_field
 
-    key = ("casadi_sdf", int(subdiv))
-    interp = grid._cache.get(key)
-    if interp is None:
-        field_ = grid_distance_field(grid, subdiv)
-        interp = ca.interpolant("sdf", "bspline", [field_.xs, field_.ys], field_.values.ravel())
-        grid._cache[key] = interp
-    return interp
+def field_strip(ctx, path: np.ndarray, radius: float, capacity: int | None = None) -> tuple[np.ndarray, int]:
+    """The numbers the symbolic distance field reads near ``path`` (``(N, 2)`` metres):
+    the path-local strip of :func:`optplan.world.fields.distance_spline` within ``radius``
+    metres, padded to ``capacity`` blocks; ``(values, blocks needed)``."""
+    from ..world.fields import distance_spline
+
+    return distance_spline(ctx.world).strip(path, radius, capacity)
 
 
 def sample_points(P: Sym, per_segment: int):
@@ -62,13 +63,20 @@ def sample_points(P: Sym, per_segment: int):
 
 def symbolic_signed_distance(P: Sym, ctx, per_segment: int) -> Sym:
     """Signed distance at the sample points, as one symbolic vector (for clearance used as
-    an objective term). Circles: the smallest distance over circles and border (piecewise smooth)."""
+    an objective term). Circles: the smallest distance over circles and border (piecewise smooth).
+
+    Grids: the distance field's cubic spline read from a path-local strip
+    (:meth:`optplan.world.fields.DistanceSpline.symbolic`), a parameter of the problem
+    (:meth:`ProgramContext.field_parameter`): neither the set-up nor the derivatives grow
+    with the map. Away from the strip the distance reads as the strip's radius."""
     import casadi as ca
 
     qx, qy = sample_points(P, per_segment)
     M = qx.shape[0]
     if ctx.is_grid:
-        d = grid_sdf_interpolant(ctx.world)(ca.horzcat(qx, qy).T).T
+        from ..world.fields import distance_spline
+
+        d = distance_spline(ctx.world).symbolic(qx, qy, ctx.field_parameter())
         return Sym(d, (M,))
     xmin, ymin, xmax, ymax = ctx.world.bounds
     d = ca.fmin(ca.fmin(qx - xmin, xmax - qx), ca.fmin(qy - ymin, ymax - qy))

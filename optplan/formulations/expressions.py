@@ -58,6 +58,37 @@ class ProgramContext:
         """Length scale of the world: the grid resolution, or 1 m for circle worlds."""
         return float(self.world.resolution) if self.is_grid else 1.0
 
+    # symbolic view -------------------------------------------------------------
+    # the strip of the distance field a symbolic problem reads on grids: (capacity, radius),
+    # set by PathProgram.symbolic while it builds, and the parameter made for it
+    strip: tuple | None = None
+    _field_param = None
+
+    def field_parameter(self):
+        """The CasADi (MX) parameter column holding the distance-field strip of the problem
+        being built (:func:`~optplan.formulations.clearance_model.field_strip`); one per
+        problem, shared by every term that reads the field. Without a strip set (a term's
+        symbolic view used on its own), the strip holds the whole map."""
+        if self._field_param is None:
+            import casadi as ca
+
+            from ..world.fields import TILE, distance_spline
+
+            nty, ntx = distance_spline(self.world).tiles
+            if self.strip is None:   # every tile: the map's diagonal around its corners
+                self.strip = (nty * ntx + 1, float(np.hypot(*np.ptp(np.reshape(self.world.bounds, (2, 2)), axis=0))))
+            self._field_param = ca.MX.sym("field_strip", nty * ntx + self.strip[0] * (TILE + 3) ** 2)
+        return self._field_param
+
+    def field_values(self, path: np.ndarray) -> np.ndarray:
+        """Values of :meth:`field_parameter` for the strip around ``path`` (``(N, 2)``, metres)."""
+        from .clearance_model import field_strip
+
+        if self.strip is None:
+            raise ValueError("no distance-field strip was set for this problem")
+        cap, radius = self.strip
+        return field_strip(self, np.asarray(path, float), radius, cap)[0]
+
 
 # ------------------------------------------------------------------ expressions
 

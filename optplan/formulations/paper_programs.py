@@ -57,15 +57,22 @@ def paper_program(name: str, world, start, goal, variables: Variables | None = N
     return prog
 
 
+def smoothing_energy(w_smooth: float = 0.5) -> T.Expr:
+    """The refinement's energy ``sum |dp|^2 + w_smooth * sum |d2p|^2`` as one expression: the
+    objective of :func:`smoothing_program`, and the energy the CasADi smoother
+    (:func:`optplan.solvers.nlp.smooth_path`) minimises (it reads this expression's
+    symbolic view)."""
+    return T.squared_length() + float(w_smooth) * T.bending()
+
+
 def smoothing_program(world, start, goal, n: int = 50, w_smooth: float = 0.5, clearance: float = 0.0,
                       program_class=PathProgram) -> PathProgram:
-    """The refinement's energy ``sum |dp|^2 + w_smooth * sum |d2p|^2`` over ``n`` dense
-    points, subject to ``clearance() >= clearance``: quadratic, so IPOPT, SLSQP, OSQP
-    and cvxpy all take it."""
+    """The refinement's energy (:func:`smoothing_energy`) over ``n`` dense points, subject
+    to ``clearance() >= clearance``: quadratic, so IPOPT, SLSQP, OSQP and cvxpy all take it."""
     w_smooth = number(minimum=0.0)("w_smooth", w_smooth)
     clearance = number(minimum=0.0)("clearance", clearance)
     prog = program_class(world, start, goal, variables=Points(n), name=f"smoothing(n={n}, w={w_smooth:g})")
-    prog.minimize(T.squared_length() + float(w_smooth) * T.bending())
+    prog.minimize(smoothing_energy(w_smooth))
     prog.subject_to(T.clearance() >= float(clearance))
     return prog
 
@@ -80,3 +87,21 @@ def li2023_cell_program(world, start, goal, via: int = 4, clearance: float = 0.0
 
     return paper_program("li2023", world, start, goal, variables=CellSequence(via), clearance=clearance,
                          program_class=program_class)
+
+
+def planner_program(problem, preset, program_class=PathProgram) -> PathProgram | None:
+    """The paper program a column-node planner optimises, with the planner's segment tables
+    (``problem``, a :class:`~optplan.formulations.problem.PathProblem` in feasibility mode)
+    as its checked acceleration (:meth:`PathProgram.accelerate`): the swarm evaluates the
+    tables, and they are verified to give the program's own cost and violation. ``None``
+    where the planner's fitness is not this program: another encoding, the penalty mode
+    (the paper's penalised fitness) or a preset given as an object."""
+    from .encodings import ColumnNodes as ColumnEncoding
+
+    enc = problem.encoding
+    if not (isinstance(preset, str) and preset in PRESETS and isinstance(enc, ColumnEncoding) and enc.snap
+            and problem.preset.constraint == "feasibility" and enc.dim):
+        return None
+    prog = paper_program(preset, enc.world, enc.start, enc.goal, variables=ColumnNodes(), clearance=problem.clearance,
+                         program_class=program_class)
+    return prog.accelerate(problem.evaluate, name="column segment tables")

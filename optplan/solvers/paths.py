@@ -176,6 +176,7 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
         pruned = PrunedColumnFitness(problem)
     if init == "auto":
         init = "feasible" if isinstance(problem.encoding, (ColumnNodes, GeneralPath)) else "own"
+    init_mode = init
     if init == "feasible":
         if isinstance(problem.encoding, GeneralPath):
             init = problem.encoding.sample_corridors
@@ -188,10 +189,20 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
     else:
         raise ParameterError(f"init must be 'auto', 'feasible' or 'own', got {init!r}")
     scored = pruned if pruned is not None else problem
-    opt = metaheuristics.optimize(scored.evaluate if problem.preset.constraint == "feasibility" else scored.objective,
-                                  bounds, algorithm=name, pop=pop, iters=iters, seed=seed, max_evals=max_evals,
-                                  repair=repair, init=init, archive_every=ARCHIVE_EVERY if alternatives else None,
-                                  **params)
+    program = _planner_program(problem, preset, pruned, init_mode, params)
+    if program is not None:
+        # the paper's program, solved through the program solver contract; the segment tables
+        # are its checked acceleration, so the numbers are the tables' exactly
+        from .programs.swarm import SwarmSolver
+
+        opt = SwarmSolver(name).search(program, pop=pop, iters=iters, seed=seed, max_evals=max_evals,
+                                       start="variables" if init_mode == "feasible" else "algorithm",
+                                       archive_every=ARCHIVE_EVERY if alternatives else None, **params)
+    else:
+        opt = metaheuristics.optimize(scored.evaluate if problem.preset.constraint == "feasibility" else
+                                      scored.objective, bounds, algorithm=name, pop=pop, iters=iters, seed=seed,
+                                      max_evals=max_evals, repair=repair, init=init,
+                                      archive_every=ARCHIVE_EVERY if alternatives else None, **params)
     if pruned is not None:  # the path that was scored; further post-processing only on request
         raw, mode = pruned.path(opt.x), postprocess or "none"
     else:
@@ -228,6 +239,21 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
         again.runtime_s += result.runtime_s
         return again
     return result
+
+
+# optimize keywords a program solver does not take as options: such a run calls optimize directly
+_ENGINE_ONLY = ("budget", "seeds", "dim")
+
+
+def _planner_program(problem, preset, pruned, init_mode: str, params):
+    """The paper program the run optimises (:func:`planner_program`), or ``None`` where the
+    planner's fitness is not a program: pruned-path scoring, the penalty mode, other
+    encodings, or engine-only keywords."""
+    if pruned is not None or init_mode not in ("feasible", "own") or any(k in params for k in _ENGINE_ONLY):
+        return None
+    from ..formulations.paper_programs import planner_program
+
+    return planner_program(problem, preset)
 
 
 def _columns_represent(world, s, g, clearance: float) -> bool:

@@ -3,10 +3,11 @@
 Variables: the interior points of the seed path resampled to ``N`` points by arc
 length (start and goal are parameters, so they stay exactly fixed and cost no
 equality constraints); the map box enters as simple variable bounds, which
-IPOPT treats more cheaply than general constraints. Objective:
-``J = sum |p_{i+1} - p_i|^2 + w * sum |p_{i+1} - 2 p_i + p_{i-1}|^2`` (squared
-segment lengths pull the path taut and spread the points evenly; the second
-differences smooth it). Constraints: clearance of at least ``margin`` at every
+IPOPT treats more cheaply than general constraints. Objective: the smoothing program's energy (``op.smoothing_program``,
+:func:`optplan.formulations.paper_programs.smoothing_energy`, read through its
+symbolic view) ``J = sum |p_{i+1} - p_i|^2 + w * sum |p_{i+1} - 2 p_i + p_{i-1}|^2``
+(squared segment lengths pull the path taut and spread the points evenly; the
+second differences smooth it). Constraints: clearance of at least ``margin`` at every
 interior point and every segment midpoint.
 
 * Circle worlds: each query point keeps the analytic squared distance to its
@@ -76,11 +77,12 @@ IPOPT_WARM_OPTIONS = {
 
 
 def smoothing_objective(points: np.ndarray, w_smooth: float) -> float:
-    """``J`` of a path (see the module docstring)."""
+    """``J`` of a path: the smoothing program's objective
+    (:func:`optplan.formulations.paper_programs.smoothing_energy`), batched view."""
+    from ...formulations.paper_programs import smoothing_energy
+
     P = np.asarray(points, float)
-    d = np.diff(P, axis=0)
-    dd = P[2:] - 2 * P[1:-1] + P[:-2]
-    return float((d ** 2).sum() + w_smooth * (dd ** 2).sum())
+    return float(smoothing_energy(w_smooth).batch(P[None], None)[0])
 
 
 # --------------------------------------------------------------------- builders
@@ -91,12 +93,14 @@ def _path_expressions(ca, z, ends, N: int, w_smooth: float, per_segment: int = 1
     """Objective and query points of the path ``ends[0:2], interior z, ends[2:4]``
     with ``z = (x_1..x_{N-2}, y_1..y_{N-2})``: the interior points, then
     ``per_segment`` evenly spaced points inside every segment (1: the midpoints)."""
+    from ...formulations.namespaces import Sym
+    from ...formulations.paper_programs import smoothing_energy
+
     n = N - 2
     xs = ca.vertcat(ends[0], z[:n], ends[2])
     ys = ca.vertcat(ends[1], z[n:], ends[3])
-    J = ca.sumsqr(xs[1:] - xs[:-1]) + ca.sumsqr(ys[1:] - ys[:-1])
-    if N >= 3:
-        J = J + w_smooth * (ca.sumsqr(xs[2:] - 2 * xs[1:-1] + xs[:-2]) + ca.sumsqr(ys[2:] - 2 * ys[1:-1] + ys[:-2]))
+    # the energy is the smoothing program's objective, read symbolically (one formulation)
+    J = smoothing_energy(w_smooth).symbolic(Sym(ca.horzcat(xs, ys), (N, 2)), None).m
     fr = [(j + 1) / (per_segment + 1) for j in range(per_segment)]
     qx = ca.vertcat(xs[1:-1], *[(1 - f) * xs[:-1] + f * xs[1:] for f in fr])
     qy = ca.vertcat(ys[1:-1], *[(1 - f) * ys[:-1] + f * ys[1:] for f in fr])

@@ -20,7 +20,6 @@ import numpy as np
 
 from ...checks import integer, mapping, number
 from ...formulations.clearance_model import active_sets
-from ...formulations.expressions import Clearance
 from ...formulations.program import Option, ProgramSolver
 from .common import INIT_OPTION, result_of, start_vector, straight_start
 
@@ -69,6 +68,8 @@ class GradientSolver(ProgramSolver):
         trust = o["trust_region"] * span if o["trust_region"] else None
         failures, moves, shrinks = 0, 0, 0
         k_run = None      # samples per segment: fixed for the run, so later rounds reuse the built solver
+        strip = None      # grids, a term reading the distance field: (capacity, radius) of its strip
+        reads_field = ctx.is_grid and program.reads_field()
         while failures < o["attempts"] and moves <= o["rounds"]:
             P0 = variables.decode(start[None])[0]
             seg = np.hypot(*np.diff(P0, axis=0).T)
@@ -82,6 +83,9 @@ class GradientSolver(ProgramSolver):
                 k = o["per_segment"] or 1
                 margin = 1e-6 * 10 ** failures
             active = active_sets(ctx, P0, k) if has_clearance else None
+            if reads_field:
+                active = dict(active or {}, path=P0)
+                strip = _strip_for(ctx, variables, start, trust if start_ok else None, P0, strip)
             cap = min(longest, MAX_SAMPLES * 0.5 * ctx.cell) if ctx.is_grid and has_clearance else None
             relax = start_ok   # a feasible start is never asked for more margin than it has
             # from a feasible start, move at most ``trust`` per variable: the obstacles each piece
@@ -91,7 +95,7 @@ class GradientSolver(ProgramSolver):
                 lo, hi = np.maximum(lo, start - trust), np.minimum(hi, start + trust)
             try:
                 x, calls, status = self._solve_nlp(program, variables, start, k, margin, active, cap, o, relax,
-                                                   (lo, hi))
+                                                   (lo, hi), strip)
             except RuntimeError as exc:   # CasADi reports solver failures as RuntimeError
                 message = f"{self.name} failed: {str(exc).splitlines()[0][:160]}"
                 x = start
@@ -125,23 +129,25 @@ class GradientSolver(ProgramSolver):
             moves += 1                 # the step ended on the trust region's edge: go on from there
         return result_of(program, variables, x, self.name, status, message, nfev, t0, notes=notes)
 
-    def _built(self, program, variables, k, active, cap):
+    def _built(self, program, variables, k, active, cap, strip=None):
         """The symbolic problem for these structural choices, built once and kept by the
-        program (``program.built_solvers``): obstacle data, margin and the segment cap are
-        parameters, so later solves with other values reuse it."""
+        program (``program.built_solvers``): obstacle data, margin, the segment cap and the
+        distance field's strip are parameters, so later solves with other values reuse it."""
         import casadi as ca
 
         from ...formulations.clearance_model import active_shapes
 
-        shapes = active_shapes(active)
+        shapes = {k_: v for k_, v in active_shapes(active).items() if k_ != "path"}
+        if strip is not None:
+            shapes["strip"] = strip
         key = (self.name, variables.name, variables.dim, k, tuple(sorted(shapes.items())), cap is not None,
                id(program.objective), tuple(id(c) for c in program.constraints))
         cache = program.built_solvers
         if key in cache:
             return cache[key]
-        # SX is several times faster; only a clearance term in the objective (the grid's
-        # B-spline interpolant of the distance field) needs MX
-        needs_mx = program.ctx.is_grid and any(isinstance(t, Clearance) for t in program.objective.leaves())
+        # SX is several times faster; only a term reading the grid's distance field (its
+        # spline strip, indexed by the path's position) needs MX
+        needs_mx = strip is not None
         sym = ca.MX if needs_mx else ca.SX
         x = sym.sym("x", variables.dim)
         f, g, lbg, ubg, p, fill = program.symbolic(variables, x, k, shapes)
@@ -159,9 +165,9 @@ class GradientSolver(ProgramSolver):
         cache[key] = built
         return built
 
-    def _problem(self, program, variables, k, margin, active, cap, x0, relax):
+    def _problem(self, program, variables, k, margin, active, cap, x0, relax, strip=None):
         """The built problem and this solve's numbers: ``(built, p values, lbg, ubg)``."""
-        built = self._built(program, variables, k, active, cap)
+        built = self._built(program, variables, k, active, cap, strip)
         pv = built["fill"](margin, active or {})
         if built["cap"]:
             pv = np.concatenate([pv, [cap]])
@@ -174,6 +180,32 @@ class GradientSolver(ProgramSolver):
         return built, pv, lbg, ubg
 
 
+def _strip_for(ctx, variables, x0, trust, P0, strip):
+    """``(capacity, radius)`` of the distance-field strip a solve from ``x0`` reads: the
+    radius is fixed for the run at :data:`STRIP_CELLS` cells plus the farthest a decoded
+    point moves when every variable moves by the trust region (the whole map without
+    one); the capacity (blocks, a power of two so similar starts share a built solver)
+    grows when a later start needs more."""
+    from ...formulations.clearance_model import STRIP_CELLS, field_strip
+
+    if strip is None:
+        if trust is None:
+            xmin, ymin, xmax, ymax = ctx.world.bounds
+            radius = float(np.hypot(xmax - xmin, ymax - ymin))
+        else:
+            lo = np.clip(x0 - trust, variables.lower, variables.upper)
+            hi = np.clip(x0 + trust, variables.lower, variables.upper)
+            moved = np.abs(variables.decode(np.stack([lo, hi])) - P0[None]).max()
+            radius = STRIP_CELLS * ctx.cell + float(moved)
+        cap = 0
+    else:
+        cap, radius = strip
+    blocks = field_strip(ctx, P0, radius)[1]
+    if blocks > cap:
+        cap = 1 << max(blocks - 1, 0).bit_length()
+    return cap, radius
+
+
 class IpoptSolver(GradientSolver):
     """CasADi + IPOPT (interior point, sparse exact Hessians)."""
 
@@ -182,10 +214,10 @@ class IpoptSolver(GradientSolver):
                "ipopt": Option({}, mapping("IPOPT options (e.g. {'mu_strategy': 'monotone'})"),
                                "IPOPT's own options for this call")}
 
-    def _solve_nlp(self, program, variables, x0, k, margin, active, cap, o, relax, box):
+    def _solve_nlp(self, program, variables, x0, k, margin, active, cap, o, relax, box, strip=None):
         import casadi as ca
 
-        built, pv, lbg, ubg = self._problem(program, variables, k, margin, active, cap, x0, relax)
+        built, pv, lbg, ubg = self._problem(program, variables, k, margin, active, cap, x0, relax, strip)
         # from a start the exact test accepted, stay near it: IPOPT's default pushes every
         # variable and slack 1 % into the interior, which leaves the feasible start (the
         # rows it holds exactly) and often ends in restoration or a worse local minimum
@@ -210,11 +242,11 @@ class SlsqpSolver(GradientSolver):
     name = "slsqp"
     options = {**GradientSolver.options, "max_iter": Option(200, integer(1), "iteration limit")}
 
-    def _solve_nlp(self, program, variables, x0, k, margin, active, cap, o, relax, box):
+    def _solve_nlp(self, program, variables, x0, k, margin, active, cap, o, relax, box, strip=None):
         import casadi as ca
         from scipy.optimize import Bounds, minimize
 
-        built, pv, lbg, ubg = self._problem(program, variables, k, margin, active, cap, x0, relax)
+        built, pv, lbg, ubg = self._problem(program, variables, k, margin, active, cap, x0, relax, strip)
         fns = built["solvers"].get("slsqp")
         if fns is None:
             x, p, f, g = built["x"], built["p"], built["f"], built["g"]

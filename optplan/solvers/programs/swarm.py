@@ -30,6 +30,13 @@ class SwarmSolver(ProgramSolver):
         "init": INIT_OPTION,
         "progress": Option(False, choice(False, True), "print progress to stderr"),
         "stagnation": Option(None, integer(1, optional=True), "stop after this many iterations without improvement"),
+        "start": Option("variables", choice("variables", "algorithm"),
+                        "first population: the variables' own starts (e.g. collision-free column nodes) or the "
+                        "algorithm's own initialiser (e.g. MISSA's chaotic map)"),
+        "archive_every": Option(None, integer(1, optional=True),
+                                "keep the population every that many iterations (OptimizeResult.archive)"),
+        "target": Option(None, number(optional=True), "stop once the best feasible cost is <= target"),
+        "callback": Option(None, anything, "callback(state) after each iteration; return False to stop"),
     }
 
     def __init__(self, algorithm: str, **settings) -> None:
@@ -43,8 +50,21 @@ class SwarmSolver(ProgramSolver):
             out.setdefault(k, Option(v, anything, f"{self.name}'s own parameter (its class lists the paper default)"))
         return out
 
+    def search(self, program, **options):
+        """The engine's run on the program (options checked like :meth:`solve`): the raw
+        :class:`~optplan.results.OptimizeResult`, archive included. ``op.plan`` uses it."""
+        opts = {k: o.default for k, o in self.all_options().items()}
+        opts.update(self.settings)
+        opts.update(self.check_options(options))
+        return self._search(program, opts)
+
     def run(self, program, **o):
         t0 = time.perf_counter()
+        opt = self._search(program, o)
+        return result_of(program, program.variables, opt.x, self.name, opt.status, opt.message, opt.nfev, t0,
+                         seed=o["seed"], history=opt.history)
+
+    def _search(self, program, o):
         variables = program.variables
         own = {k: o[k] for k in self.algorithm.defaults() if k in o}
         iters, max_evals = o["iters"], o["max_evals"]
@@ -68,8 +88,8 @@ class SwarmSolver(ProgramSolver):
             def f(X):
                 c, v = program.population(X)
                 return c + penalty * v
-        opt = optimize(f, np.stack([variables.lower, variables.upper], axis=1), algorithm=self.name, pop=o["pop"],
-                       iters=iters, max_evals=max_evals, seed=o["seed"], init=initial, repair=variables.repair,
-                       progress=o["progress"], stagnation=o["stagnation"], **own)
-        return result_of(program, variables, opt.x, self.name, opt.status, opt.message, opt.nfev, t0,
-                         seed=o["seed"], history=opt.history)
+        init = initial if o["start"] == "variables" or x0 is not None else None
+        return optimize(f, np.stack([variables.lower, variables.upper], axis=1), algorithm=self.name, pop=o["pop"],
+                        iters=iters, max_evals=max_evals, seed=o["seed"], init=init, repair=variables.repair,
+                        progress=o["progress"], stagnation=o["stagnation"], archive_every=o["archive_every"],
+                        target=o["target"], callback=o["callback"], **own)
