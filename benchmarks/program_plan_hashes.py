@@ -1,0 +1,45 @@
+"""Hashes of a handful of op.plan results (grid + circle world, 7 algorithms, with and without
+refine): run before and after a change that must not move any number, and diff the output.
+
+    python benchmarks/program_plan_hashes.py OUT.json
+"""
+import hashlib, json, sys
+import numpy as np
+import optplan as op
+from optplan.world.papermaps import paper_map
+
+def h(res):
+    d = res.to_dict()
+    d.pop("runtime_s", None)
+    for st in d.get("stages", []) or []:
+        pass
+    keep = {k: d[k] for k in ("path", "length", "turn_angle_deg", "n_turns", "min_clearance", "feasible", "refined", "nfev") if k in d}
+    keep["history"] = np.round(np.asarray(res.history, float), 12).tolist()
+    keep["stages"] = [{k: v for k, v in s.items()} for s in (getattr(res, "stages", None) or [])]
+    s = json.dumps(keep, sort_keys=True, default=float)
+    return hashlib.sha1(s.encode()).hexdigest()[:12], keep
+
+cases = []
+gw, gs, gg = paper_map("chen2025_20")
+hw, hs, hg = paper_map("hou2024_env1")
+cw = op.CircleWorld(bounds=(0, 0, 10, 10), circles=[(3, 3, 1.0), (6, 6, 1.2), (7, 2.5, 0.8)], safety=0.1)
+cases = [
+  ("grid msiar-gwo", gw, gs, gg, dict(algorithm="msiar-gwo", pop=20, iters=40)),
+  ("grid missa", hw, hs, hg, dict(algorithm="missa", pop=20, iters=40)),
+  ("grid iga", hw, hs, hg, dict(algorithm="iga", pop=20, iters=40)),
+  ("grid iba refine qp", gw, gs, gg, dict(algorithm="iba", pop=20, iters=40, refine="qp")),
+  ("grid missa refine casadi", hw, hs, hg, dict(algorithm="missa", pop=20, iters=40, refine="casadi")),
+  ("grid iga refine casadi", hw, hs, hg, dict(algorithm="iga", pop=20, iters=40, refine="casadi")),
+  ("grid gwo clearance", gw, gs, gg, dict(algorithm="gwo", pop=20, iters=40, clearance=0.2)),
+  ("circle pso", cw, (0.5, 0.5), (9.5, 9.5), dict(algorithm="pso", pop=20, iters=40)),
+  ("circle ipso refine casadi", cw, (0.5, 0.5), (9.5, 9.5), dict(algorithm="ipso", pop=20, iters=40, refine="casadi")),
+  ("circle gwo refine qp", cw, (0.5, 0.5), (9.5, 9.5), dict(algorithm="gwo", pop=20, iters=40, refine="qp")),
+  ("grid astar refine casadi", gw, gs, gg, dict(algorithm="astar", refine="casadi")),
+]
+out = {}
+for name, w, s, g, kw in cases:
+    r = op.plan(w, s, g, seed=0, **kw)
+    hh, keep = h(r)
+    out[name] = keep
+    print(f"{name:<28} {hh} len={r.length:.6f} feas={r.feasible} refined={r.refined}")
+json.dump(out, open(sys.argv[1], "w"), default=float)
