@@ -63,7 +63,9 @@ def run_demo(out: str | Path = "optplan_demo.png", seed: int = 0, stream=None) -
     print(table, file=stream)
     print("exact optimum = visibility graph over obstacle corners (any-angle, cell centres); "
           "'+ casadi' / '+ qp' = the msiar-gwo path refined by IPOPT / the OSQP corridor smoother "
-          "(times include the metaheuristic; every path passed the exact collision check)", file=stream)
+          "(times include the metaheuristic; every path passed the exact collision check); "
+          "turns = vertices where the heading changes: a refined path is a dense smooth curve, so its "
+          "turns are many small ones and its total turn is the figure to compare", file=stream)
     demo_figure(grid, results, optimum, out)
     print(f"wrote {out}", file=stream)
     return rows
