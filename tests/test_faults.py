@@ -56,23 +56,29 @@ def test_osqp_max_iter_falls_back_to_the_seed_with_its_status(starved_osqp):
 
 def test_nan_objective_inside_a_path_planner_is_survived():
     """A formulation that returns NaN for some individuals: they count as worst, the run
-    finishes, and the returned path still goes through the exact check."""
-    from optplan.formulations.problem import PathProblem
+    finishes, and the returned path still goes through the exact check. The NaN is injected
+    where the swarm reads the program's cost (both the program's own view and the segment
+    tables' acceleration go through ``PathProgram.population``), so the acceleration check
+    still sees two views that agree."""
+    from optplan.formulations.program import PathProgram
 
     world, s, g = paper_map("chen2025_20")
-    original = PathProblem.evaluate
+    original = PathProgram.population
+    calls = {"n": 0}
 
-    def flaky(self, X):
-        f, v = original(self, X)
+    def flaky(self, X, variables=None):
+        f, v = original(self, X, variables)
+        calls["n"] += 1
         f = np.array(f, dtype=float)
         f[::3] = np.nan
         return f, v
 
     try:
-        PathProblem.evaluate = flaky
+        PathProgram.population = flaky
         res = op.plan(world, s, g, algorithm="gwo", seed=0, pop=12, iters=20)
     finally:
-        PathProblem.evaluate = original
+        PathProgram.population = original
+    assert calls["n"] > 0                      # the fault was really injected
     assert res.feasible == bool(op.validate_path(world, res.path))
     assert np.isfinite(res.length) and "NaN" in res.message
 
