@@ -146,11 +146,9 @@ class NavigationPoints(SubgoalStrategy):
         robot_radius: metres.
         spacing: distance ``ds`` between navigation points along the path, metres.
         lookahead_time: ``n`` covers the distance driven in this many seconds at the
-            current speed (yang2023 §6 lets ``n`` grow with the robot's speed); the
-            default is the DWA presets' prediction period (3 s), so the navigation point
-            lies where the predicted trajectory ends and eq 15's end-of-trajectory heading
-            compares trajectories with a point they reach (a nearer point makes every
-            trajectory overshoot it and the heading term turn the robot away) ...
+            current speed (yang2023 §6 lets ``n`` grow with the robot's speed); 3 s (the
+            prediction period) helps the yang2023 fusion but stalls idwa in a small room,
+            see docs/fidelity/yang2023.md ...
         min_lookahead: ... but never less than this many metres.
         avoid_distance: a moving obstacle closer than this (centre distance minus both
             radii, metres) is checked with the velocity obstacle.
@@ -159,7 +157,7 @@ class NavigationPoints(SubgoalStrategy):
     name = "navigation_points"
 
     def __init__(self, robot_radius: float, switch_radius: float = 0.6, spacing: float = 0.25,
-                 lookahead_time: float = 3.0, min_lookahead: float = 1.0, avoid_distance: float = 2.0):
+                 lookahead_time: float = 1.5, min_lookahead: float = 1.0, avoid_distance: float = 2.0):
         super().__init__(robot_radius, switch_radius)
         self.spacing = float(spacing)
         self.lookahead_time = float(lookahead_time)
