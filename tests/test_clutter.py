@@ -172,9 +172,9 @@ def test_qp_dwa_crosses_a_clutter_world_without_collision_within_the_limits():
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("seed", [0, 5])
+@pytest.mark.parametrize("seed", [1, 17])
 def test_qp_dwa_no_longer_freezes_at_the_gaps_of_the_development_worlds(seed):
-    # seeds 0 and 5 stopped in front of a gap until the stuck budget ran out without issue 27's options
+    # seeds 1 and 17 stop in front of a gap until the stuck budget runs out without issue 27's options
     res = op.simulate("clutter", local_planner="qp-dwa", seed=seed, planner_params=CLUTTER_QP_DWA)
     assert res.reached and res.collisions == 0, res.message
 
