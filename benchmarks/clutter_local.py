@@ -32,14 +32,14 @@ import numpy as np
 SHARED_NAV = {"subgoals": "key_points", "on_blocked": "replan"}  # qp-dwa's policy (PRESET_DEFAULTS)
 
 
-def run_world(task: tuple[str, int, tuple[str, ...], str]) -> list[dict]:
+def run_world(task: tuple[str, int, tuple[str, ...], str, dict]) -> list[dict]:
     """Every planner on one generated world: one row per run."""
     from optplan.sim.closed_loop import scenario_for, simulate
     from optplan.sim.experiments import barn_score, optimal_time, plan_global
     from optplan.solvers.graph import shortest_path
     from optplan.worldgen.clutter import family_options
 
-    family, seed, planners, nav = task
+    family, seed, planners, nav, qp_params = task
     sc = scenario_for(family, seed)
     gp = plan_global(sc, "astar", None, seed, family_options(family).get("global_options"))
     # OT: the shortest route the footprint has, whatever the global planner preferred
@@ -56,6 +56,8 @@ def run_world(task: tuple[str, int, tuple[str, ...], str]) -> list[dict]:
                 qp[key] = qp.get(key, 0) + 1
 
         opts = dict(SHARED_NAV) if nav == "shared" else {}
+        if planner == "qp-dwa" and qp_params:
+            opts["planner_params"] = qp_params
         res = simulate(sc, global_planner="astar", local_planner=planner, seed=seed, global_plan=gp, progress=count,
                        **opts)
         rows.append({"family": family, "seed": seed, "planner": planner, "nav": nav, "status": res.status,
@@ -104,6 +106,8 @@ def main(argv=None) -> int:
     ap.add_argument("--workers", type=int, default=1)
     ap.add_argument("--out", default="", help="JSON lines file to append to / resume from")
     ap.add_argument("--table-only", action="store_true", help="print the table of --out and exit")
+    ap.add_argument("--qp-dwa-params", default="", help="JSON planner_params for qp-dwa, e.g. issue 27's "
+                    '\'{"qp_committed": true, "continuation_check": true, "path_progress": {"within_travel": true}}\'')
     a = ap.parse_args(argv)
     lo, hi = (int(x) for x in a.seeds.split(":"))
     families = ["clutter", "clutter-movers"] if a.family == "both" else [a.family]
@@ -121,7 +125,7 @@ def main(argv=None) -> int:
                 for seed in range(lo, hi):
                     todo = tuple(p for p in planners if (fam, seed, p, nav) not in done)
                     if todo:
-                        tasks.append((fam, seed, todo, nav))
+                        tasks.append((fam, seed, todo, nav, json.loads(a.qp_dwa_params or "{}")))
         sink = path.open("a") if path is not None else None
         if a.workers > 1:
             import multiprocessing as mp

@@ -178,14 +178,26 @@ class PathHeading(Heading):
 class PathProgress(Critic):
     """How far (m) the trajectory's end has advanced along the global path: arc length of
     its nearest path point minus that of the robot's (Nav2 DWB's path-progress idea). It
-    rewards moving on along the path even when every trajectory is short (low speed)."""
+    rewards moving on along the path even when every trajectory is short (low speed).
+
+    With ``within_travel`` the advance is capped at the length the trajectory drives: a
+    trajectory that heads straight past a bend of the path projects onto the path beyond
+    the bend and was credited more progress than it drove, so the sum of terms preferred
+    cutting the corner into clutter the global path keeps clear of (issue 27, where such
+    runs ended pinned in a gap off the path)."""
 
     name: ClassVar[str] = "path_progress"
+    within_travel: bool = False
 
     def score(self, step: Step) -> np.ndarray:
         roll = step.roll
         s, _ = project_on_path(step.ctx.global_path, np.r_[roll.z0, roll.position()], roll.z0, _reach(step))
-        return s[1:] - s[0]
+        gain = s[1:] - s[0]
+        if not self.within_travel:
+            return gain
+        fastest = roll.speed[:, None] if roll.profile is None else roll.profile
+        driven = np.broadcast_to(fastest, roll.z.shape).sum(axis=1) * roll.dt
+        return np.minimum(gain, driven)
 
 
 @dataclass

@@ -13,7 +13,7 @@ Ruckig's ``intermediate_positions`` (a remote service) is never used.
 from __future__ import annotations
 
 import numpy as np
-from ruckig import ControlInterface, InputParameter, OutputParameter, Result, Ruckig, Synchronization
+from ruckig import ControlInterface, InputParameter, OutputParameter, Result, Ruckig, Synchronization, Trajectory
 
 
 class RuckigLimiter:
@@ -67,6 +67,36 @@ class RuckigLimiter:
             self.reset(velocity)
             return True
         return False
+
+    def snapshot(self) -> tuple[np.ndarray, np.ndarray]:
+        """``(velocity, acceleration)`` of the profile now (for :meth:`restore`)."""
+        return self.velocity, self.acceleration
+
+    def restore(self, snap: tuple[np.ndarray, np.ndarray]) -> None:
+        """Go back to a :meth:`snapshot`."""
+        inp = self._inp
+        inp.current_position = [0.0] * self.n
+        inp.current_velocity = [float(v) for v in snap[0]]
+        inp.current_acceleration = [float(a) for a in snap[1]]
+
+    def braking(self, steps: int) -> np.ndarray:
+        """``(steps, n)``: the commands of the next ``steps`` periods that bring every
+        component to rest from the profile's current state (the profile to zero velocity
+        sampled one period apart, as :meth:`step` would give them). The state is unchanged."""
+        inp = self._inp
+        target = list(inp.target_velocity)
+        inp.target_velocity = [0.0] * self.n
+        traj = Trajectory(self.n)
+        result = self._otg.calculate(inp, traj)
+        inp.target_velocity = target
+        if result not in (Result.Working, Result.Finished):
+            # acceleration-limited stop (jerk unbounded), as step's fallback
+            cur = self.velocity
+            k = np.arange(1, steps + 1)[:, None] * self.dt
+            return np.sign(cur) * np.maximum(np.abs(cur) - self.max_acceleration * k, 0.0)
+        T = traj.duration
+        return np.array([traj.at_time(min(k * self.dt, T))[1] if k * self.dt < T else [0.0] * self.n
+                         for k in range(1, steps + 1)])
 
     def step(self, target) -> tuple[np.ndarray, str]:
         """The velocity one period ahead on the profile towards ``target``, and Ruckig's result."""

@@ -11,8 +11,10 @@
                   g_j(u0) + grad g_j(u0) . (u - u0) + s >= qp_margin    (rows j)
 
    ``g_j`` is the edge-to-edge gap at the time the trajectory passes closest to a predicted
-   mover, or at the trajectory's closest points to static obstacles (gradient of the
-   distance field by central differences). The slack ``s`` keeps the QP feasible when the
+   mover (over ``qp_horizon``), or at the trajectory's closest points to static obstacles
+   over the part the robot is committed to before it can stop (gradient of the distance
+   field by central differences); a static row asks no more margin than the global path
+   keeps next to that point. The slack ``s`` keeps the QP feasible when the
    margin cannot be met within the window. ``W`` scales each component by its window
    half-width so a step across the window costs the same in ``v`` and ``w``. The position
    derivatives ``dz/du`` come from the rollout formula of ``rollout.py`` in closed form.
@@ -20,10 +22,17 @@
    ``u0``); on any non-solved OSQP status or a failed check the sampled ``u0`` is used and
    ``info["qp"]`` says why.
 3. **Ruckig** (``limiter.RuckigLimiter``): the refined velocity becomes the target of a
-   jerk-limited profile; the command is the profile one period ahead. The window of the
-   next step is the velocity range that profile can reach in one period (``window.py``), and
-   the stopping distance in the admissibility test includes one period plus the jerk ramp
-   ``a_max / jerk_max`` of reaction time.
+   jerk-limited profile; the command is the profile one period ahead.
+4. **Recursive feasibility** (``safe_continuation``): the command is sent only if, after it,
+   the limiter's stop stays clear of the static map and of every predicted mover for the
+   horizon, or holding it does; otherwise the sampled command, then braking, is tried, and
+   if none qualifies the first choice is sent and ``info["continuation"]`` is ``"none"``.
+   Braking is the last option, so a step whose command was checked leaves the next step a
+   checked stop (the same jerk-limited profile).
+
+The window of the next step is the velocity range the Ruckig profile can reach in one
+period (``window.py``), and the stopping distance in the admissibility test includes one
+period plus the jerk ramp ``a_max / jerk_max`` of reaction time.
 
 Everything is deterministic.
 """
@@ -42,7 +51,8 @@ from ..world.robot import RobotSpec, RobotState
 from .base import LocalContext
 from .dwa import DWAPlanner, Preset
 from .limiter import RuckigLimiter
-from .rollout import Step, static_gradient
+from .critics import point_at_arc, project_on_path
+from .rollout import Rollouts, Step, static_gradient
 from .window import Window, dynamic_window
 
 _SLACK_LINEAR, _SLACK_QUADRATIC = 1e2, 1e4
@@ -102,6 +112,10 @@ class QPDWAPlanner(DWAPlanner):
         "qp_rows_static": 4,     # ... and static rows
         "qp_max_iter": 1000,     # OSQP iteration budget (a non-solved status falls back)
         "ang_jerk_max": None,    # rad/s^3; None = jerk_max * alpha_max / a_max (same ramp time)
+        # issue 27 (clutter), off by default: each gave 1-2 collisions in the 40 runs of
+        # benchmarks/dynamic_qp_dwa.yaml in some combination (see docs/measurements.md)
+        "qp_committed": False,        # static rows over the committed part only, margins capped
+        "continuation_check": False,  # recursive feasibility check of every command
     }
 
     def __init__(self, preset: Preset, robot: RobotSpec, dt: float, **params: Any) -> None:
@@ -184,27 +198,116 @@ class QPDWAPlanner(DWAPlanner):
         target = u
         if step is not None and info.get("mode") in ("sample", "sample-relaxed", "evade"):
             target = self.refine(ctx, window, u, step, info)
-        comp = np.array([target[0], target[1], target[2]][:self.n_u])
-        out, result = self.limiter.step(comp)
+        # recursive feasibility: the command must leave a safe continuation (see
+        # safe_continuation); else the sampled command, else braking, is commanded
+        options = [("refined", target)] if target is not u else []
+        if self.options["continuation_check"]:
+            options += [("sampled", u), ("brake", (0.0, 0.0, 0.0))]
+        else:
+            options = options or [("sampled", u)]
+        snap = self.limiter.snapshot()
+        for name, tgt in options:
+            self.limiter.restore(snap)
+            out, result = self.limiter.step(np.array([tgt[0], tgt[1], tgt[2]][:self.n_u]))
+            if not self.options["continuation_check"]:
+                how = "unchecked"
+                break
+            how = self.safe_continuation(ctx, out)
+            if how:
+                break
+        else:
+            # nothing is known safe (e.g. a mover closing in, or every stop on a mover's predicted
+            # line): the first choice, as without the check. Taking the sampled command here
+            # instead threw away the QP's added mover clearance exactly when it mattered, and a
+            # mover hit the robot in hou2024_dynamic4 seed 2 of benchmarks/dynamic_qp_dwa.yaml
+            name, tgt = options[0]
+            self.limiter.restore(snap)
+            out, result = self.limiter.step(np.array([tgt[0], tgt[1], tgt[2]][:self.n_u]))
+            how = "none"
+        info["continuation"] = how
+        if name != options[0][0]:
+            info["continuation_fallback"] = name
+            if options[0][0] == "refined":
+                info["qp"] = "fallback: refined command leaves no safe continuation"
+        target = tgt
         info["target"] = [float(x) for x in target]
         info["ruckig"] = result
         if self._resynced:
             info["ruckig_resync"] = True
         return float(out[0]), float(out[1]), float(out[2]) if self.n_u == 3 else 0.0
 
+    # ------------------------------------------------------------------ recursive feasibility
+    def continuation_rollout(self, ctx: LocalContext, out: np.ndarray, brake: bool) -> Rollouts:
+        """The trajectory (one sample) when ``out`` is commanded for one period and then either
+        the limiter's jerk-limited stop follows (``brake``), or ``out`` is held."""
+        H = max(1, int(math.ceil(self.options["horizon"] / self.dt - 1e-9)))
+        vel = np.zeros((H, 3))
+        vel[0, :self.n_u] = out
+        if brake:
+            vel[1:, :self.n_u] = self.limiter.braking(H - 1)
+        else:
+            vel[1:, :self.n_u] = out
+        v, w, vy = vel[:, 0], vel[:, 1], vel[:, 2]
+        th = ctx.state.theta + np.cumsum(w) * self.dt  # heading after each period
+        start = np.r_[ctx.state.theta, th[:-1]]
+        z0 = complex(ctx.state.x, ctx.state.y)
+        z = z0 + np.cumsum((v + 1j * vy) * np.exp(1j * start)) * self.dt
+        return Rollouts(v=vel[:1, 0], vy=vel[:1, 2], w=vel[:1, 1], z=z[None, :], t=np.arange(1, H + 1) * self.dt,
+                        z0=z0, theta0=float(ctx.state.theta), dt=self.dt, theta=th[None, :],
+                        profile=np.hypot(v, vy)[None, :])
+
+    def safe_continuation(self, ctx: LocalContext, out: np.ndarray) -> str:
+        """How the robot can go on safely after commanding ``out`` for one period: ``"brake"``
+        (the jerk-limited stop that follows stays clear of static obstacles, by the static
+        margin, and of every predicted mover for the whole horizon, standing included),
+        ``"cross"`` (holding ``out`` stays clear over the horizon: the crossing is completed),
+        or ``""`` (neither). The limiter must hold the state after ``out``."""
+        for brake, name in ((True, "brake"), (False, "cross")):
+            check = self._assess(ctx, self.continuation_rollout(ctx, out, brake))
+            if check.static_hit[0] >= check.roll.z.shape[1] and check.mover_free[0]:
+                return name
+        return ""
+
     # ------------------------------------------------------------------ refinement
+    def _committed(self, step: Step, i: int) -> int:
+        """Number of rollout points of sample ``i`` the robot is committed to: those it may
+        pass before it can stop, if it follows the sample for the reaction time and then
+        brakes at ``a_max`` (at most ``qp_horizon``). Later points are re-planned before they
+        are reached. Asking a fixed-time margin of them too only rewards slowing down: in
+        clutter every constant-command trajectory meets an obstacle within a second, and the
+        QP braked the robot to a standstill in front of the passage (issue 27)."""
+        roll = step.roll
+        speed = float(roll.speed[i]) if roll.profile is None else float(roll.profile[i].max())
+        t_commit = self._reaction() + speed / self.robot.a_max + roll.dt
+        t_cap = min(self.options["qp_horizon"], t_commit)
+        return max(1, min(roll.z.shape[1], int(math.ceil(t_cap / roll.dt - 1e-9))))
+
+    def _static_margins(self, ctx: LocalContext, points: np.ndarray) -> np.ndarray:
+        """Static margin (m) asked at each complex point: ``qp_margin``, but no more than the
+        global path keeps next to it (its clearance at the nearest path point). A passage the
+        global path threads with 3 cm to spare cannot be driven with 15 cm; asking for them
+        made the QP trade all speed for the margin's slack."""
+        path = ctx.global_path
+        s, _ = project_on_path(path, points, complex(ctx.state.x, ctx.state.y), 2.0)
+        near = point_at_arc(path, s)
+        offered = np.asarray(ctx.static_distance(np.column_stack([near.real, near.imag])), float).ravel()
+        return np.clip(offered - self.robot.radius, 0.0, self.options["qp_margin"])
+
     def _rows(self, ctx: LocalContext, step: Step, i: int):
-        """Linearised clearance rows ``(grad (k, n_u), gap0 (k,))`` at sample ``i``."""
+        """Linearised clearance rows ``(grad (k, n_u), gap0 (k,), margin (k,))`` at sample ``i``:
+        mover rows over ``qp_horizon`` (movers come at the robot whatever it does), static
+        rows over the committed part only (:meth:`_committed`)."""
         o = self.options
         roll = step.roll
         H = max(1, min(roll.z.shape[1], int(round(o["qp_horizon"] / roll.dt))))
+        H_static = min(H, self._committed(step, i)) if o["qp_committed"] else H
         z = roll.z[i, :H]
         # dz/du by forward differences of the planner's own rollout (constant or ramped)
         v, w, vy, h = roll.v[i], roll.w[i], roll.vy[i], 1e-4
         r = self.rollout_of(ctx.state, [v, v + h, v], [vy, vy, vy + h], [w, w + h])
         zz = r.z[:, :H]  # rows: (v,w) (v,w+h) (v+h,w) (v+h,w+h) (vy+h,w) (vy+h,w+h)
         dz = [(zz[2] - zz[0]) / h, (zz[1] - zz[0]) / h, (zz[4] - zz[0]) / h][:self.n_u]
-        grads, gaps = [], []
+        grads, gaps, margins = [], [], []
         R = self.robot.radius
         if len(step.mover_r) and o["qp_rows_moving"]:
             d = np.abs(z[None, :] - step.movers[:, :H]) - step.mover_r[:, None] - R  # (K, H)
@@ -218,8 +321,9 @@ class QPDWAPlanner(DWAPlanner):
                 nrm = nrm / abs(nrm) if abs(nrm) > 0 else 1.0
                 grads.append([(np.conj(nrm) * dzc[t]).real for dzc in dz])
                 gaps.append(g[k])
+                margins.append(o["qp_margin"])
         if o["qp_rows_static"]:
-            sg = step.static_gap[i, :H]
+            sg = step.static_gap[i, :H_static]
             picked: list[int] = []
             for t in np.argsort(sg, kind="stable"):
                 if sg[t] >= o["qp_activate"] or len(picked) == o["qp_rows_static"]:
@@ -228,10 +332,13 @@ class QPDWAPlanner(DWAPlanner):
                     picked.append(int(t))
             if picked:
                 grad_z = static_gradient(ctx, z[picked])
+                margins.extend(self._static_margins(ctx, z[picked]).tolist() if o["qp_committed"]
+                               else [o["qp_margin"]] * len(picked))
                 for q, t in enumerate(picked):
                     grads.append([(np.conj(grad_z[q]) * dzc[t]).real for dzc in dz])
                     gaps.append(sg[t])
-        return np.asarray(grads, dtype=float).reshape(-1, self.n_u), np.asarray(gaps, dtype=float)
+        return (np.asarray(grads, dtype=float).reshape(-1, self.n_u), np.asarray(gaps, dtype=float),
+                np.asarray(margins, dtype=float))
 
     def _legal_after_filters(self, check: Step) -> bool:
         """Whether the (single) trajectory of ``check`` passes the preset's filters."""
@@ -245,7 +352,7 @@ class QPDWAPlanner(DWAPlanner):
                info: dict) -> tuple[float, float, float]:
         """The QP refinement of the sampled command ``u0`` (falls back to ``u0``)."""
         i = info["index"]
-        grads, gaps = self._rows(ctx, step, i)
+        grads, gaps, margins = self._rows(ctx, step, i)
         if len(gaps) == 0:
             info["qp"] = "inactive"
             return u0
@@ -259,7 +366,7 @@ class QPDWAPlanner(DWAPlanner):
         k = len(gaps)
         rows[:k, :n_u] = grads
         rows[:k, n_u] = 1.0
-        lb[:k] = o["qp_margin"] - gaps + grads @ x0
+        lb[:k] = margins - gaps + grads @ x0
         dense = np.vstack([np.eye(n), rows])
         q = np.r_[-self._W * x0, _SLACK_LINEAR]
         lower = np.r_[lo, 0.0, lb]
@@ -280,10 +387,12 @@ class QPDWAPlanner(DWAPlanner):
         u = (float(x[0]), float(x[1]), float(x[2]) if n_u == 3 else 0.0)
         check = self._assess(ctx, self.rollout_of(ctx.state, [u[0]], [u[2]], [u[1]]))
         H = max(1, min(step.roll.z.shape[1], int(round(o["qp_horizon"] / step.roll.dt))))
-        # the rows constrain the plain predicted gaps, so judge the result on those
-        gap_new = np.minimum(check.static_gap[0, :H], check.dyn_gap[0, :H]).min()
-        gap_old = np.minimum(step.static_gap[i, :H], step.dyn_gap[i, :H]).min()
-        worse = gap_new < min(gap_old, o["qp_margin"]) - 1e-9
+        Hs = min(H, max(self._committed(step, i), self._committed(check, 0))) if o["qp_committed"] else H
+        # the rows constrain the plain predicted gaps (static ones over the committed part),
+        # so judge the result on those
+        gap_new = min(check.static_gap[0, :Hs].min(), check.dyn_gap[0, :H].min())
+        gap_old = min(step.static_gap[i, :Hs].min(), step.dyn_gap[i, :H].min())
+        worse = gap_new < min(gap_old, float(margins.min())) - 1e-9
         if not check.admissible[0] or check.mover_contact[0] < step.mover_contact[i] or worse:
             info["qp"] = "fallback: refined command failed the rollout check"
             return u0

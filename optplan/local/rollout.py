@@ -165,6 +165,9 @@ class Step:
             such trajectories are discarded, as the papers discard colliding trajectories
             (yuan2021 §3.3); ``mover_free`` is the mask of the others.
         target: current subgoal as a complex number.
+        static_hit: ``(S,)`` index of the first rollout point in collision with a static
+            obstacle (``H`` = none; see :func:`first_hit`): the robot following the sample
+            has to stop before it, so cost terms judge the trajectory up to there.
         aux: scratch space mechanisms use to pass findings to cost terms (e.g. the VO threat).
     """
 
@@ -182,6 +185,7 @@ class Step:
     mover_contact: np.ndarray
     target: complex
     growth: np.ndarray | float = 0.0
+    static_hit: np.ndarray | None = None
     aux: dict = field(default_factory=dict)
 
     @property
@@ -281,7 +285,7 @@ def assess(ctx: LocalContext, robot: RobotSpec, roll: Rollouts, *, margin: float
     contact = first_hit(dyn_gap < min(margin, now_moving))
     target = complex(*np.asarray(ctx.subgoal, dtype=float)[:2])
     return Step(ctx, robot, roll, static_gap, dyn_gap, movers, vel, radii, free, stopping, admissible, contact, target,
-                growth)
+                growth, first)
 
 
 def _stopping_test(roll: Rollouts, first: np.ndarray, decel: float, reaction: float) -> tuple[np.ndarray, np.ndarray]:

@@ -42,6 +42,9 @@ from ..world.polyline import point_segment_distances
 from ..results import PlanResult
 from .subgoals import SubgoalStrategy, make_strategy
 
+# m beyond the robot radius: the intermediate clearances of Navigator.clearance_ladder
+_LADDER_EXTRA = (0.1, 0.05, 0.025)
+
 # each local planner preset's default (subgoal strategy, on_blocked), from the table of
 # paper methods (optplan/papers.py)
 PRESET_DEFAULTS = {**{p.local_preset: (p.subgoals, p.on_blocked) for p in PAPERS.values() if p.local_preset},
@@ -132,9 +135,7 @@ class Navigator:
             return given
         opts = dict(self.global_options)
         wanted = float(opts.pop("clearance", self.robot.radius))
-        # the requested clearance, then the robot radius, then none: the first valid path wins
-        tries = [c for c in (wanted, self.robot.radius, 0.0) if c <= wanted]
-        tries = list(dict.fromkeys(tries))
+        tries = self.clearance_ladder(wanted)
         res = None
         for k, clearance in enumerate(tries):
             last = k == len(tries) - 1
@@ -154,6 +155,17 @@ class Navigator:
         self.plan_result = res
         self._adopt(self._with_ends(res.path, self.start))
         return res
+
+    def clearance_ladder(self, wanted: float) -> list[float]:
+        """Clearances tried in turn, the first valid path winning: ``wanted``, then (when it
+        is above the robot radius) ``radius + 0.1``, ``+ 0.05``, ``+ 0.025`` below it, then the
+        radius, then zero. Dropping from the wanted clearance straight to the bare footprint
+        gave paths through gaps 1 cm wider than the robot where a gap 5 cm wider was there
+        too; a local planner that keeps a safety margin stops in front of the former
+        (issue 27). The intermediate rungs give the widest of those bottlenecks."""
+        r = self.robot.radius
+        tries = [wanted] + [r + e for e in _LADDER_EXTRA if r + e < wanted] + [r, 0.0]
+        return list(dict.fromkeys(c for c in tries if c <= wanted))
 
     def _with_ends(self, path: np.ndarray, origin: np.ndarray) -> np.ndarray:
         P = np.asarray(path, float).reshape(-1, 2)
@@ -316,7 +328,8 @@ class Navigator:
 
     def replan(self, believed_world, position, t: float, why: str) -> bool:
         """Plan again from ``position`` on ``believed_world`` with exact graph search."""
-        res = self._plan_from(believed_world, position, (self.robot.radius, 0.0))
+        wanted = float(self.global_options.get("clearance", self.robot.radius))
+        res = self._plan_from(believed_world, position, self.clearance_ladder(wanted))
         self.replans += 1  # a failed attempt counts too, so a hopeless situation ends
         if res is None:
             self.messages.append(f"t={t:.1f}s: re-planning failed ({why})")
