@@ -42,6 +42,22 @@ def number(minimum: float = -math.inf, maximum: float = math.inf, optional: bool
     return check
 
 
+def metres(name: str, value, none_means: str | None = None) -> float | None:
+    """``value`` as a distance in metres: anything ``float()`` reads as a finite number >= 0
+    (``None`` too when ``none_means`` says what it stands for); else a ParameterError
+    naming ``name``. The one rule for clearances, radii and tube widths."""
+    if value is None and none_means is not None:
+        return None
+    try:
+        r = float(value)
+    except (TypeError, ValueError):
+        r = math.nan
+    if isinstance(value, bool) or not math.isfinite(r) or r < 0:
+        alt = f" or None for {none_means}" if none_means is not None else ""
+        raise ParameterError(f"{name} must be a finite number >= 0 metres{alt}, got {value!r}")
+    return r
+
+
 def choice(*values) -> Callable[[str, Any], Any]:
     """One of ``values`` (compared with ``in``)."""
     def check(name: str, value):

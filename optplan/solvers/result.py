@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..checks import metres
 from ..errors import ParameterError
 from ..results import PlanResult
 from ..world.geometry import validate_path
@@ -37,17 +38,9 @@ def make_plan_result(world, path, algorithm: str, runtime_s: float, *, clearance
 
 
 def check_optional_metres(value, name: str, meaning: str) -> float | None:
-    """``value`` as a float (metres) or ``None``; a ParameterError naming ``name`` (and
-    what ``None`` means, ``meaning``) for anything else than ``None`` or a finite number >= 0."""
-    if value is None:
-        return None
-    try:
-        r = float(value)
-    except (TypeError, ValueError):
-        r = float("nan")
-    if isinstance(value, bool) or not np.isfinite(r) or r < 0:
-        raise ParameterError(f"{name} must be a finite number >= 0 metres or None for {meaning}, got {value!r}")
-    return r
+    """``value`` as a float (metres) or ``None`` (standing for ``meaning``); a ParameterError
+    naming ``name`` otherwise (:func:`optplan.checks.metres`)."""
+    return metres(name, value, none_means=meaning)
 
 
 def check_alternatives(count, separation) -> tuple[int, float | None]:

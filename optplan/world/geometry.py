@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..checks import metres
 from ..errors import ParameterError
 
 _VERTEX_EPS = 1e-9  # float mode: how close to a lattice vertex counts as "through it"
@@ -39,13 +40,7 @@ def _as_points(points) -> np.ndarray:
 
 
 def _check_clearance(clearance: float) -> float:
-    try:
-        c = float(clearance)
-    except (TypeError, ValueError):
-        c = float("nan")
-    if isinstance(clearance, bool) or not np.isfinite(c) or c < 0:
-        raise ParameterError(f"clearance must be a finite number >= 0 metres, got {clearance!r}")
-    return c
+    return metres("clearance", clearance)
 
 
 def _doubled_ints(*arrays: np.ndarray) -> tuple[np.ndarray, ...] | None:
