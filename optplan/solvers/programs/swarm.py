@@ -25,7 +25,8 @@ class SwarmSolver(ProgramSolver):
         "max_evals": Option(None, integer(1, optional=True), "evaluation budget: exactly this many rows evaluated"),
         "seed": Option(0, seed, "int, None or numpy Generator"),
         "constraint": Option("feasibility", choice("feasibility", "penalty"),
-                             "feasibility rule (feasible first, then violation, then cost) or cost + penalty * violation"),
+                             "feasibility rule (feasible first, then violation, then cost) or cost + penalty * violation "
+                             "(a constraint's own paper penalty where it has one)"),
         "penalty": Option(1000.0, number(0.0), "weight of the violation in penalty mode"),
         "init": INIT_OPTION,
         "progress": Option(False, choice(False, True), "print progress to stderr"),
@@ -84,10 +85,9 @@ class SwarmSolver(ProgramSolver):
         penalty = o["penalty"]
         if o["constraint"] == "feasibility":
             f = program.population
-        else:
+        else:  # the program's penalty: the paper's where a constraint carries one, else penalty * violation
             def f(X):
-                c, v = program.population(X)
-                return c + penalty * v
+                return program.penalised(X, penalty)
         init = initial if o["start"] == "variables" or x0 is not None else None
         return optimize(f, np.stack([variables.lower, variables.upper], axis=1), algorithm=self.name, pop=o["pop"],
                         iters=iters, max_evals=max_evals, seed=o["seed"], init=init, repair=variables.repair,
