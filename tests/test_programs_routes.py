@@ -142,3 +142,26 @@ def test_paper_penalty_is_constraint_handling():
         (T.clearance() >= 0.0).penalised(-1.0)
     with pytest.raises(op.ParameterError, match="penalised acceleration"):
         plain.accelerate(plain.own_population, penalised=lambda X: np.zeros(len(X)))
+
+
+@pytest.mark.parametrize("w", [0.0, 0.5, 0.3])
+def test_corridor_qp_hessian_is_the_smoothing_energys(w):
+    """The OSQP/cvxpy corridor program's Hessian comes from smoothing_energy's symbolic view:
+    1/2 z'Pz is the energy's batched value on any path, and P is D1'D1 + w D2'D2 per coordinate."""
+    import scipy.sparse as sp
+
+    from optplan.formulations.paper_programs import smoothing_energy
+    from optplan.solvers.qp.program import energy_hessian, objective_value
+
+    N = 9
+    P = energy_hessian(N, w)
+    pts = np.random.default_rng(4).random((N, 2)) * 5
+    z = np.concatenate([pts[:, 0], pts[:, 1]])
+    want = float(smoothing_energy(w).batch(pts[None], None)[0])
+    assert 0.5 * z @ (P @ z) == pytest.approx(want, rel=1e-12)
+    assert objective_value(pts, w) == want
+    D1 = np.diff(np.eye(N), axis=0)
+    D2 = np.diff(np.eye(N), 2, axis=0)
+    H = D1.T @ D1 + w * D2.T @ D2
+    np.testing.assert_array_equal(P.toarray(), 2 * sp.block_diag([H, H]).toarray())
+    assert not np.any(P.data == 0)
