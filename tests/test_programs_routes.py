@@ -165,3 +165,22 @@ def test_corridor_qp_hessian_is_the_smoothing_energys(w):
     H = D1.T @ D1 + w * D2.T @ D2
     np.testing.assert_array_equal(P.toarray(), 2 * sp.block_diag([H, H]).toarray())
     assert not np.any(P.data == 0)
+
+
+def test_general_vias_paths_repeat_points_only_at_the_end():
+    """A via snapped next to another leaves repeated points; GeneralVias moves them to the
+    end (copies of the goal), so the turn terms see every turn of the path."""
+    from optplan.world.papermaps import paper_map
+
+    world, s, g = paper_map("chen2025_20")
+    v = op.PathProgram(world, s, g, variables=op.GeneralVias(3)).variables
+    X = v.lower + np.random.default_rng(0).random((32, v.dim)) * (v.upper - v.lower)
+    P = v.decode(X)
+    raw = v.encoding.decode(X, v.n_points)
+    for p, r in zip(P, raw):
+        moved = np.any(np.diff(p, axis=0) != 0, axis=1)
+        n = int(moved.sum())
+        assert moved[:n].all() and not moved[n:].any()         # repeats only after the last move
+        keep = np.r_[True, np.any(np.diff(r, axis=0) != 0, axis=1)]
+        np.testing.assert_array_equal(p[:n + 1], r[keep])       # the same polyline
+        np.testing.assert_array_equal(p[n + 1:], np.broadcast_to(g, (len(p) - n - 1, 2)))

@@ -124,10 +124,11 @@ def planner_program(problem, preset, program_class=PathProgram) -> PathProgram |
     (the program's clearance constraint carries the paper's penalty weights). ``None``
     where the planner's fitness is not such a program: a preset given as an object, an
     encoding without a variable twin, no free variable, or the general encoding under a
-    preset with turn terms (its decoded paths end in repeated goal points, and the program's
-    ``turn_angles`` term measures a heading at a zero-length segment where the planner's
-    fitness carries the previous heading over it: up to 2 % apart, which the acceleration
-    check rejects)."""
+    preset with turn terms: where a via point snaps to the start, its decoded path begins
+    with a repeated start point, and the planner's turn rule
+    (:func:`optplan.world.metrics.turn_angles_deg`) measures a turn from heading 0 there
+    (the program's ``turn_angles`` sees none), up to 1 % of the cost apart, which the
+    acceleration check rejects; moving it would change its numbers."""
     from . import encodings as E
     from .problem import PathProblem
 

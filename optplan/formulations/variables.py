@@ -36,6 +36,25 @@ def _count(value, what: str, minimum: int = 1) -> int:
     return integer(minimum)(what, value)
 
 
+def repeats_to_end(P: np.ndarray, goal: np.ndarray) -> np.ndarray:
+    """Paths ``P`` ``(n, N, 2)`` ending at ``goal`` with every repeated point dropped and the
+    paths padded back to ``N`` points with copies of the goal: zero-length segments only at
+    the end, where they change no term (a repeat inside a path would hide its turn from
+    the turn terms, which measure the angle between consecutive segments)."""
+    n = len(P)
+    # keep a point when it differs from the previous one, move the rest to the end
+    keep = np.ones(P.shape[:2], bool)
+    keep[:, 1:] = np.any(P[:, 1:] != P[:, :-1], axis=2)
+    keep[:, -1] = True
+    order = np.argsort(~keep, axis=1, kind="stable")
+    P = np.take_along_axis(P, order[..., None], axis=1)
+    count = keep.sum(axis=1)
+    tail = np.arange(P.shape[1])[None, :] >= count[:, None]
+    P[tail] = np.broadcast_to(goal, (n, P.shape[1], 2))[tail]
+    # the goal kept last: the sorted goal point is the last kept one already
+    return P
+
+
 class Variables:
     """Base class. ``bind`` returns a copy set up for one program's world, start and goal."""
 
@@ -334,17 +353,7 @@ class CellSequence(Variables):
         centres = (cells + 0.5) * g.resolution + np.asarray(g.origin, float)
         P = np.concatenate([self.ctx.start[None, None].repeat(n, 0), centres,
                             self.ctx.goal[None, None].repeat(n, 0)], axis=1)
-        # drop repeats: keep a point when it differs from the previous one, move the rest to the end
-        keep = np.ones(P.shape[:2], bool)
-        keep[:, 1:] = np.any(P[:, 1:] != P[:, :-1], axis=2)
-        keep[:, -1] = True
-        order = np.argsort(~keep, axis=1, kind="stable")
-        P = np.take_along_axis(P, order[..., None], axis=1)
-        count = keep.sum(axis=1)
-        tail = np.arange(P.shape[1])[None, :] >= count[:, None]
-        P[tail] = np.broadcast_to(self.ctx.goal, (n, P.shape[1], 2))[tail]
-        # the goal kept last: the sorted goal point is the last kept one already
-        return P
+        return repeats_to_end(P, self.ctx.goal)
 
     def from_path(self, path):
         g = self.ctx.world
@@ -398,7 +407,7 @@ class GeneralVias(Variables):
         self.n_points = self.encoding.points_bound()
 
     def decode(self, X):
-        return self.encoding.decode(X, self.n_points)
+        return repeats_to_end(self.encoding.decode(X, self.n_points), self.ctx.goal)
 
     def relaxed(self):
         return Points(max(8, 4 * (self.m + 1))).bind(self.ctx)
