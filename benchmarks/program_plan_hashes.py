@@ -6,6 +6,7 @@ refine): run before and after a change that must not move any number, and diff t
 import hashlib, json, sys
 import numpy as np
 import optplan as op
+from optplan.solvers.budget import Budget
 from optplan.world.papermaps import paper_map
 
 def h(res):
@@ -64,6 +65,9 @@ cases = [
   ("circle gwo general", cw, (0.5, 0.5), (9.5, 9.5), dict(algorithm="gwo", pop=20, iters=40, encoding="general")),
   ("grid woa general clearance", gw, gs, gg, dict(algorithm="woa", pop=20, iters=40, encoding="general",
                                                   clearance=0.2)),
+  ("grid gwo budget", gw, gs, gg, dict(algorithm="gwo", pop=10, budget=Budget(iterations=60, stagnation=8))),
+  ("circle pso budget evals", cw, (0.5, 0.5), (9.5, 9.5), dict(algorithm="pso", pop=10,
+                                                               budget=Budget(evaluations=333))),
   # the QP smoother on more maps (its Hessian is derived from the smoothing energy)
   ("grid missa refine qp", hw, hs, hg, dict(algorithm="missa", pop=20, iters=40, refine="qp")),
   ("grid astar refine qp", gw, gs, gg, dict(algorithm="astar", refine="qp")),

@@ -184,3 +184,18 @@ def test_general_vias_paths_repeat_points_only_at_the_end():
         keep = np.r_[True, np.any(np.diff(r, axis=0) != 0, axis=1)]
         np.testing.assert_array_equal(p[:n + 1], r[keep])       # the same polyline
         np.testing.assert_array_equal(p[n + 1:], np.broadcast_to(g, (len(p) - n - 1, 2)))
+
+
+def test_a_budget_object_is_a_swarm_solver_option(routes):
+    from optplan.solvers.budget import Budget
+
+    w = circles()
+    b = Budget(iterations=40, stagnation=5)
+    res = op.plan(w, S, G, algorithm="pso", pop=8, seed=3, budget=b, postprocess="none")
+    assert routes and routes[0][0] == "pso"
+    prog = op.paper_program("yang2023", w, S, G, variables=SplineThrough(3, 100), per_segment=1)  # pso's paper
+    own = prog.solve("pso", pop=8, seed=3, budget=b, start="algorithm")
+    same_run(res, own)
+    assert own.nfev < 8 * 41          # the stagnation stop of the Budget acted
+    with pytest.raises(op.ParameterError, match="not both"):
+        op.plan(w, S, G, algorithm="pso", pop=8, budget=b, max_evals=100)

@@ -249,7 +249,7 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
 
 
 # optimize keywords a program solver does not take as options: such a run calls optimize directly
-_ENGINE_ONLY = ("budget", "seeds", "dim")
+_ENGINE_ONLY = ("seeds", "dim")
 
 
 def _planner_program(problem, preset, pruned, init_mode: str, params):
@@ -257,7 +257,7 @@ def _planner_program(problem, preset, pruned, init_mode: str, params):
     planner's fitness is not a program: pruned-path scoring (its path has as many vertices
     as the pruning keeps, and its violation counts the blocked cells a kept segment passes,
     chen2025's O, not the clearance constraint's colliding segments), a preset given as an
-    object, or engine-only keywords (a Budget object, several seeds in one call)."""
+    object, or engine-only keywords (several seeds in one call, ``dim``)."""
     if pruned is not None or init_mode not in ("feasible", "own") or any(k in params for k in _ENGINE_ONLY):
         return None
     from ..formulations.paper_programs import planner_program

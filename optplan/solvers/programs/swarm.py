@@ -38,6 +38,8 @@ class SwarmSolver(ProgramSolver):
                                 "keep the population every that many iterations (OptimizeResult.archive)"),
         "target": Option(None, number(optional=True), "stop once the best feasible cost is <= target"),
         "callback": Option(None, anything, "callback(state) after each iteration; return False to stop"),
+        "budget": Option(None, anything, "an optplan Budget (iterations, evaluations, stagnation, target) instead "
+                                         "of iters/max_evals/stagnation/target"),
     }
 
     def __init__(self, algorithm: str, **settings) -> None:
@@ -69,7 +71,7 @@ class SwarmSolver(ProgramSolver):
         variables = program.variables
         own = {k: o[k] for k in self.algorithm.defaults() if k in o}
         iters, max_evals = o["iters"], o["max_evals"]
-        if iters is None and max_evals is None:
+        if iters is None and max_evals is None and o["budget"] is None:
             iters = DEFAULT_ITERS
         x0 = start_vector(program, variables, o["init"])
         clearance = program.clearance
@@ -92,4 +94,4 @@ class SwarmSolver(ProgramSolver):
         return optimize(f, np.stack([variables.lower, variables.upper], axis=1), algorithm=self.name, pop=o["pop"],
                         iters=iters, max_evals=max_evals, seed=o["seed"], init=init, repair=variables.repair,
                         progress=o["progress"], stagnation=o["stagnation"], archive_every=o["archive_every"],
-                        target=o["target"], callback=o["callback"], **own)
+                        target=o["target"], callback=o["callback"], budget=o["budget"], **own)
