@@ -6,6 +6,7 @@ refine): run before and after a change that must not move any number, and diff t
 import hashlib, json, sys
 import numpy as np
 import optplan as op
+from optplan.solvers.budget import Budget
 from optplan.world.papermaps import paper_map
 
 def h(res):
@@ -35,9 +36,48 @@ cases = [
   ("circle ipso refine casadi", cw, (0.5, 0.5), (9.5, 9.5), dict(algorithm="ipso", pop=20, iters=40, refine="casadi")),
   ("circle gwo refine qp", cw, (0.5, 0.5), (9.5, 9.5), dict(algorithm="gwo", pop=20, iters=40, refine="qp")),
   ("grid astar refine casadi", gw, gs, gg, dict(algorithm="astar", refine="casadi")),
+  # the routes issue 24's second part moves onto programs (penalty, pruned, other encodings)
+  ("grid missa penalty", hw, hs, hg, dict(algorithm="missa", pop=20, iters=40, constraint="penalty")),
+  ("grid msiar-gwo penalty", gw, gs, gg, dict(algorithm="msiar-gwo", pop=20, iters=40, constraint="penalty")),
+  ("grid gwo penalty clearance", gw, gs, gg, dict(algorithm="gwo", pop=20, iters=40, constraint="penalty",
+                                                  clearance=0.2)),
+  ("circle pso penalty", cw, (0.5, 0.5), (9.5, 9.5), dict(algorithm="pso", pop=20, iters=40, constraint="penalty")),
+  ("circle pso penalty small", cw, (0.5, 0.5), (9.5, 9.5), dict(algorithm="pso", pop=6, iters=30,
+                                                                constraint="penalty")),
+  ("grid gwo waypoints penalty", gw, gs, gg, dict(algorithm="gwo", pop=8, iters=30, encoding="waypoints",
+                                                  constraint="penalty")),
+  ("circle gwo general penalty", cw, (0.5, 0.5), (9.5, 9.5), dict(algorithm="gwo", pop=8, iters=30,
+                                                                  encoding="general", constraint="penalty")),
+  ("grid msiar-gwo pruned", gw, gs, gg, dict(algorithm="msiar-gwo", pop=20, iters=40, fitness_on="pruned")),
+  ("grid missa pruned penalty", hw, hs, hg, dict(algorithm="missa", pop=20, iters=40, fitness_on="pruned",
+                                                 constraint="penalty")),
+  ("grid gwo waypoints", gw, gs, gg, dict(algorithm="gwo", pop=20, iters=40, encoding="waypoints")),
+  ("circle pso waypoints", cw, (0.5, 0.5), (9.5, 9.5), dict(algorithm="pso", pop=20, iters=40, encoding="waypoints")),
+  ("circle gwo waypoints penalty", cw, (0.5, 0.5), (9.5, 9.5), dict(algorithm="gwo", pop=20, iters=40,
+                                                                    encoding="waypoints", constraint="penalty")),
+  ("grid pso (spline)", gw, gs, gg, dict(algorithm="pso", pop=20, iters=40)),
+  ("grid gwo spline", hw, hs, hg, dict(algorithm="gwo", pop=20, iters=40, encoding="spline")),
+  ("circle gwo spline li2023", cw, (0.5, 0.5), (9.5, 9.5), dict(algorithm="gwo", pop=20, iters=40,
+                                                                preset="li2023")),
+  ("grid gwo general", hw, hs, hg, dict(algorithm="gwo", pop=20, iters=40, encoding="general")),
+  ("grid gwo general li2023", gw, gs, gg, dict(algorithm="gwo", pop=20, iters=40, encoding="general",
+                                               preset="li2023")),
+  ("circle gwo general", cw, (0.5, 0.5), (9.5, 9.5), dict(algorithm="gwo", pop=20, iters=40, encoding="general")),
+  ("grid woa general clearance", gw, gs, gg, dict(algorithm="woa", pop=20, iters=40, encoding="general",
+                                                  clearance=0.2)),
+  ("grid gwo budget", gw, gs, gg, dict(algorithm="gwo", pop=10, budget=Budget(iterations=60, stagnation=8))),
+  ("circle pso budget evals", cw, (0.5, 0.5), (9.5, 9.5), dict(algorithm="pso", pop=10,
+                                                               budget=Budget(evaluations=333))),
+  # the QP smoother on more maps (its Hessian is derived from the smoothing energy)
+  ("grid missa refine qp", hw, hs, hg, dict(algorithm="missa", pop=20, iters=40, refine="qp")),
+  ("grid astar refine qp", gw, gs, gg, dict(algorithm="astar", refine="qp")),
+  ("circle ipso refine qp", cw, (0.5, 0.5), (9.5, 9.5), dict(algorithm="ipso", pop=20, iters=40, refine="qp")),
 ]
+only = sys.argv[2:]  # optional case names: run only these
 out = {}
 for name, w, s, g, kw in cases:
+    if only and name not in only:
+        continue
     r = op.plan(w, s, g, seed=0, **kw)
     hh, keep = h(r)
     out[name] = keep

@@ -518,6 +518,9 @@ class Constraint:
     lower: float | None = None
     upper: float | None = None
     name: str = ""
+    # the paper's penalty (per colliding segment, per metre^2 of penetration): how a swarm in
+    # penalty mode weighs this constraint (clearance only, see penalised)
+    paper_penalty: tuple[float, float] | None = None
 
     def __post_init__(self) -> None:
         if not self.name:
@@ -535,10 +538,43 @@ class Constraint:
     def __le__(self, upper):  # (a >= 1) <= 2 is not supported: say so
         raise ParameterError("write a two-sided constraint as two constraints")
 
+    @property
+    def penetration_samples(self) -> int:
+        """Samples per segment of the penetration integral (the clearance term's ``per_segment``, else 8)."""
+        return getattr(self.expr, "per_segment", None) or 8
+
+    def penalised(self, per_collision: float, per_penetration: float = 0.0) -> "Constraint":
+        """This clearance constraint with the papers' penalty: a swarm in penalty mode adds
+        ``per_collision`` per colliding segment (the exact rule) plus ``per_penetration`` times
+        the penetration integral (:func:`optplan.formulations.terms.penetration`) instead of
+        its uniform ``penalty * violation``. The verdict and the violation are unchanged."""
+        from dataclasses import replace
+
+        from ..checks import number
+
+        if not self.is_clearance:
+            raise ParameterError(f"only a clearance constraint (clearance() >= c) has the papers' penalty, not {self.name}")
+        pc = number(0.0)("per_collision", per_collision)
+        pp = number(0.0)("per_penetration", per_penetration)
+        return replace(self, paper_penalty=(float(pc), float(pp)))
+
+    def penalty(self, P: np.ndarray, ctx: ProgramContext, weight: float) -> np.ndarray:
+        """What penalty mode adds for paths ``P`` ``(n, N, 2)``, ``(n,)``: the paper's penalty
+        when one is attached (:meth:`penalised`), else ``weight * violation``."""
+        if self.paper_penalty is None:
+            return weight * self.violation(P, ctx)
+        from .terms import collisions, penetration
+
+        pc, pp = self.paper_penalty
+        out = pc * collisions(ctx.world, P, self.lower)
+        if pp:
+            out = out + pp * penetration(ctx.world, P, self.lower, self.penetration_samples)
+        return out
+
     def violation(self, P: np.ndarray, ctx: ProgramContext) -> np.ndarray:
         """How much each path of ``P`` ``(n, N, 2)`` violates this, ``(n,)``; 0 where it holds."""
         if self.is_clearance:
-            return clearance_violation(ctx.world, P, self.lower)
+            return clearance_violation(ctx.world, P, self.lower, self.penetration_samples)
         v = np.asarray(self.expr.batch(P, ctx), float)
         v = v.reshape(len(P), -1)
         out = np.zeros(len(P))
@@ -549,7 +585,7 @@ class Constraint:
         return np.where(out > VIOLATION_TOL, out, 0.0)
 
 
-def clearance_violation(world, P: np.ndarray, clearance: float) -> np.ndarray:
+def clearance_violation(world, P: np.ndarray, clearance: float, samples_per_segment: int = 8) -> np.ndarray:
     """Colliding segments (the exact rule) plus, on colliding paths only, the penetration
     integral (so the search is guided, and a path the exact rule accepts scores 0)."""
     from .terms import collisions, penetration
@@ -559,5 +595,5 @@ def clearance_violation(world, P: np.ndarray, clearance: float) -> np.ndarray:
         return coll
     pen = np.zeros(len(P))
     bad = coll > 0
-    pen[bad] = penetration(world, P[bad], clearance)
+    pen[bad] = penetration(world, P[bad], clearance, samples_per_segment)
     return coll + pen

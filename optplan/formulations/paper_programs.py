@@ -13,7 +13,7 @@ from ..errors import UnknownAlgorithmError
 from ..world.queries import check_world
 from ..papers import method_of
 from . import expressions as T
-from .presets import PRESETS, get_preset
+from .presets import PRESETS, collision_penalty_on, get_preset
 from .program import PathProgram
 from .variables import BSpline, ColumnNodes, Points, Variables
 
@@ -37,13 +37,18 @@ def fitness_expression(preset) -> T.Expr:
 
 
 def paper_program(name: str, world, start, goal, variables: Variables | None = None,
-                  clearance: float = 0.0, program_class=PathProgram) -> PathProgram:
+                  clearance: float = 0.0, program_class=PathProgram, paper_penalty: bool = False,
+                  per_segment: int | None = None) -> PathProgram:
     """The path fitness of paper ``name`` (``hou2024``, ``yang2023``, ``yuan2021``,
     ``yuan2021-smooth``, ``li2023``, ``chen2025`` or ``length``) as a program: its weighted
     terms minimised subject to ``clearance() >= clearance`` (the exact collision rule).
 
     ``variables`` defaults to the paper's encoding (column nodes on grids; a cubic
-    B-spline for yang2023 and on circle worlds)."""
+    B-spline for yang2023 and on circle worlds). ``paper_penalty=True`` attaches the
+    paper's penalty weights to the clearance constraint (:meth:`Constraint.penalised`), so
+    a swarm solving it with ``constraint="penalty"`` minimises the paper's penalised
+    fitness; ``per_segment`` is the clearance term's samples per segment (also those of the
+    penetration integral in its violation and penalty)."""
     if not isinstance(name, str) or name not in PRESETS:
         raise UnknownAlgorithmError(f"unknown paper program {name!r}; known: {', '.join(sorted(PRESETS))}")
     check_world(world)
@@ -53,7 +58,11 @@ def paper_program(name: str, world, start, goal, variables: Variables | None = N
         variables = PAPER_VARIABLES.get(name, ColumnNodes)() if on_grid else BSpline(ctrl=3, samples=100)
     prog = program_class(world, start, goal, variables=variables, name=name)
     prog.minimize(fitness_expression(name))
-    prog.subject_to(T.clearance() >= float(clearance))
+    con = T.clearance(per_segment) >= float(clearance)
+    if paper_penalty:
+        p = get_preset(name)
+        con = con.penalised(collision_penalty_on(p, world, prog.goal), p.penetration_penalty)
+    prog.subject_to(con)
     return prog
 
 
@@ -89,19 +98,63 @@ def li2023_cell_program(world, start, goal, via: int = 4, clearance: float = 0.0
                          program_class=program_class)
 
 
+def planner_variables(encoding) -> Variables | None:
+    """The program variables that decode like a planner's encoding (same bounds, same
+    paths), or ``None`` for an encoding without a variable twin."""
+    from . import encodings as E
+    from .variables import GeneralVias, SplineThrough, Waypoints
+
+    if isinstance(encoding, E.ColumnNodes):
+        return ColumnNodes() if encoding.snap else None
+    if isinstance(encoding, E.SplinePath):
+        return SplineThrough(encoding.m, encoding.samples)
+    if isinstance(encoding, E.FreeWaypoints):
+        return Waypoints(encoding.m)
+    if isinstance(encoding, E.GeneralPath):
+        return GeneralVias(encoding.m, encoding.clearance, corridor_start=True)
+    return None
+
+
 def planner_program(problem, preset, program_class=PathProgram) -> PathProgram | None:
-    """The paper program a column-node planner optimises, with the planner's segment tables
-    (``problem``, a :class:`~optplan.formulations.problem.PathProblem` in feasibility mode)
-    as its checked acceleration (:meth:`PathProgram.accelerate`): the swarm evaluates the
-    tables, and they are verified to give the program's own cost and violation. ``None``
-    where the planner's fitness is not this program: another encoding, the penalty mode
-    (the paper's penalised fitness) or a preset given as an object."""
-    from .encodings import ColumnNodes as ColumnEncoding
+    """The paper program a planner optimises, with the planner's fitness (``problem``, a
+    :class:`~optplan.formulations.problem.PathProblem`: the column nodes' segment tables,
+    the general encoding's leg tables) as its checked acceleration
+    (:meth:`PathProgram.accelerate`): the swarm evaluates ``problem``, verified to give the
+    program's own cost and violation and, in penalty mode, the paper's penalised fitness
+    (the program's clearance constraint carries the paper's penalty weights). ``None``
+    where the planner's fitness is not such a program: a preset given as an object, an
+    encoding without a variable twin, no free variable, or the general encoding under a
+    preset with turn terms: where a via point snaps to the start, its decoded path begins
+    with a repeated start point, and the planner's turn rule
+    (:func:`optplan.world.metrics.turn_angles_deg`) measures a turn from heading 0 there
+    (the program's ``turn_angles`` sees none), up to 1 % of the cost apart, which the
+    acceleration check rejects; moving it would change its numbers."""
+    from . import encodings as E
+    from .problem import PathProblem
 
     enc = problem.encoding
-    if not (isinstance(preset, str) and preset in PRESETS and isinstance(enc, ColumnEncoding) and enc.snap
-            and problem.preset.constraint == "feasibility" and enc.dim):
+    variables = planner_variables(enc)
+    if not (isinstance(preset, str) and preset in PRESETS and variables is not None and enc.dim):
         return None
-    prog = paper_program(preset, enc.world, enc.start, enc.goal, variables=ColumnNodes(), clearance=problem.clearance,
-                         program_class=program_class)
-    return prog.accelerate(problem.evaluate, name="column segment tables")
+    if isinstance(enc, E.GeneralPath) and problem.has_turn_terms:
+        return None
+    penalty = problem.preset.constraint == "penalty"
+    prog = paper_program(preset, enc.world, enc.start, enc.goal, variables=variables, clearance=problem.clearance,
+                         program_class=program_class, paper_penalty=penalty,
+                         per_segment=None if enc.penetration_samples == 8 else enc.penetration_samples)
+    if not penalty:
+        return prog.accelerate(problem.evaluate, name=_acceleration_name(enc))
+    # penalty mode: the problem's first output is the penalised fitness; its feasibility twin
+    # (same tables) serves the program's (cost, violation)
+    twin = PathProblem(enc, problem.preset, clearance=problem.clearance, constraint="feasibility")
+    return prog.accelerate(twin.evaluate, name=_acceleration_name(enc), penalised=problem.objective)
+
+
+def _acceleration_name(enc) -> str:
+    from . import encodings as E
+
+    if isinstance(enc, E.ColumnNodes):
+        return "column segment tables"
+    if isinstance(enc, E.GeneralPath):
+        return "roadmap leg tables"
+    return f"{type(enc).__name__} fitness"

@@ -65,6 +65,16 @@ PRESETS: dict[str, FitnessPreset] = {
 }
 
 
+def collision_penalty_on(preset: FitnessPreset, world, goal) -> float:
+    """What penalty mode adds per colliding segment on ``world``: the preset's value, or
+    chen2025 eq 32's goal product ``Tx * Ty`` (grid coordinates of the goal, from 1)."""
+    pen = preset.collision_penalty
+    if pen == "goal_product":
+        tx, ty = world.cell_of(goal) + 1 if world.is_grid else goal
+        pen = float(tx * ty)
+    return float(pen)
+
+
 def get_preset(name: str | FitnessPreset) -> FitnessPreset:
     """Look up a preset by name (or pass one through)."""
     if isinstance(name, FitnessPreset):

@@ -15,7 +15,7 @@ from ..errors import ParameterError
 from ..world.metrics import turn_angles_deg
 from . import terms
 from .encodings import PathEncoding
-from .presets import FitnessPreset, get_preset
+from .presets import FitnessPreset, collision_penalty_on, get_preset
 
 
 @dataclass
@@ -45,12 +45,7 @@ class PathProblem:
         if not np.isfinite(c) or c < 0:
             raise ParameterError(f"clearance must be a finite number >= 0 metres, got {self.clearance!r}")
         self.clearance = c
-        pen = self.preset.collision_penalty
-        if pen == "goal_product":
-            world = self.encoding.world
-            tx, ty = world.cell_of(self.encoding.goal) + 1 if world.is_grid else self.encoding.goal
-            pen = float(tx * ty)
-        self._collision_penalty = float(pen)
+        self._collision_penalty = collision_penalty_on(self.preset, self.encoding.world, self.encoding.goal)
 
     @property
     def collision_penalty(self) -> float:

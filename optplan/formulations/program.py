@@ -141,8 +141,9 @@ class PathProgram:
         self.name = name or "program"
         # symbolic problems built by gradient solvers for this program, reused by later solves
         self.built_solvers: dict = {}
-        # an opt-in batched evaluator of the program's own variables (accelerate)
+        # opt-in batched evaluators of the program's own variables (accelerate)
         self.acceleration: Callable | None = None
+        self.penalised_acceleration: Callable | None = None
         self.acceleration_name = ""
 
     # building ---------------------------------------------------------------
@@ -202,17 +203,42 @@ class PathProgram:
         P = (variables or self.variables).decode(X)
         return self.path_costs(P), self.path_violations(P).sum(axis=1)
 
+    @property
+    def has_paper_penalty(self) -> bool:
+        """Whether a constraint carries the papers' penalty (:meth:`Constraint.penalised`)."""
+        return any(c.paper_penalty is not None for c in self.constraints)
+
+    def penalised(self, X: np.ndarray, weight: float) -> np.ndarray:
+        """The penalty-mode fitness of a population ``X`` ``(n, d)``: cost plus each
+        constraint's penalty (the paper's where attached, else ``weight * violation``);
+        served by the :meth:`accelerate` evaluator given as ``penalised``."""
+        if self.penalised_acceleration is not None and self.has_paper_penalty:
+            return self.penalised_acceleration(X)
+        return self.own_penalised(X, weight)
+
+    def own_penalised(self, X: np.ndarray, weight: float) -> np.ndarray:
+        """:meth:`penalised` from the terms themselves (never accelerated)."""
+        if not self.has_paper_penalty:  # the uniform penalty: cost + weight * total violation
+            c, v = self.population(X)
+            return c + weight * v
+        P = self.variables.decode(X)
+        out = self.path_costs(P)
+        for c in self.constraints:
+            out = out + c.penalty(P, self.ctx, weight)
+        return out
+
     def accelerate(self, evaluator: Callable, name: str = "", sample: int = 16, seed: int = 0,
-                   rtol: float = ACCELERATION_RTOL) -> "PathProgram":
+                   rtol: float = ACCELERATION_RTOL, penalised: Callable | None = None) -> "PathProgram":
         """Serve :meth:`population` by ``evaluator(X) -> (cost, violation)``, a faster batched
         evaluator of the same program over the same variables (e.g. the column nodes'
-        segment tables, :class:`~optplan.formulations.problem.PathProblem`).
+        segment tables, :class:`~optplan.formulations.problem.PathProblem`), and, when
+        given, :meth:`penalised` (the papers' penalty) by ``penalised(X) -> fitness``.
 
         Opt-in and checked: on ``sample`` populations rows (half the variables' own
         starts, half uniform in the box, repaired like a swarm's) both views must give the
         same cost (relative ``rtol``) and the same violation (zero on the same rows, equal
-        to ``rtol`` otherwise); else a ParameterError, so an acceleration can never change
-        the objective silently. Returns the program."""
+        to ``rtol`` otherwise), and the same penalised fitness; else a ParameterError, so an
+        acceleration can never change the objective silently. Returns the program."""
         v = self.variables
         rng = np.random.default_rng(seed)
         half = max(int(sample), 2) // 2
@@ -232,7 +258,18 @@ class PathProgram:
             raise ParameterError(f"the acceleration {name or evaluator!r} does not evaluate program {self.name!r}: "
                                  f"cost differs by up to {worst:.3g} (relative) or the violations differ on "
                                  f"{int(np.sum((v1 > 0) != (v2 > 0)))} of {len(X)} sample rows")
+        if penalised is not None:
+            if not self.has_paper_penalty:
+                raise ParameterError("a penalised acceleration needs a constraint with the papers' penalty "
+                                     "(T.clearance() >= c).penalised(...)")
+            p1 = np.asarray(penalised(X), float).reshape(-1)
+            p2 = np.asarray(self.own_penalised(X, 0.0), float).reshape(-1)
+            if not np.allclose(p1, p2, rtol=rtol, atol=rtol):
+                worst = float(np.max(np.abs(p1 - p2) / np.maximum(np.abs(p2), 1.0)))
+                raise ParameterError(f"the acceleration {name or penalised!r} does not give program {self.name!r}'s "
+                                     f"penalised fitness: it differs by up to {worst:.3g} (relative)")
         self.acceleration, self.acceleration_name = evaluator, name or getattr(evaluator, "__name__", "evaluator")
+        self.penalised_acceleration = penalised
         return self
 
     def evaluate(self, path) -> tuple[float, dict[str, float]]:

@@ -10,6 +10,8 @@ fixed and never variables.
   smoothing variables).
 * :class:`BSpline` — a clamped cubic B-spline through start and goal with ``ctrl``
   free control points, sampled at ``samples`` points (the path is linear in them).
+* :class:`SplineThrough` — a cubic spline interpolating start, ``k`` free handle points and
+  goal (yang2023 eq 3-4, the planners' ``encoding="spline"``), sampled at ``samples`` points.
 * :class:`ColumnNodes` — one node per grid column (chen2025 §4.3.1). Snapped to
   cell centres for the swarms; gradient solvers see its continuous relaxation
   (:meth:`Variables.relaxed`), and say so.
@@ -32,6 +34,25 @@ from .namespaces import Sym
 
 def _count(value, what: str, minimum: int = 1) -> int:
     return integer(minimum)(what, value)
+
+
+def repeats_to_end(P: np.ndarray, goal: np.ndarray) -> np.ndarray:
+    """Paths ``P`` ``(n, N, 2)`` ending at ``goal`` with every repeated point dropped and the
+    paths padded back to ``N`` points with copies of the goal: zero-length segments only at
+    the end, where they change no term (a repeat inside a path would hide its turn from
+    the turn terms, which measure the angle between consecutive segments)."""
+    n = len(P)
+    # keep a point when it differs from the previous one, move the rest to the end
+    keep = np.ones(P.shape[:2], bool)
+    keep[:, 1:] = np.any(P[:, 1:] != P[:, :-1], axis=2)
+    keep[:, -1] = True
+    order = np.argsort(~keep, axis=1, kind="stable")
+    P = np.take_along_axis(P, order[..., None], axis=1)
+    count = keep.sum(axis=1)
+    tail = np.arange(P.shape[1])[None, :] >= count[:, None]
+    P[tail] = np.broadcast_to(goal, (n, P.shape[1], 2))[tail]
+    # the goal kept last: the sorted goal point is the last kept one already
+    return P
 
 
 class Variables:
@@ -192,6 +213,46 @@ class BSpline(Variables):
         return self.ctrl
 
 
+class SplineThrough(Variables):
+    """A cubic spline through start, ``k`` free handle points and goal (yang2023 eq 3-4),
+    parametrised uniformly in [0, 1] and sampled at ``samples`` points: the planners'
+    ``encoding="spline"`` (:class:`optplan.formulations.encodings.SplinePath`, whose sampling
+    matrix it reads). ``x = (x1, y1, ..., xk, yk)``; the path is linear in ``x``."""
+
+    def __init__(self, k: int = 3, samples: int = 100) -> None:
+        self.k = _count(k, "SplineThrough(k)")
+        self.samples = _count(samples, "SplineThrough(samples)", 3)
+        self.name = f"SplineThrough(k={self.k}, samples={self.samples})"
+
+    def _setup(self) -> None:
+        from .encodings import SplinePath
+
+        self.encoding = SplinePath(self.ctx.world, self.ctx.start, self.ctx.goal, m=self.k, samples=self.samples)
+        self.dim = self.encoding.dim
+        self.lower, self.upper = self.encoding.lower, self.encoding.upper
+        self.n_points = self.samples
+        B = self.encoding._basis
+        self._inner = B[:, 1:-1]
+        self._ends = np.outer(B[:, 0], self.ctx.start) + np.outer(B[:, -1], self.ctx.goal)
+
+    def decode(self, X):
+        return self.encoding.decode(X)
+
+    def decode_symbolic(self, x):
+        import casadi as ca
+
+        C = ca.reshape(x, 2, self.k).T
+        return Sym(ca.mtimes(ca.DM(self._inner), C) + ca.DM(self._ends), (self.samples, 2))
+
+    def from_path(self, path):
+        target = resample_path(np.asarray(path, float), self.samples) - self._ends
+        C, *_ = np.linalg.lstsq(self._inner, target, rcond=None)
+        return np.clip(C.ravel(), self.lower, self.upper)
+
+    def initial_population(self, n, rng, clearance):
+        return Waypoints.initial_population(self, n, rng, clearance)
+
+
 class ColumnNodes(Variables):
     """One node per grid column strictly between start and goal (chen2025 §4.3.1):
     ``x[j]`` is the row coordinate (grid units) of the node in the ``j``-th column.
@@ -292,17 +353,7 @@ class CellSequence(Variables):
         centres = (cells + 0.5) * g.resolution + np.asarray(g.origin, float)
         P = np.concatenate([self.ctx.start[None, None].repeat(n, 0), centres,
                             self.ctx.goal[None, None].repeat(n, 0)], axis=1)
-        # drop repeats: keep a point when it differs from the previous one, move the rest to the end
-        keep = np.ones(P.shape[:2], bool)
-        keep[:, 1:] = np.any(P[:, 1:] != P[:, :-1], axis=2)
-        keep[:, -1] = True
-        order = np.argsort(~keep, axis=1, kind="stable")
-        P = np.take_along_axis(P, order[..., None], axis=1)
-        count = keep.sum(axis=1)
-        tail = np.arange(P.shape[1])[None, :] >= count[:, None]
-        P[tail] = np.broadcast_to(self.ctx.goal, (n, P.shape[1], 2))[tail]
-        # the goal kept last: the sorted goal point is the last kept one already
-        return P
+        return repeats_to_end(P, self.ctx.goal)
 
     def from_path(self, path):
         g = self.ctx.world
@@ -331,12 +382,21 @@ class GeneralVias(Variables):
     affine = False
     relax_note = "dense free points through the decoded path (snapping to roadmap nodes has no gradient)"
 
-    def __init__(self, m: int = 3, clearance: float = 0.0) -> None:
+    def __init__(self, m: int = 3, clearance: float = 0.0, corridor_start: bool = False) -> None:
         from ..checks import number
 
         self.m = _count(m, "GeneralVias(m)")
         self.clearance = number(0.0)("GeneralVias(clearance)", clearance)
+        if not isinstance(corridor_start, bool):
+            raise ParameterError(f"GeneralVias(corridor_start) must be True or False, got {corridor_start!r}")
+        self.corridor_start = corridor_start
         self.name = f"GeneralVias({self.m})" if not self.clearance else f"GeneralVias({self.m}, clearance={self.clearance:g})"
+
+    def initial_population(self, n, rng, clearance):
+        """With ``corridor_start``: one random corridor per individual
+        (:meth:`~optplan.formulations.encodings.GeneralPath.sample_corridors`, what ``op.plan``
+        starts the general encoding from); else uniform in the bounds."""
+        return self.encoding.sample_corridors(n, rng) if self.corridor_start else None
 
     def _setup(self) -> None:
         from .encodings import GeneralPath
@@ -347,7 +407,7 @@ class GeneralVias(Variables):
         self.n_points = self.encoding.points_bound()
 
     def decode(self, X):
-        return self.encoding.decode(X, self.n_points)
+        return repeats_to_end(self.encoding.decode(X, self.n_points), self.ctx.goal)
 
     def relaxed(self):
         return Points(max(8, 4 * (self.m + 1))).bind(self.ctx)
@@ -361,6 +421,7 @@ def as_variables(v) -> Variables:
     if isinstance(v, Variables):
         return v
     raise ParameterError(f"variables must be op.Waypoints(k), op.Points(n), op.BSpline(ctrl, samples), "
-                         f"op.ColumnNodes(), op.CellSequence(via) or op.GeneralVias(m), got {v!r}")
+                         f"op.SplineThrough(k, samples), op.ColumnNodes(), op.CellSequence(via) or "
+                         f"op.GeneralVias(m), got {v!r}")
 
 

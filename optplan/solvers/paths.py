@@ -1,9 +1,13 @@
 """Global path planning with metaheuristics: formulation + solver + exact check.
 
 ``plan_path`` builds a :class:`PathProblem` (an encoding and a paper's fitness
-preset), hands its batched objective to ``optimize`` with the chosen algorithm,
+preset) and the paper's program over the matching variables
+(:func:`~optplan.formulations.paper_programs.planner_program`, the problem its checked
+acceleration), solves it with the program swarm solver of the chosen algorithm,
 decodes the best individual, applies the paper's post-processing, and returns a
-:class:`PlanResult` validated by the exact segment rule. Grid-graph planners
+:class:`PlanResult` validated by the exact segment rule. Pruned-path scoring and the
+general encoding under turn terms keep the problem's own fitness (``_planner_program``
+says why). Grid-graph planners
 (``aco``) and cell-sequence GAs are dispatched here as well.
 """
 from __future__ import annotations
@@ -87,7 +91,8 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
     defaults to the feasibility rule (feasible beats infeasible, then less
     violation, then the paper's cost), which finds feasible paths far more often
     than the papers' penalties on our maps; ``constraint="penalty"`` gives the
-    paper's penalised fitness exactly.
+    paper's penalised fitness exactly (the program's clearance constraint carries the
+    paper's penalty weights, :meth:`~optplan.terms.Constraint.penalised`).
 
     ``encoding`` defaults to one node per column on grids (spline handles for the
     yang2023 planners ``pso``/``ipso``, :data:`GRID_ENCODING`) and spline handles on
@@ -191,11 +196,13 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
     scored = pruned if pruned is not None else problem
     program = _planner_program(problem, preset, pruned, init_mode, params)
     if program is not None:
-        # the paper's program, solved through the program solver contract; the segment tables
-        # are its checked acceleration, so the numbers are the tables' exactly
+        # the paper's program, solved through the program solver contract; the planner's
+        # fitness (segment or leg tables) is its checked acceleration, so the numbers are the
+        # tables' exactly, and penalty mode is the program's paper penalty
         from .programs.swarm import SwarmSolver
 
         opt = SwarmSolver(name).search(program, pop=pop, iters=iters, seed=seed, max_evals=max_evals,
+                                       constraint=problem.preset.constraint,
                                        start="variables" if init_mode == "feasible" else "algorithm",
                                        archive_every=ARCHIVE_EVERY if alternatives else None, **params)
     else:
@@ -242,13 +249,15 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
 
 
 # optimize keywords a program solver does not take as options: such a run calls optimize directly
-_ENGINE_ONLY = ("budget", "seeds", "dim")
+_ENGINE_ONLY = ("seeds", "dim")
 
 
 def _planner_program(problem, preset, pruned, init_mode: str, params):
     """The paper program the run optimises (:func:`planner_program`), or ``None`` where the
-    planner's fitness is not a program: pruned-path scoring, the penalty mode, other
-    encodings, or engine-only keywords."""
+    planner's fitness is not a program: pruned-path scoring (its path has as many vertices
+    as the pruning keeps, and its violation counts the blocked cells a kept segment passes,
+    chen2025's O, not the clearance constraint's colliding segments), a preset given as an
+    object, or engine-only keywords (several seeds in one call, ``dim``)."""
     if pruned is not None or init_mode not in ("feasible", "own") or any(k in params for k in _ENGINE_ONLY):
         return None
     from ..formulations.paper_programs import planner_program

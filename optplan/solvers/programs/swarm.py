@@ -25,7 +25,8 @@ class SwarmSolver(ProgramSolver):
         "max_evals": Option(None, integer(1, optional=True), "evaluation budget: exactly this many rows evaluated"),
         "seed": Option(0, seed, "int, None or numpy Generator"),
         "constraint": Option("feasibility", choice("feasibility", "penalty"),
-                             "feasibility rule (feasible first, then violation, then cost) or cost + penalty * violation"),
+                             "feasibility rule (feasible first, then violation, then cost) or cost + penalty * violation "
+                             "(a constraint's own paper penalty where it has one)"),
         "penalty": Option(1000.0, number(0.0), "weight of the violation in penalty mode"),
         "init": INIT_OPTION,
         "progress": Option(False, choice(False, True), "print progress to stderr"),
@@ -37,6 +38,8 @@ class SwarmSolver(ProgramSolver):
                                 "keep the population every that many iterations (OptimizeResult.archive)"),
         "target": Option(None, number(optional=True), "stop once the best feasible cost is <= target"),
         "callback": Option(None, anything, "callback(state) after each iteration; return False to stop"),
+        "budget": Option(None, anything, "an optplan Budget (iterations, evaluations, stagnation, target) instead "
+                                         "of iters/max_evals/stagnation/target"),
     }
 
     def __init__(self, algorithm: str, **settings) -> None:
@@ -68,7 +71,7 @@ class SwarmSolver(ProgramSolver):
         variables = program.variables
         own = {k: o[k] for k in self.algorithm.defaults() if k in o}
         iters, max_evals = o["iters"], o["max_evals"]
-        if iters is None and max_evals is None:
+        if iters is None and max_evals is None and o["budget"] is None:
             iters = DEFAULT_ITERS
         x0 = start_vector(program, variables, o["init"])
         clearance = program.clearance
@@ -84,12 +87,11 @@ class SwarmSolver(ProgramSolver):
         penalty = o["penalty"]
         if o["constraint"] == "feasibility":
             f = program.population
-        else:
+        else:  # the program's penalty: the paper's where a constraint carries one, else penalty * violation
             def f(X):
-                c, v = program.population(X)
-                return c + penalty * v
+                return program.penalised(X, penalty)
         init = initial if o["start"] == "variables" or x0 is not None else None
         return optimize(f, np.stack([variables.lower, variables.upper], axis=1), algorithm=self.name, pop=o["pop"],
                         iters=iters, max_evals=max_evals, seed=o["seed"], init=init, repair=variables.repair,
                         progress=o["progress"], stagnation=o["stagnation"], archive_every=o["archive_every"],
-                        target=o["target"], callback=o["callback"], **own)
+                        target=o["target"], callback=o["callback"], budget=o["budget"], **own)

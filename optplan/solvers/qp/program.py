@@ -7,8 +7,11 @@ Decision variable: the ``N`` path points, stacked ``z = (x_0..x_{N-1}, y_0..y_{N
     J(z) = sum_i |p_{i+1} - p_i|^2  +  w_smooth * sum_i |p_{i+1} - 2 p_i + p_{i-1}|^2
 
 (squared first differences: a length surrogate that pulls the path taut and
-spaces the points evenly; squared second differences: smoothness). In OSQP's
-form ``1/2 z' P z`` with ``P = 2 blkdiag(H, H)``, ``H = D1'D1 + w D2'D2``.
+spaces the points evenly; squared second differences: smoothness). It is
+:func:`optplan.formulations.paper_programs.smoothing_energy`, written once: OSQP and
+cvxpy take it as ``1/2 z' P z`` with ``P`` its exact Hessian (:func:`energy_hessian`,
+``2 blkdiag(H, H)``, ``H = D1'D1 + w D2'D2``), and :func:`objective_value` is its
+batched view.
 
 Constraints (a :class:`~optplan.solvers.qp.corridor.Corridor`):
 ``lo <= p_j <= hi`` per point (start, goal and pinned points have ``lo = hi``),
@@ -54,22 +57,33 @@ class QPSolution:
     dual: np.ndarray | None = None
 
 
-def difference_hessian(N: int, w_smooth: float) -> sp.csc_matrix:
-    """``H = D1'D1 + w D2'D2`` for one coordinate (``N x N``, pentadiagonal)."""
-    D1 = sp.diags([-np.ones(N - 1), np.ones(N - 1)], [0, 1], shape=(N - 1, N))
-    H = D1.T @ D1
-    if N >= 3 and w_smooth:
-        D2 = sp.diags([np.ones(N - 2), -2 * np.ones(N - 2), np.ones(N - 2)], [0, 1, 2], shape=(N - 2, N))
-        H = H + w_smooth * (D2.T @ D2)
-    return sp.csc_matrix(H)
+def energy_hessian(N: int, w_smooth: float) -> sp.csc_matrix:
+    """``P = 2 blkdiag(H, H)`` (``2N x 2N``, ``z = (x.., y..)``): the Hessian of the smoothing
+    energy (:func:`optplan.formulations.paper_programs.smoothing_energy`, its symbolic view)
+    with all ``N`` points free; exact, the energy is quadratic (its terms' quadratic view)."""
+    import casadi as ca
+
+    from ...formulations.namespaces import Sym
+    from ...formulations.paper_programs import smoothing_energy
+
+    energy = smoothing_energy(w_smooth)
+    if not energy.quadratic:  # pragma: no cover - the energy's terms are declared quadratic
+        raise ParameterError(f"the smoothing energy {energy.name} is not quadratic")
+    z = ca.SX.sym("z", 2 * N)
+    f = energy.symbolic(Sym(ca.horzcat(z[:N], z[N:]), (N, 2)), None).m
+    H = ca.Function("hessian", [z], [ca.hessian(f, z)[0]])(np.zeros(2 * N))   # constant: any point
+    P = sp.csc_matrix(H.sparse())
+    P.eliminate_zeros()   # a zero weight leaves structural zeros (no entries, as OSQP wants)
+    P.sort_indices()
+    return P
 
 
 def objective_value(points: np.ndarray, w_smooth: float) -> float:
-    """``J`` of a path (see the module docstring)."""
+    """``J`` of a path (see the module docstring): the smoothing energy's batched view."""
+    from ...formulations.paper_programs import smoothing_energy
+
     P = np.asarray(points, float)
-    d = np.diff(P, axis=0)
-    dd = P[2:] - 2 * P[1:-1] + P[:-2]
-    return float((d ** 2).sum() + w_smooth * (dd ** 2).sum())
+    return float(smoothing_energy(w_smooth).batch(P[None], None)[0])
 
 
 class OsqpCorridorQP:
@@ -86,8 +100,7 @@ class OsqpCorridorQP:
         if N < 2:
             raise ParameterError(f"the corridor QP needs at least 2 points, got {N}")
         self.N, self.K, self.w_smooth = N, K, float(w_smooth)
-        H = difference_hessian(N, w_smooth)
-        self.P = sp.triu(sp.block_diag([2 * H, 2 * H]), format="csc")
+        self.P = sp.triu(energy_hessian(N, w_smooth), format="csc")
         # half-plane rows: piece i, slot k, end e -> point j = i + e; entries at x_j and y_j
         i, k, e = np.meshgrid(np.arange(N - 1), np.arange(K), np.arange(2), indexing="ij")
         j = (i + e).ravel()
@@ -173,9 +186,8 @@ class CvxpyCorridorQP:
             ones = np.ones((1, K))
             for ends in (X[:-1], X[1:]):   # both ends of every piece
                 cons.append(cp.multiply(self.nx, ends[:, 0:1] @ ones) + cp.multiply(self.ny, ends[:, 1:2] @ ones) >= self.b)
-        J = cp.sum_squares(X[1:] - X[:-1])
-        if N >= 3 and w_smooth:
-            J = J + self.w_smooth * cp.sum_squares(X[2:] - 2 * X[1:-1] + X[:-2])
+        # vec(X) stacks the columns: z = (x.., y..), the layout of energy_hessian
+        J = 0.5 * cp.quad_form(cp.vec(X, order="F"), cp.psd_wrap(energy_hessian(N, w_smooth)))
         self.X = X
         self.problem = cp.Problem(cp.Minimize(J), cons)
         if not self.problem.is_dpp():  # would be re-canonicalised on every solve
