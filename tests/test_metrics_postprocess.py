@@ -25,6 +25,15 @@ def test_repeated_points_are_not_turns():
     assert total_turn_deg(p) == 0 and n_turns(p) == 0 and max_curvature(p) == 0
 
 
+def test_a_repeated_start_is_not_a_turn():
+    # a via point snapped onto the start repeats it; the first real heading is not a turn
+    # from "heading 0" (it counted 45 degrees here before)
+    p = np.array([[0, 0], [0, 0], [1, 1], [2, 1]], float)
+    assert total_turn_deg(p) == pytest.approx(45.0) and n_turns(p) == 1
+    batch = np.array([[[0, 0], [0, 0], [0, 0], [1, 1]], [[0, 0], [1, 0], [2, 0], [2, 1]]], float)
+    np.testing.assert_allclose(total_turn_deg(batch), [0.0, 90.0])
+
+
 def test_min_clearance_on_grid():
     g = op.GridMap.from_rows([[0, 0, 0], [0, 1, 0], [0, 0, 0]])
     m = path_metrics(g, [[0.5, 0.5], [2.5, 0.5]])

@@ -32,9 +32,13 @@ def turn_angles_deg(paths) -> np.ndarray:
     heading = np.arctan2(d[..., 1], d[..., 0])
     zero = (d[..., 0] == 0) & (d[..., 1] == 0)
     if np.any(zero):
-        # carry the previous heading forward over repeated points
-        idx = np.where(~zero, np.arange(heading.shape[-1]), 0)
-        idx = np.maximum.accumulate(idx, axis=-1)
+        # carry the previous heading forward over repeated points; repeats before the first
+        # real segment take that segment's heading (a repeated start is not a turn either)
+        n = heading.shape[-1]
+        ar = np.broadcast_to(np.arange(n), heading.shape)
+        idx = np.maximum.accumulate(np.where(~zero, ar, -1), axis=-1)
+        first = np.where(~zero, ar, n).min(axis=-1, keepdims=True)
+        idx = np.where(idx < 0, np.minimum(first, n - 1), idx)
         heading = np.take_along_axis(heading, idx, axis=-1)
     turn = np.diff(heading, axis=-1)
     turn = (turn + np.pi) % (2 * np.pi) - np.pi
