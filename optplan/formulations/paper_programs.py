@@ -123,20 +123,13 @@ def planner_program(problem, preset, program_class=PathProgram) -> PathProgram |
     program's own cost and violation and, in penalty mode, the paper's penalised fitness
     (the program's clearance constraint carries the paper's penalty weights). ``None``
     where the planner's fitness is not such a program: a preset given as an object, an
-    encoding without a variable twin, no free variable, or the general encoding under a
-    preset with turn terms: where a via point snaps to the start, its decoded path begins
-    with a repeated start point, and the planner's turn rule
-    (:func:`optplan.world.metrics.turn_angles_deg`) measures a turn from heading 0 there
-    (the program's ``turn_angles`` sees none), up to 1 % of the cost apart, which the
-    acceleration check rejects; moving it would change its numbers."""
+    encoding without a variable twin, or no free variable."""
     from . import encodings as E
     from .problem import PathProblem
 
     enc = problem.encoding
     variables = planner_variables(enc)
     if not (isinstance(preset, str) and preset in PRESETS and variables is not None and enc.dim):
-        return None
-    if isinstance(enc, E.GeneralPath) and problem.has_turn_terms:
         return None
     penalty = problem.preset.constraint == "penalty"
     prog = paper_program(preset, enc.world, enc.start, enc.goal, variables=variables, clearance=problem.clearance,

@@ -5,9 +5,8 @@ preset) and the paper's program over the matching variables
 (:func:`~optplan.formulations.paper_programs.planner_program`, the problem its checked
 acceleration), solves it with the program swarm solver of the chosen algorithm,
 decodes the best individual, applies the paper's post-processing, and returns a
-:class:`PlanResult` validated by the exact segment rule. Pruned-path scoring and the
-general encoding under turn terms keep the problem's own fitness (``_planner_program``
-says why). Grid-graph planners
+:class:`PlanResult` validated by the exact segment rule. Pruned-path scoring keeps the
+problem's own fitness (``_planner_program`` says why). Grid-graph planners
 (``aco``) and cell-sequence GAs are dispatched here as well.
 """
 from __future__ import annotations
