@@ -44,6 +44,7 @@ _LAZY = {
     "ColumnNodes": "optplan.programs",
     "CellSequence": "optplan.programs",
     "GeneralVias": "optplan.programs",
+    "SplineThrough": "optplan.programs",
     "paper_program": "optplan.programs",
     "smoothing_program": "optplan.programs",
     "show_options": "optplan.programs",

@@ -12,6 +12,7 @@ from optplan.programs import ColumnNodes as ColumnNodes
 from optplan.programs import GeneralVias as GeneralVias
 from optplan.programs import PathProgram as PathProgram
 from optplan.programs import Points as Points
+from optplan.programs import SplineThrough as SplineThrough
 from optplan.programs import Waypoints as Waypoints
 from optplan.programs import paper_program as paper_program
 from optplan.programs import show_options as show_options
@@ -34,4 +35,4 @@ from optplan.world.scenario import Scenario as Scenario
 from optplan.world.scenario import load_scenario as load_scenario
 
 __version__: str
-__all__ = ['BSpline', 'CellSequence', 'CircleWorld', 'ColumnNodes', 'GeneralVias', 'GridMap', 'InfeasibleQueryError', 'MapFormatError', 'OptimizeResult', 'OptplanError', 'ParameterError', 'PathProgram', 'PlanResult', 'Points', 'ProgramResult', 'RobotSpec', 'Scenario', 'ScenarioError', 'SimResult', 'UnknownAlgorithmError', 'Waypoints', 'algorithms', 'compare', 'export_path', 'export_trajectory', 'load_map', 'load_scen', 'load_scenario', 'optimize', 'paper_program', 'path_metrics', 'plan', 'save_map', 'shortest_path', 'show_options', 'simulate', 'smoothing_program', 'validate_path']
+__all__ = ['BSpline', 'CellSequence', 'CircleWorld', 'ColumnNodes', 'GeneralVias', 'GridMap', 'InfeasibleQueryError', 'MapFormatError', 'OptimizeResult', 'OptplanError', 'ParameterError', 'PathProgram', 'PlanResult', 'Points', 'ProgramResult', 'RobotSpec', 'Scenario', 'ScenarioError', 'SimResult', 'SplineThrough', 'UnknownAlgorithmError', 'Waypoints', 'algorithms', 'compare', 'export_path', 'export_trajectory', 'load_map', 'load_scen', 'load_scenario', 'optimize', 'paper_program', 'path_metrics', 'plan', 'save_map', 'shortest_path', 'show_options', 'simulate', 'smoothing_program', 'validate_path']

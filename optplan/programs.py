@@ -8,9 +8,10 @@ from __future__ import annotations
 
 from .formulations.paper_programs import fitness_expression, paper_program, smoothing_program
 from .formulations.program import PathProgram, ProgramSolver, register_solver
-from .formulations.variables import BSpline, CellSequence, ColumnNodes, GeneralVias, Points, Variables, Waypoints
+from .formulations.variables import (BSpline, CellSequence, ColumnNodes, GeneralVias, Points, SplineThrough, Variables,
+                                      Waypoints)
 from .solvers.programs import get_solver, show_options, solver_names
 
 __all__ = ["PathProgram", "ProgramSolver", "register_solver", "Variables", "Waypoints", "Points", "BSpline",
-           "ColumnNodes", "CellSequence", "GeneralVias", "paper_program", "smoothing_program", "fitness_expression", "get_solver",
+           "ColumnNodes", "CellSequence", "GeneralVias", "SplineThrough", "paper_program", "smoothing_program", "fitness_expression", "get_solver",
            "show_options", "solver_names"]
