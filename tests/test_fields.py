@@ -72,3 +72,58 @@ def test_symbolic_strip_reads_the_spline_near_the_path_and_the_radius_away_from_
     np.testing.assert_array_equal(np.asarray(F2(Q[:, 0], Q[:, 1], padded)).ravel(), got)
     with pytest.raises(ValueError):
         sp.strip(path, radius, blocks - 1)
+
+
+def _large_pair(monkeypatch, seed=5):
+    """A map above LOCAL_POINTS (chunked spline) and a copy fitted whole (the reference)."""
+    import optplan.world.fields as F
+
+    big = city_map(160, seed=seed)
+    assert (big.height * 4 + 1) * (big.width * 4 + 1) > F.LOCAL_POINTS
+    ref_map = op.GridMap(big.occ.copy(), big.resolution, big.origin)
+    monkeypatch.setattr(F, "LOCAL_POINTS", 1 << 40)
+    ref = distance_spline(ref_map)
+    monkeypatch.undo()
+    return big, distance_spline(big), ref, ref_map
+
+
+def test_chunked_spline_is_the_whole_fit_near_obstacles_and_local_to_the_path(monkeypatch):
+    from optplan.world.fields import REACH_CELLS
+
+    big, lazy, ref, ref_map = _large_pair(monkeypatch)
+    assert lazy.filler is not None and ref.filler is None and not lazy.filler.done.any()
+    # a short path: the strip fills only the chunks around it
+    path = np.array([[30.5, 30.5], [45.5, 52.5]])
+    params, blocks = lazy.strip(path, 6.0)
+    assert 0 < lazy.filler.done.mean() < 0.2
+    ref_params, ref_blocks = ref.strip(path, 6.0)
+    assert blocks == ref_blocks
+    # near obstacles (where the NLP's constraints act) the values are the whole-map fit's
+    Q = np.random.default_rng(0).uniform([20, 20], [56, 63], size=(20000, 2))
+    d = grid_distance_field(ref_map)(Q)
+    near = np.abs(d) < (REACH_CELLS / 2) * big.resolution   # the cap's kink is felt only near the reach
+    assert near.sum() > 1000
+    np.testing.assert_allclose(lazy(Q)[near], ref(Q)[near], rtol=0, atol=1e-5)
+
+
+def test_chunked_spline_does_not_depend_on_the_order_of_reads(monkeypatch):
+    big, lazy, _, _ = _large_pair(monkeypatch)
+    other = distance_spline(op.GridMap(big.occ.copy(), big.resolution, big.origin))
+    a, b = np.array([[10.5, 10.5], [60.5, 20.5]]), np.array([[50.5, 15.5], [55.5, 80.5]])
+    lazy.strip(a, 6.0), lazy.strip(b, 6.0)
+    other.strip(b, 6.0), other.strip(a, 6.0)
+    np.testing.assert_array_equal(lazy.filler.done, other.filler.done)
+    np.testing.assert_array_equal(lazy.coeffs, other.coeffs)
+
+
+def test_refinement_on_a_large_map_is_valid_and_fills_only_its_strip():
+    from optplan.solvers.refine import refine_path
+
+    big = city_map(160, seed=5)
+    free = np.argwhere(~big.occ)                      # (iy, ix) of free cells
+    pick = lambda x, y: free[np.argmin(np.abs(free - [y, x]).sum(axis=1))][::-1]
+    s, g = big.cell_center(pick(20, 20)), big.cell_center(pick(60, 45))
+    seed = op.shortest_path(big, s, g, method="astar").path
+    out = refine_path(big, seed, "casadi", tube_radius=0.0)
+    assert out.success and op.validate_path(big, out.path)
+    assert distance_spline(big).filler.done.mean() < 0.5

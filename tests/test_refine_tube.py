@@ -110,7 +110,9 @@ def test_reproducible_and_exposed_through_plan():
                 refine_options={"tube_radius": 6.0})
     b = op.plan(world, s, g, algorithm="pso", seed=3, pop=10, iters=20, refine="casadi",
                 refine_options={"tube_radius": 6.0})
-    np.testing.assert_array_equal(a.path, b.path)
+    # equal up to rounding: the QP smoother reuses a cached OSQP instance per size, and its first
+    # solve in a process differs from later ones in the last bits (~1e-13 m)
+    np.testing.assert_allclose(a.path, b.path, rtol=0, atol=1e-9)
     assert a.refined and a.feasible and a.message == b.message
     t1, t2 = tube_path(world, LONG_WAY, 6.0), tube_path(world, LONG_WAY, 6.0)
     np.testing.assert_array_equal(t1.path, t2.path)

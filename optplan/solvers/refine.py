@@ -40,6 +40,7 @@ otherwise the seed is returned with ``refined=False`` and the reason in
 """
 from __future__ import annotations
 
+import functools
 from dataclasses import replace
 
 import numpy as np
@@ -95,16 +96,59 @@ def tube_radius_for(world, method: str, tube_radius=None) -> float:
 
 
 def smoother_for(method: str):
-    """The smoothing function behind ``refine=method`` (``casadi``: IPOPT, ``qp``: the corridor QP)."""
+    """The smoothing function behind ``refine=method`` (``casadi``: IPOPT kept in the seed's
+    class, :func:`in_seed_class`; ``qp``: the corridor QP)."""
     if method == "casadi":
         from .nlp import smooth_path
 
-        return smooth_path
+        return in_seed_class(smooth_path)
     if method == "qp":
         from .qp import smooth_path_qp
 
         return smooth_path_qp
     raise ParameterError(f"refine must be 'casadi' or 'qp', got {method!r}")
+
+
+def in_seed_class(smoother):
+    """``smoother`` (the CasADi one) with the local contract enforced: the result keeps the
+    h-signature of a collision-free seed.
+
+    Why it is needed: IPOPT's first steps from a seed that is infeasible for the NLP's
+    cushioned constraints (a taut seed touches corners) are long, nearly free steps of the
+    path energy, and on cluttered maps they can carry points across a one-cell obstacle;
+    the solve then converges on its far side, in another, often longer, class (issue 26:
+    random20-s7050). The check is the signature of the result against the seed's
+    (:func:`optplan.world.roadmap.h_signature`, no roadmap built); when they differ the
+    correction is the corridor QP smoother (:func:`optplan.solvers.qp.smooth_path_qp`) from
+    the seed, which cannot leave the seed's corridor. Its result replaces the NLP's only when
+    it is valid and in the seed's class; otherwise the NLP's result stays, and the message
+    says that it left the class.
+    """
+    @functools.wraps(smoother)
+    def smooth(world, seed_path, clearance: float = 0.0, **options):
+        out = smoother(world, seed_path, clearance, **options)
+        if not out.success:
+            return out
+        from ..world.geometry import validate_path
+        from ..world.roadmap import h_signature
+
+        P = np.asarray(seed_path, float)
+        target = h_signature(world, P, clearance)
+        if np.array_equal(h_signature(world, out.path, clearance), target) or not validate_path(world, P, clearance):
+            return out  # in class, or a colliding seed (it has no class to keep)
+        from .qp import smooth_path_qp
+
+        q = smooth_path_qp(world, P, clearance, **({"w_smooth": options["w_smooth"]} if "w_smooth" in options else {}))
+        t = out.solve_time_s + q.solve_time_s
+        if q.success and np.array_equal(h_signature(world, q.path, clearance), target):
+            return replace(q, solve_time_s=t, iterations=out.iterations + q.iterations, rounds=out.rounds + q.rounds,
+                           message="; ".join(m for m in ("the NLP left the seed's homotopy class; the corridor QP "
+                                                         "from the seed kept it", q.message) if m))
+        why = q.message if not q.success else "it left the class too"
+        return replace(out, solve_time_s=t, message="; ".join(m for m in (out.message, "the result is not in the "
+                       f"seed's homotopy class (the corridor QP correction failed: {why})") if m))
+
+    return smooth
 
 
 def refine_path(world, path, method: str = "casadi", clearance: float = 0.0, tube_radius: float | None = None,

@@ -50,6 +50,8 @@ DEFAULT_WIDTHS = 2.0
 # never coarser than RASTER_MAX_STEP metres
 RASTER_CELLS = 200
 RASTER_MAX_STEP = 0.1
+# relative length difference below which the tube path does not replace the seed's result
+TIE = 1e-9
 # point-to-segment distances evaluated per block (bounds memory on large maps)
 _BLOCK = 2_000_000
 
@@ -389,7 +391,9 @@ def refine_in_tube(world, seed, smoother, radius: float, clearance: float = 0.0,
         clearance: required distance to obstacles, metres.
         resolution: raster cell size for circle worlds, metres.
         **options: passed to ``smoother``. A ``warm_start`` is used for the
-            original seed only (it belongs to that solve).
+            original seed only (it belongs to that solve). With the CasADi smoother the
+            tube path gets the seed's number of points (one NLP for both solves) unless
+            ``n_points`` is given.
 
     Returns:
         A ``SmoothResult``: the shorter of the two smoothed paths among those whose
@@ -418,12 +422,20 @@ def refine_in_tube(world, seed, smoother, radius: float, clearance: float = 0.0,
         note = tube.message
         return replace(own, solve_time_s=time.perf_counter() - t0,
                        message="; ".join(m for m in (own.message, note) if m))
-    other = smoother(world, tube.path, clearance, **{k: v for k, v in options.items() if k != "warm_start"})
+    rest = {k: v for k, v in options.items() if k != "warm_start"}
+    if own.warm is not None and "n_points" not in rest:
+        # the CasADi smoother: smooth the tube path with the seed's point count, so both solves
+        # use one built NLP (building one costs about as much as solving it on a 256x256 map);
+        # the tube path is no longer than the seed, so it gets at least its default density
+        rest["n_points"] = len(own.warm.points)
+    other = smoother(world, tube.path, clearance, **rest)
     total = dict(solve_time_s=time.perf_counter() - t0, iterations=own.iterations + other.iterations,
                  rounds=own.rounds + other.rounds)
     own_len = float(path_length(own.path)) if own.success else float("inf")
     other_len = float(path_length(other.path)) if other.success else float("inf")
-    if other.success and other_len < own_len:
+    # a tie (both solves ended on the same path, up to rounding) keeps the seed's result, so
+    # the choice does not depend on the last bits of two solves
+    if other.success and other_len < own_len - TIE * max(own_len, 1.0):
         what = (f"tube {r:g} m: the path in the tube was shorter ({other_len:.4f} m vs {own_len:.4f} m from the seed)"
                 if own.success else f"tube {r:g} m: the seed's smoothing failed ({own.message}); used the tube path")
         return replace(other, message="; ".join(m for m in (what, other.message) if m), **total)

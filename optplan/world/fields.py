@@ -7,6 +7,10 @@ CasADi refinement instead use a signed distance field sampled on a lattice
 the lattice points (the exact ``grid_clearance``, found by a distance transform) and its error in
 between is bounded by the lattice spacing. Decisions about feasibility are never
 taken on it: results are always re-checked with the exact rule.
+
+The refinement's cubic spline of the field (:func:`distance_spline`) is fitted whole on
+small maps and chunk by chunk near the paths that read it on large ones
+(:class:`ChunkFiller`), so a cold refinement's set-up grows with the path, not the map.
 """
 from __future__ import annotations
 
@@ -178,6 +182,8 @@ class DistanceSpline:
     y0: float
     h: float
     coeffs: np.ndarray
+    # large maps: fills the coefficient chunks a read needs (ChunkFiller); None = all computed
+    filler: "ChunkFiller | None" = None
 
     @property
     def tiles(self) -> tuple[int, int]:
@@ -198,6 +204,8 @@ class DistanceSpline:
         p = np.asarray(points, dtype=float)
         ix, iy, tx, ty = self._cells(p[..., 0], p[..., 1], _NumpyOps)
         ix, iy = ix.astype(np.int64), iy.astype(np.int64)
+        if self.filler is not None:
+            self.filler.ensure(iy.ravel() // TILE, ix.ravel() // TILE)
         wx, wy = _cubic_weights(tx, np), _cubic_weights(ty, np)
         C = self.coeffs
         return sum(wy[b] * sum(wx[a] * C[iy + b, ix + a] for a in range(4)) for b in range(4))
@@ -235,6 +243,8 @@ class DistanceSpline:
             dy = np.abs(q[:, 1, None] - cy[None, :]) <= reach          # (m, nty)
             near |= (dy[:, :, None] & dx[:, None, :]).any(axis=0)
         ty, tx = np.nonzero(near)
+        if self.filler is not None:
+            self.filler.ensure(ty, tx)
         blocks = len(ty) + 1
         cap = blocks if capacity is None else int(capacity)
         if cap < blocks:
@@ -271,16 +281,100 @@ class _NumpyOps:
     fmin, fmax, floor = staticmethod(np.fmin), staticmethod(np.fmax), staticmethod(np.floor)
 
 
+# lattices with more points than this (maps above about 128 x 128 cells at 4 points per cell)
+# get their spline chunk by chunk, only where a path reads it (ChunkFiller); smaller ones
+# are fitted whole, once, which costs less than 0.1 s and is shared by every later call
+LOCAL_POINTS = 1 << 18
+# a chunk is CHUNK_TILES x CHUNK_TILES strip tiles of coefficients
+CHUNK_TILES = 8
+# lattice points beyond a chunk that its fit reads: the cubic B-spline interpolant's
+# dependence on a value decays as (2 - sqrt 3)^k = 0.27^k, so a chunk's coefficients are the
+# whole-map fit's to about 2e-6 of the field's variation
+FIT_MARGIN = 10
+# a chunk's distances are exact up to this many cells and capped there (its crop of the map
+# reaches that far): a local smoother needs the distance near obstacles, and the required
+# clearance (plus the NLP's cushion) must stay below it
+REACH_CELLS = 4
+
+
+class ChunkFiller:
+    """Computes a large map's :class:`DistanceSpline` coefficients chunk by chunk.
+
+    A chunk's coefficients come from the not-a-knot fit of the exact lattice distances
+    (:func:`lattice_clearance`, capped at :data:`REACH_CELLS` cells) on the chunk grown by
+    :data:`FIT_MARGIN` lattice points, on a crop of the map grown by the reach. Each chunk
+    depends on the map only (not on which path asked first), so results do not depend on the
+    order of calls; the work is proportional to the area near the paths, not to the map.
+    """
+
+    def __init__(self, grid, subdiv: int, coeffs: np.ndarray) -> None:
+        self.grid, self.subdiv, self.coeffs = grid, int(subdiv), coeffs
+        self.size = CHUNK_TILES * TILE                      # coefficient rows / columns per chunk
+        ny, nx = coeffs.shape
+        self.done = np.zeros((-(-ny // self.size), -(-nx // self.size)), dtype=bool)
+
+    def ensure(self, ty: np.ndarray, tx: np.ndarray) -> None:
+        """Compute every chunk that the tiles ``(ty, tx)`` read (a tile reads ``TILE + 3``
+        coefficients a side, so it can reach into the next chunk)."""
+        ty, tx = np.asarray(ty, np.int64).ravel(), np.asarray(tx, np.int64).ravel()
+        if not len(ty):
+            return
+        last = np.array(self.done.shape) - 1
+        lo_y, hi_y = np.minimum(ty * TILE // self.size, last[0]), np.minimum((ty * TILE + TILE + 2) // self.size, last[0])
+        lo_x, hi_x = np.minimum(tx * TILE // self.size, last[1]), np.minimum((tx * TILE + TILE + 2) // self.size, last[1])
+        need = np.zeros_like(self.done)
+        for cy in (lo_y, hi_y):
+            for cx in (lo_x, hi_x):
+                need[cy, cx] = True
+        for a, b in zip(*np.nonzero(need & ~self.done)):  # a loop over chunks (few), each vectorised
+            self._fill(int(a), int(b))
+            self.done[a, b] = True
+
+    def _fill(self, a: int, b: int) -> None:
+        grid, m, S = self.grid, self.subdiv, self.size
+        ny, nx = self.coeffs.shape
+        r0, r1 = a * S, min((a + 1) * S, ny)
+        c0, c1 = b * S, min((b + 1) * S, nx)
+        # lattice points the fit reads (coefficient j belongs to lattice point j - 1)
+        ya, yb = max(r0 - 1 - FIT_MARGIN, 0), min(r1 - 1 + FIT_MARGIN, ny - 2)
+        xa, xb = max(c0 - 1 - FIT_MARGIN, 0), min(c1 - 1 + FIT_MARGIN, nx - 2)
+        # the crop of cells whose lattice covers those points, grown by the reach
+        R = REACH_CELLS
+        gy0, gy1 = max(ya // m - R, 0), min(-(-yb // m) + R, grid.height)
+        gx0, gx1 = max(xa // m - R, 0), min(-(-xb // m) + R, grid.width)
+        from .grid import GridMap
+
+        h = grid.resolution
+        crop = GridMap(grid.occ[gy0:gy1, gx0:gx1], h, (grid.origin[0] + gx0 * h, grid.origin[1] + gy0 * h))
+        xmin, ymin, xmax, ymax = crop.bounds
+        xs = np.linspace(xmin, xmax, crop.width * m + 1)
+        ys = np.linspace(ymin, ymax, crop.height * m + 1)
+        v = lattice_clearance(crop, xs, ys, m)[ya - gy0 * m:yb - gy0 * m, xa - gx0 * m:xb - gx0 * m]
+        v = np.clip(v, -R * h, R * h)  # beyond the reach the crop cannot tell
+        c = _uniform_coefficients(_uniform_coefficients(v, 1), 0)       # window coefficient k = global ya + k
+        self.coeffs[r0:r1, c0:c1] = c[r0 - ya:r1 - ya, c0 - xa:c1 - xa]
+
+
 def distance_spline(grid, subdiv: int = 4) -> DistanceSpline:
     """The :class:`DistanceSpline` of the grid's :func:`grid_distance_field` (cached on the
     map). Its coefficients come from banded solves, one axis at a time: time linear in
-    the lattice."""
+    the lattice. Lattices above :data:`LOCAL_POINTS` points are fitted chunk by chunk as
+    paths read them (:class:`ChunkFiller`): the set-up of a refinement is then local to
+    its path, not to the map."""
     key = ("sdf_spline", int(subdiv))
     spline = grid._cache.get(key)
     if spline is None:
-        f = grid_distance_field(grid, subdiv)
-        coeffs = _uniform_coefficients(_uniform_coefficients(f.values, 1), 0)
-        spline = grid._cache[key] = DistanceSpline(float(f.xs[0]), float(f.ys[0]), f.spacing, coeffs)
+        nyp, nxp = grid.height * subdiv + 1, grid.width * subdiv + 1
+        xmin, ymin, xmax, ymax = grid.bounds
+        if nyp * nxp <= LOCAL_POINTS:
+            f = grid_distance_field(grid, subdiv)
+            coeffs = _uniform_coefficients(_uniform_coefficients(f.values, 1), 0)
+            spline = DistanceSpline(float(f.xs[0]), float(f.ys[0]), f.spacing, coeffs)
+        else:
+            coeffs = np.zeros((nyp + 2, nxp + 2))
+            h = float(np.linspace(xmin, xmax, nxp)[1] - xmin)
+            spline = DistanceSpline(float(xmin), float(ymin), h, coeffs, ChunkFiller(grid, subdiv, coeffs))
+        grid._cache[key] = spline
     return spline
 
 

@@ -109,6 +109,26 @@ def _components(world, clearance: float) -> np.ndarray:
     return pts + np.stack([(1 + np.arange(len(pts))) * 1e-7 * span, np.zeros(len(pts))], axis=1)
 
 
+def component_rays(world, clearance: float = 0.0) -> np.ndarray:
+    """Ray origins ``(K, 2)`` of the h-signature (one per obstacle component that does not touch
+    the border, for ``clearance``), computed once per world and clearance and cached on it."""
+    key = ("component_rays", float(clearance))
+    rays = world._cache.get(key)
+    if rays is None:
+        rays = world._cache[key] = _components(world, float(clearance))
+    return rays
+
+
+def h_signature(world, path: np.ndarray, clearance: float = 0.0) -> np.ndarray:
+    """H-signature ``(K,)`` of a polyline without building a :class:`Roadmap` (the same rays):
+    two paths between the same ends are in one class exactly when their signatures are equal."""
+    rays = component_rays(world, clearance)
+    P = np.asarray(path, float).reshape(-1, 2)
+    if len(rays) == 0 or len(P) < 2:
+        return np.zeros(len(rays), dtype=np.int64)
+    return ray_crossings(P[:-1], P[1:], rays).sum(axis=0)
+
+
 def ray_crossings(A: np.ndarray, B: np.ndarray, rays: np.ndarray) -> np.ndarray:
     """Signed crossings ``(n, K)`` of segments ``A[i] -> B[i]`` with the upward rays from ``rays``.
 
@@ -163,7 +183,7 @@ class Roadmap:
                 raise ParameterError(f"ring must be >= 4 polygon vertices per circle, got {ring}")
             self.nodes, self.normals = _circle_ring(world, self.clearance, ring)
             self.quadrants, self.ring = None, int(ring)
-        self.rays = _components(world, self.clearance)
+        self.rays = component_rays(world, self.clearance)
         self.edges = self._visible_taut_edges()
         self._dist = self._succ = None
         self._tree = None
