@@ -41,6 +41,7 @@ unchanged with the reason (never a colliding path).
 from __future__ import annotations
 
 import time
+import weakref
 
 import numpy as np
 
@@ -86,7 +87,35 @@ def smoothing_objective(points: np.ndarray, w_smooth: float) -> float:
 
 
 # --------------------------------------------------------------------- builders
-_CACHE: dict = {}
+class _BuiltNlps:
+    """The smoother's own store of built NLPs (nothing is kept on the worlds): circle-world
+    NLPs by shape, grid NLPs per map and dropped with the map. The IPOPT options in force are
+    part of every key, so a caller that changes ``IPOPT_OPTIONS`` gets new instances and never
+    has to clear anything."""
+
+    def __init__(self) -> None:
+        self.shared: dict = {}
+        self.per_world: dict[int, tuple[weakref.ref, dict]] = {}
+
+    @staticmethod
+    def options_key() -> tuple:
+        return tuple(tuple(sorted((k, str(v)) for k, v in o.items())) for o in (IPOPT_OPTIONS, IPOPT_WARM_OPTIONS))
+
+    def of(self, world) -> dict:
+        """The NLPs built for ``world`` (a dict forgotten when the world is collected)."""
+        entry = self.per_world.get(id(world))
+        if entry is None or entry[0]() is not world:
+            entry = self.per_world[id(world)] = (weakref.ref(world), {})
+            weakref.finalize(world, self.per_world.pop, id(world), None)
+        return entry[1]
+
+    def clear(self, *worlds) -> None:
+        self.shared.clear()
+        for w in worlds:
+            self.per_world.pop(id(w), None)
+
+
+_BUILT = _BuiltNlps()
 
 
 def _path_expressions(ca, z, ends, N: int, w_smooth: float, per_segment: int = 1):
@@ -134,8 +163,8 @@ def circle_nlp(N: int, K: int, w_smooth: float) -> dict:
     Parameters ``p = (ends (4), centre x (M*K), centre y (M*K), grown radius (M*K))``
     with ``M = 2N - 3`` query points, column-major ``(M, K)`` blocks.
     """
-    key = ("circles", N, K, float(w_smooth))
-    if key not in _CACHE:
+    key = ("circles", N, K, float(w_smooth), _BUILT.options_key())
+    if key not in _BUILT.shared:
         import casadi as ca
 
         M = 2 * N - 3
@@ -146,8 +175,8 @@ def circle_nlp(N: int, K: int, w_smooth: float) -> dict:
         cy = ca.reshape(p[4 + M * K:4 + 2 * M * K], M, K)
         R = ca.reshape(p[4 + 2 * M * K:], M, K)
         g = ca.vertcat(*[(qx - cx[:, k]) ** 2 + (qy - cy[:, k]) ** 2 - R[:, k] ** 2 for k in range(K)])
-        _CACHE[key] = _TwoSolvers("smooth_circles", {"x": z, "p": p, "f": J, "g": g}, key=key)
-    return _CACHE[key]
+        _BUILT.shared[key] = _TwoSolvers("smooth_circles", {"x": z, "p": p, "f": J, "g": g}, key=key)
+    return _BUILT.shared[key]
 
 
 # grids: the distance spline is handed to the NLP for the cells within this many cells of
@@ -164,8 +193,9 @@ def grid_nlp(grid, N: int, w_smooth: float, per_segment: int = 1, subdiv: int = 
     assumes). ``blocks``: the strip's capacity (:meth:`DistanceSpline.strip`), rounded up
     to a power of two so that seeds of similar length share one NLP."""
     cap = 1 << max(int(blocks) - 1, 0).bit_length()
-    key = ("grid", N, float(w_smooth), per_segment, subdiv, cap)
-    cached = grid._cache.get(key)
+    key = ("grid", N, float(w_smooth), per_segment, subdiv, cap, _BUILT.options_key())
+    built = _BUILT.of(grid)
+    cached = built.get(key)
     if cached is None:
         import casadi as ca
 
@@ -179,18 +209,15 @@ def grid_nlp(grid, N: int, w_smooth: float, per_segment: int = 1, subdiv: int = 
         g = spline.symbolic(qx, qy, p[6:]) - p[4]
         if SEGMENT_STRETCH is not None:
             g = ca.vertcat(g, p[5] ** 2 - seg2)
-        cached = grid._cache[key] = _TwoSolvers("smooth_grid", {"x": z, "p": p, "f": J, "g": g},
+        cached = built[key] = _TwoSolvers("smooth_grid", {"x": z, "p": p, "f": J, "g": g},
                                                 key=("grid", id(grid)) + key[1:], blocks=cap)
     return cached
 
 
 def clear_solver_cache(*worlds) -> None:
-    """Forget built IPOPT instances (needed after changing ``IPOPT_OPTIONS``): the
-    circle-world ones, and the grid ones cached on each of ``worlds``."""
-    _CACHE.clear()
-    for w in worlds:
-        for k in [k for k in getattr(w, "_cache", {}) if isinstance(k, tuple) and k and k[0] == "grid"]:
-            del w._cache[k]
+    """Forget built IPOPT instances to free memory: the circle-world ones, and the grid ones
+    of each of ``worlds`` (never needed for correctness: the options are part of the key)."""
+    _BUILT.clear(*worlds)
 
 
 # ------------------------------------------------------------------------ solve
