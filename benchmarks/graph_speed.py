@@ -260,7 +260,9 @@ def _rss_kib(field: str) -> int | None:
 def _visibility_run(world, s, g, conn) -> None:
     """In a child process: one cold visibility query, its time and the growth of the peak
     resident memory over the child's start (tracemalloc would slow numpy-heavy code)."""
-    world._cache.clear()
+    from optplan.world.derived import forget_derived
+
+    forget_derived(world)
     start = _rss_kib("VmRSS")
     t0 = time.perf_counter()
     try:

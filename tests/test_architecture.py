@@ -265,6 +265,23 @@ def test_no_cycles_no_upward_imports_no_private_names_across_modules():
     assert not msg, "\n".join(msg)
 
 
+def test_only_the_derived_store_touches_a_worlds_private_cache():
+    """Data derived from a world lives in its builder's DerivedStore (optplan/world/derived.py);
+    no other module reads or writes the world's private slot (it declared ``_cache`` fields of
+    the two world classes aside)."""
+    pkg = PACKAGE
+    allowed = {"world/derived.py"}
+    bad = []
+    for f in sorted(pkg.rglob("*.py")):
+        rel = f.relative_to(pkg).as_posix()
+        if rel in allowed:
+            continue
+        for i, line in enumerate(f.read_text().splitlines(), 1):
+            if re.search(r"\._cache\b", line):
+                bad.append(f"{rel}:{i}: {line.strip()}")
+    assert not bad, "use a DerivedStore instead:\n  " + "\n  ".join(bad)
+
+
 # ------------------------------------------------------------- the checker itself
 def _graph_of(tmp_path, files: dict[str, str]):
     for rel, text in files.items():

@@ -96,4 +96,7 @@ def test_path_gas_decide_segments_on_demand_not_in_full_tables(algorithm):
     s, g = world.cell_center(free[0][::-1]), world.cell_center(free[-1][::-1])
     r = op.plan(world, s, g, algorithm=algorithm, seed=3, pop=12, iters=15)
     assert r.feasible and bool(op.validate_path(world, r.path))
-    assert not any(isinstance(k, tuple) and k[0] in ("column_tables", "column_transitions") for k in world._cache)
+    from optplan.world.derived import derived_keys
+
+    assert not any(isinstance(k, tuple) and k[0] in ("column_tables", "column_transitions")
+                   for _, k in derived_keys(world))

@@ -27,6 +27,9 @@ import numpy as np
 
 from ..world.polyline import segment_point_distances
 from .namespaces import Sym
+from ..world.derived import DerivedStore
+
+_DERIVED = DerivedStore("formulations.clearance_model")  # this module's data derived from worlds
 
 
 # grids: the distance spline is handed to a gradient solver for the tiles within this many
@@ -205,7 +208,7 @@ def convex_corners(grid) -> np.ndarray:
     of the four cells around the vertex is blocked, or two diagonal ones are (the map's
     outside counts as blocked); cached on the map."""
     key = "convex_corners"
-    out = grid._cache.get(key)
+    out = _DERIVED.of(grid).get(key)
     if out is None:
         pad = np.pad(np.asarray(grid.occ, bool), 1, constant_values=True)
         a, b = pad[:-1, :-1], pad[:-1, 1:]      # cells below-left, below-right of vertex (iy, ix)
@@ -215,7 +218,7 @@ def convex_corners(grid) -> np.ndarray:
         iy, ix = np.nonzero((count == 1) | diagonal)
         r = float(grid.resolution)
         out = np.stack([grid.origin[0] + ix * r, grid.origin[1] + iy * r], axis=1)
-        grid._cache[key] = out
+        _DERIVED.of(grid)[key] = out
     return out
 
 
@@ -259,7 +262,7 @@ def boundary_boxes(grid) -> np.ndarray:
     nearest a sample are different obstacles and a gradient solver gets no near-duplicate
     constraint rows (which slow IPOPT down and stall it). Cached on the map."""
     key = "obstacle_boxes"
-    boxes = grid._cache.get(key)
+    boxes = _DERIVED.of(grid).get(key)
     if boxes is None:
         occ = np.asarray(grid.occ, bool)
         edge = np.diff(np.pad(occ.astype(np.int8), ((0, 0), (1, 1))), axis=1)
@@ -279,7 +282,7 @@ def boundary_boxes(grid) -> np.ndarray:
         ox, oy = (float(v) for v in grid.origin)
         b = np.asarray(out, float).reshape(-1, 4)
         boxes = np.stack([ox + b[:, 0] * r, oy + b[:, 1] * r, ox + b[:, 2] * r, oy + b[:, 3] * r], axis=1)
-        grid._cache[key] = boxes
+        _DERIVED.of(grid)[key] = boxes
     return boxes
 
 

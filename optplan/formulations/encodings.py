@@ -21,6 +21,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import ParameterError
+from ..world.derived import DerivedStore
+
+_DERIVED = DerivedStore("formulations.encodings")  # this module's data derived from worlds
 
 
 # Segment tables by map content, kept across map objects in this process (a few maps'
@@ -37,10 +40,10 @@ def clear_shared_tables() -> None:
 
 def _map_fingerprint(grid) -> tuple:
     """Content key of a grid map: occupancy digest, shape, resolution and origin."""
-    fp = grid._cache.get("fingerprint")
+    fp = _DERIVED.of(grid).get("fingerprint")
     if fp is None:
         digest = hashlib.sha1(np.ascontiguousarray(grid.occ, dtype=np.uint8).tobytes()).hexdigest()
-        fp = grid._cache["fingerprint"] = (digest, grid.occ.shape, float(grid.resolution),
+        fp = _DERIVED.of(grid)["fingerprint"] = (digest, grid.occ.shape, float(grid.resolution),
                                            tuple(float(o) for o in grid.origin))
     return fp
 
@@ -121,7 +124,7 @@ class ColumnNodes(PathEncoding):
         """Move every node to the nearest free cell of its column (the papers draw
         nodes among free cells; keeping them there is a repair, not a constraint)."""
         key = ("column_nearest_free", self.columns.tobytes())
-        cache = self.world._cache
+        cache = _DERIVED.of(self.world)
         if key not in cache:
             occ = self.world.occ[:, self.columns]            # (H, d): column j's cells
             H = occ.shape[0]
@@ -165,7 +168,7 @@ class ColumnNodes(PathEncoding):
         if not self.snap:
             raise ParameterError("segment tables exist only for snapped column nodes")
         key = ("column_tables", float(clearance), penetration_fn is not None)
-        cache = self.world._cache
+        cache = _DERIVED.of(self.world)
         if key in cache and cache[key]["columns"].shape == self.columns.shape \
                 and np.array_equal(cache[key]["columns"], self.columns) \
                 and np.array_equal(cache[key]["ends"], np.concatenate([self.start, self.goal])):
@@ -295,7 +298,7 @@ class ColumnNodes(PathEncoding):
         the goal (a dynamic programme over the columns)."""
         key = ("column_transitions", float(clearance), self.columns.tobytes(),
                np.concatenate([self.start, self.goal]).tobytes())
-        cache = self.world._cache
+        cache = _DERIVED.of(self.world)
         if key in cache:
             return cache[key]
         t = self.segment_tables(clearance)

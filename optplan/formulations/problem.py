@@ -16,6 +16,9 @@ from ..world.metrics import turn_angles_deg
 from . import terms
 from .encodings import PathEncoding
 from .presets import FitnessPreset, collision_penalty_on, get_preset
+from ..world.derived import DerivedStore
+
+_DERIVED = DerivedStore("formulations.problem")  # this module's data derived from worlds
 
 
 @dataclass
@@ -149,7 +152,7 @@ class PathProblem:
             return cached
         key = ("column_cost_tables", self.clearance, self.preset, self._collision_penalty,
                enc.columns.tobytes(), np.concatenate([enc.start, enc.goal]).tobytes())
-        cache = enc.world._cache
+        cache = _DERIVED.of(enc.world)
         if key not in cache:
             from .segment_store import SegmentCosts, column_segments
 

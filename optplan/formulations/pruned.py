@@ -24,6 +24,9 @@ import numpy as np
 
 from ..errors import ParameterError
 from .encodings import ColumnNodes
+from ..world.derived import DerivedStore
+
+_DERIVED = DerivedStore("formulations.pruned")  # this module's data derived from worlds
 
 FITNESS_ON = ("nodes", "pruned")
 
@@ -62,7 +65,7 @@ class PrunedColumnFitness:
         enc, world, H, K = self.encoding, self.encoding.world, self.height, self.n_nodes
         key = ("pruned_column_tables", float(clearance), enc.columns.tobytes(),
                np.concatenate([enc.start, enc.goal]).tobytes())
-        cache = world._cache
+        cache = _DERIVED.of(world)
         if key in cache:
             return cache[key]
         pos = np.empty((K, H, 2))
@@ -89,7 +92,7 @@ class PrunedColumnFitness:
         enc, world, H, K = self.encoding, self.encoding.world, self.height, self.n_nodes
         key = ("pruned_column_passed", float(clearance), step, enc.columns.tobytes(),
                np.concatenate([enc.start, enc.goal]).tobytes())
-        cache = world._cache
+        cache = _DERIVED.of(world)
         if key in cache:
             return cache[key]
         A = self.pos[:-1, :, None, :]                       # (K-1, H, 1, 2)

@@ -25,6 +25,9 @@ segment is blocked whatever the clearance. Only the exact rule says a segment is
 from __future__ import annotations
 
 import numpy as np
+from ..world.derived import DerivedStore
+
+_DERIVED = DerivedStore("formulations.segment_store")  # this module's data derived from worlds
 
 FREE, BLOCKED = 1, 2
 # inner segments changing row by at most this many rows are decided in one batch on first
@@ -285,7 +288,7 @@ def column_segments(enc, clearance: float, penetration_fn=None) -> ColumnSegment
     ``clearance``, cached on the map (one for the sampler and every program), with
     penetration values once a ``penetration_fn`` is given."""
     key = ("column_segments", float(clearance), enc.columns.tobytes(), np.concatenate([enc.start, enc.goal]).tobytes())
-    cache = enc.world._cache
+    cache = _DERIVED.of(enc.world)
     store = cache.get(key)
     if store is None:
         store = cache[key] = ColumnSegments(enc, clearance)

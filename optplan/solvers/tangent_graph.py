@@ -20,6 +20,9 @@ from scipy.sparse.csgraph import dijkstra
 from ..errors import InfeasibleQueryError, ParameterError
 from ..world.queries import check_start_goal
 from .result import make_plan_result
+from ..world.derived import DerivedStore
+
+_DERIVED = DerivedStore("solvers.tangent_graph")  # this module's data derived from worlds
 
 _EPS = 1e-9
 # memory bounds: segment-circle distances evaluated per block, and the largest tangent graph
@@ -125,9 +128,9 @@ def _segment_point_distances(A: np.ndarray, B: np.ndarray, Q: np.ndarray) -> np.
 def _circle_tree(world):
     from scipy.spatial import cKDTree
 
-    tree = world._cache.get("circle_tree")
+    tree = _DERIVED.of(world).get("circle_tree")
     if tree is None:
-        tree = world._cache["circle_tree"] = cKDTree(world.circles[:, :2])
+        tree = _DERIVED.of(world)["circle_tree"] = cKDTree(world.circles[:, :2])
     return tree
 
 

@@ -43,6 +43,9 @@ from ..world.grid import GridMap
 from ..world.metrics import path_length
 from ..world.polyline import densify
 from .graph import visibility_path
+from ..world.derived import DerivedStore
+
+_DERIVED = DerivedStore("solvers.tube")  # this module's data derived from worlds
 
 # default tube radius in widths of the widest obstacle (see default_tube_radius)
 DEFAULT_WIDTHS = 2.0
@@ -92,7 +95,7 @@ def obstacle_width(world) -> float:
     (``w`` odd) measures ``w`` cells. ``0`` when there is no obstacle.
     """
     if world.is_grid:
-        cached = world._cache.get("obstacle_width")
+        cached = _DERIVED.of(world).get("obstacle_width")
         if cached is None:
             from scipy.ndimage import distance_transform_edt
 
@@ -101,7 +104,7 @@ def obstacle_width(world) -> float:
             else:
                 depth = float(distance_transform_edt(np.pad(world.occ, 1)).max())
                 cached = (2.0 * depth - 1.0) * world.resolution
-            world._cache["obstacle_width"] = cached
+            _DERIVED.of(world)["obstacle_width"] = cached
         return cached
     return 2.0 * float(world.radii.max()) if len(world.circles) else 0.0
 

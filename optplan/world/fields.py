@@ -17,6 +17,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from .derived import DerivedStore
+
+_DERIVED = DerivedStore("world.fields")  # this module's data derived from worlds
 
 
 @dataclass(frozen=True)
@@ -48,14 +51,14 @@ def grid_distance_field(grid, subdiv: int = 4) -> DistanceField:
     """The signed distance field of a GridMap on a lattice of ``subdiv`` points per cell
     (cached on the map); the values are :func:`lattice_clearance`'s."""
     key = ("sdf", int(subdiv))
-    cached = grid._cache.get(key)
+    cached = _DERIVED.of(grid).get(key)
     if cached is not None:
         return cached
     xmin, ymin, xmax, ymax = grid.bounds
     xs = np.linspace(xmin, xmax, grid.width * subdiv + 1)
     ys = np.linspace(ymin, ymax, grid.height * subdiv + 1)
     field = DistanceField(xs, ys, lattice_clearance(grid, xs, ys, int(subdiv)))
-    grid._cache[key] = field
+    _DERIVED.of(grid)[key] = field
     return field
 
 
@@ -362,7 +365,7 @@ def distance_spline(grid, subdiv: int = 4) -> DistanceSpline:
     paths read them (:class:`ChunkFiller`): the set-up of a refinement is then local to
     its path, not to the map."""
     key = ("sdf_spline", int(subdiv))
-    spline = grid._cache.get(key)
+    spline = _DERIVED.of(grid).get(key)
     if spline is None:
         nyp, nxp = grid.height * subdiv + 1, grid.width * subdiv + 1
         xmin, ymin, xmax, ymax = grid.bounds
@@ -374,7 +377,7 @@ def distance_spline(grid, subdiv: int = 4) -> DistanceSpline:
             coeffs = np.zeros((nyp + 2, nxp + 2))
             h = float(np.linspace(xmin, xmax, nxp)[1] - xmin)
             spline = DistanceSpline(float(xmin), float(ymin), h, coeffs, ChunkFiller(grid, subdiv, coeffs))
-        grid._cache[key] = spline
+        _DERIVED.of(grid)[key] = spline
     return spline
 
 

@@ -26,6 +26,9 @@ import numpy as np
 
 from ..checks import metres
 from ..errors import ParameterError
+from .derived import DerivedStore
+
+_DERIVED = DerivedStore("world.geometry")  # this module's data derived from worlds
 
 _VERTEX_EPS = 1e-9  # float mode: how close to a lattice vertex counts as "through it"
 _INT_LIMIT = 1 << 24  # doubled coordinates beyond this fall back to float mode
@@ -192,16 +195,16 @@ def _segments_free_grid_units(occ_pad: np.ndarray, col_cum: np.ndarray, a: np.nd
 
 
 def _cached_transpose(grid) -> np.ndarray:
-    if "padded_T" not in grid._cache:
-        grid._cache["padded_T"] = np.ascontiguousarray(grid.padded.T)
-    return grid._cache["padded_T"]
+    if "padded_T" not in _DERIVED.of(grid):
+        _DERIVED.of(grid)["padded_T"] = np.ascontiguousarray(grid.padded.T)
+    return _DERIVED.of(grid)["padded_T"]
 
 
 def _cached_prefix(grid, transposed: bool) -> np.ndarray:
     key = "col_prefix_T" if transposed else "col_prefix"
-    if key not in grid._cache:
-        grid._cache[key] = _column_prefix(_cached_transpose(grid) if transposed else grid.padded)
-    return grid._cache[key]
+    if key not in _DERIVED.of(grid):
+        _DERIVED.of(grid)[key] = _column_prefix(_cached_transpose(grid) if transposed else grid.padded)
+    return _DERIVED.of(grid)[key]
 
 
 def _segments_rule(grid, ga: np.ndarray, gb: np.ndarray) -> np.ndarray:
@@ -426,7 +429,7 @@ def grid_clearance(grid, points) -> np.ndarray:
     shape = p.shape[:-1]
     g = grid.to_grid(p.reshape(-1, 2))
     border = np.minimum.reduce([g[:, 0], g[:, 1], grid.width - g[:, 0], grid.height - g[:, 1]])
-    cache = grid._cache
+    cache = _DERIVED.of(grid)
     to_blocked = _distance_to_cells(cache, "tree_blocked", lambda: _boundary_cells(grid.occ), g)
     d = np.minimum(to_blocked, border)
     # inside an obstacle (interior of a blocked cell) or outside the map: negative depth

@@ -34,6 +34,9 @@ import numpy as np
 
 from ..errors import ParameterError
 from .geometry import convex_corners
+from .derived import DerivedStore
+
+_DERIVED = DerivedStore("world.roadmap")  # this module's data derived from worlds
 
 # segments checked per segments_free call (bounds the work arrays of the exact rule)
 EDGE_CHUNK = 20_000
@@ -113,9 +116,9 @@ def component_rays(world, clearance: float = 0.0) -> np.ndarray:
     """Ray origins ``(K, 2)`` of the h-signature (one per obstacle component that does not touch
     the border, for ``clearance``), computed once per world and clearance and cached on it."""
     key = ("component_rays", float(clearance))
-    rays = world._cache.get(key)
+    rays = _DERIVED.of(world).get(key)
     if rays is None:
-        rays = world._cache[key] = _components(world, float(clearance))
+        rays = _DERIVED.of(world)[key] = _components(world, float(clearance))
     return rays
 
 
@@ -194,9 +197,9 @@ class Roadmap:
         :data:`DEFAULT_RING`), built once and kept in the world's cache."""
         ring = DEFAULT_RING if ring is None or world.is_grid else int(ring)
         key = ("roadmap", float(clearance), ring)
-        rm = world._cache.get(key)
+        rm = _DERIVED.of(world).get(key)
         if rm is None:
-            rm = world._cache[key] = cls(world, clearance, ring)
+            rm = _DERIVED.of(world)[key] = cls(world, clearance, ring)
         return rm
 
     def _all_pairs(self) -> None:

@@ -35,6 +35,9 @@ import numpy as np
 
 from ...errors import InfeasibleQueryError
 from ..gridpath.moves import move_table
+from ...world.derived import DerivedStore
+
+_DERIVED = DerivedStore("solvers.graph.astar")  # this module's data derived from worlds
 
 SQRT2 = math.sqrt(2.0)
 CLOSED = -math.inf
@@ -199,9 +202,9 @@ def _closure_cells(W: int, H: int, q) -> list[int]:
 def _occupancy_bytes(grid) -> bytes:
     """One byte per cell by flat index, 1 = blocked (cached on the map): indexing ``bytes``
     gives a Python int, where indexing the boolean array builds a numpy scalar."""
-    occ = grid._cache.get("occupancy_bytes")
+    occ = _DERIVED.of(grid).get("occupancy_bytes")
     if occ is None:
-        occ = grid._cache["occupancy_bytes"] = grid.occ.reshape(-1).astype(np.uint8).tobytes()
+        occ = _DERIVED.of(grid)["occupancy_bytes"] = grid.occ.reshape(-1).astype(np.uint8).tobytes()
     return occ
 
 
@@ -232,12 +235,12 @@ def _end_cells(grid, q: tuple[float, float], clearance: float) -> tuple[list[int
 
 def cell_centres(grid) -> np.ndarray:
     """``(width * height, 2)`` centres of the cells in metres, by flat index (cached on the map)."""
-    C = grid._cache.get("cell_centres")
+    C = _DERIVED.of(grid).get("cell_centres")
     if C is None:
         iy, ix = np.divmod(np.arange(grid.width * grid.height), grid.width)
         C = grid.cell_center(np.stack([ix, iy], axis=1))
         C.setflags(write=False)
-        grid._cache["cell_centres"] = C
+        _DERIVED.of(grid)["cell_centres"] = C
     return C
 
 

@@ -18,6 +18,9 @@ from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
+from ...world.derived import DerivedStore
+
+_DERIVED = DerivedStore("solvers.gridpath.moves")  # this module's data derived from worlds
 
 OFFSETS = np.array([(1, 0), (1, 1), (0, 1), (-1, 1), (-1, 0), (-1, -1), (0, -1), (1, -1)], dtype=np.int64)
 STEP = np.hypot(OFFSETS[:, 0], OFFSETS[:, 1])
@@ -79,8 +82,8 @@ def move_table(grid, corner_cutting: bool = False, clearance: float = 0.0) -> Mo
     clearance does not have to block whole cells.
     """
     key = ("moves", bool(corner_cutting), float(clearance))
-    if key in grid._cache:
-        return grid._cache[key]
+    if key in _DERIVED.of(grid):
+        return _DERIVED.of(grid)[key]
     H, W = grid.height, grid.width
     pad = grid.padded  # blocked frame: padded[iy + 1, ix + 1]
     iy, ix = np.mgrid[0:H, 0:W]
@@ -101,5 +104,5 @@ def move_table(grid, corner_cutting: bool = False, clearance: float = 0.0) -> Mo
         ok = grid.is_free(a, clearance) & grid.is_free(b, clearance) & grid.segments_free(a, b, clearance)
         nb[src[~ok], k[~ok]] = -1
     table = MoveTable(W, H, nb, STEP.copy())
-    grid._cache[key] = table
+    _DERIVED.of(grid)[key] = table
     return table

@@ -43,6 +43,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from ...world.derived import DerivedStore
+
+_DERIVED = DerivedStore("solvers.qp.corridor")  # this module's data derived from worlds
 
 
 @dataclass
@@ -177,9 +180,9 @@ class _BlockedCounter:
 
 
 def _counter(grid) -> _BlockedCounter:
-    c = grid._cache.get("qp_blocked_counter")
+    c = _DERIVED.of(grid).get("qp_blocked_counter")
     if c is None:
-        c = grid._cache["qp_blocked_counter"] = _BlockedCounter(grid)
+        c = _DERIVED.of(grid)["qp_blocked_counter"] = _BlockedCounter(grid)
     return c
 
 
