@@ -227,10 +227,13 @@ MAX_CACHED_PROGRAMS = 64   # set-ups are cheap (ms); keep memory bounded in long
 
 
 def corridor_program(N: int, K: int, w_smooth: float, backend: str = "osqp"):
-    """The cached program for ``(N, K, w_smooth)`` and a backend (``"osqp"`` or ``"cvxpy"``)."""
+    """The cached program for ``(N, K, w_smooth)`` and a backend (``"osqp"`` or ``"cvxpy"``).
+    The OSQP settings in force are part of the key, so changing ``OSQP_SETTINGS`` gives a
+    new set-up instead of a stale one (nothing to clear)."""
     if backend not in ("osqp", "cvxpy"):
         raise ParameterError(f"backend must be 'osqp' or 'cvxpy', got {backend!r}")
-    key = (backend, N, K, float(w_smooth))
+    settings = tuple(sorted((k, str(v)) for k, v in OSQP_SETTINGS.items()))
+    key = (backend, N, K, float(w_smooth), settings)
     prog = _PROGRAMS.pop(key, None)   # re-inserted below: the dict's order is least recently used first
     if prog is None:
         prog = (OsqpCorridorQP if backend == "osqp" else CvxpyCorridorQP)(N, K, w_smooth)
