@@ -421,8 +421,14 @@ def test_a_simulate_key_follows_the_scenario_and_the_map_it_references(tmp_path)
 
 
 def test_the_inputs_of_shipped_targets_and_ros_maps_are_found(tmp_path):
-    from optplan.bench.inputs import input_files, inputs_digest
+    from optplan.bench.kinds import get_kind
     from optplan.world.loaders import load_map, save_map
+
+    def input_files(kind, target):
+        return get_kind(kind).input_files(target)
+
+    def inputs_digest(kind, target):
+        return get_kind(kind).inputs_digest(target)
 
     files = input_files("simulate", {"scenario": "hou2024_dynamic1"})
     assert [role for role, _ in files] == ["scenario", "map"] and all(p is not None and p.is_file() for _, p in files)

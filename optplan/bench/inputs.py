@@ -3,8 +3,9 @@
 A run's key (:attr:`optplan.bench.spec.RunRecord.key`) must change whenever what the run
 computes could change. The target's description names its map or scenario by path or
 by shipped name, so editing the file in place would leave the key as it was and a rerun
-would serve the stored, stale result. :func:`inputs_digest` hashes the *content* of every
-file the run will read:
+would serve the stored, stale result. Each run kind lists the files its runs read
+(:meth:`optplan.bench.kinds.base.RunKind.input_files`) and :func:`files_digest` hashes their
+*content*:
 
 * ``plan`` on ``{map, start, goal}``: the map file, and for a ROS ``.yaml`` map its image;
 * ``plan`` on a paper map: its catalogue entry (file, start, goal) and its map file;
@@ -85,45 +86,46 @@ def _scenario_files(spec: str) -> list[tuple[str, Path | None]]:
     return out
 
 
-def input_files(kind: str, target_spec: Mapping[str, Any],
-                program: Mapping[str, Any] | None = None) -> list[tuple[str, Path | None]]:
-    """``(role, path)`` of every file a run of ``kind`` on ``target_spec`` (and, for kind
-    ``program``, with the program identity ``program``) reads, in reading order; ``path`` is
-    ``None`` for a file that cannot be found."""
-    out: list[tuple[str, Path | None]] = []
-    if kind == "simulate" and "scenario" in target_spec:
-        out = _scenario_files(str(target_spec["scenario"]))
-    elif kind in ("plan", "program") and "map" in target_spec:
-        out = _map_files(str(target_spec["map"]))
-    elif kind in ("plan", "program") and "paper_map" in target_spec:
+def map_target_files(target_spec: Mapping[str, Any]) -> list[tuple[str, Path | None]]:
+    """``(role, path)`` of the files a map target (``{map: ...}`` or ``{paper_map: ...}``) reads."""
+    if "map" in target_spec:
+        return _map_files(str(target_spec["map"]))
+    if "paper_map" in target_spec:
         from ..world.papermaps import MAPS_DIR, catalogue
 
         entry = catalogue().get(str(target_spec["paper_map"]))
-        out = [] if entry is None else _map_files(str(MAPS_DIR / entry.file))
-    if kind == "program" and program and ":" in str(program.get("program", "")):
-        from .programs import program_module_file
-
-        out.append(("program module", program_module_file(str(program["program"]))))
-    return out
+        return [] if entry is None else _map_files(str(MAPS_DIR / entry.file))
+    return []
 
 
-def inputs_digest(kind: str, target_spec: Mapping[str, Any], program: Mapping[str, Any] | None = None) -> str:
-    """One SHA-256 over the content of every file the run reads ("" when it reads none).
+def scenario_target_files(target_spec: Mapping[str, Any]) -> list[tuple[str, Path | None]]:
+    """``(role, path)`` of the files a scenario target reads (the scenario and its map)."""
+    return _scenario_files(str(target_spec["scenario"])) if "scenario" in target_spec else []
 
-    Paths are left out: moving an unchanged file keeps the key, editing one changes it.
-    """
+
+def map_target_entries(target_spec: Mapping[str, Any]) -> list[list[str]]:
+    """What a paper-map target takes from the catalogue besides its file (start and goal)."""
+    if "paper_map" not in target_spec:
+        return []
+    from ..world.papermaps import catalogue
+
+    entry = catalogue().get(str(target_spec["paper_map"]))
+    if entry is None:
+        return []
+    return [["paper map entry", json.dumps([entry.file, list(entry.start), list(entry.goal)])]]
+
+
+def files_digest(files: list[tuple[str, Path | None]], entries: list[list[str]] = ()) -> str:
+    """One SHA-256 over the content of ``files`` (in reading order) and then ``entries``
+    (``""`` when both are empty). Paths are left out: moving an unchanged file keeps the key,
+    editing one changes it."""
     parts = []
-    for role, path in input_files(kind, target_spec, program):
+    for role, path in files:
         try:
             parts.append([role, _file_hash(path) if path is not None else "missing"])
         except OSError:
             parts.append([role, "unreadable"])
-    if kind in ("plan", "program") and "paper_map" in target_spec:
-        from ..world.papermaps import catalogue
-
-        entry = catalogue().get(str(target_spec["paper_map"]))
-        if entry is not None:  # start and goal come from the catalogue too
-            parts.append(["paper map entry", json.dumps([entry.file, list(entry.start), list(entry.goal)])])
+    parts += [list(e) for e in entries]
     if not parts:
         return ""
     return hashlib.sha256(json.dumps(parts).encode()).hexdigest()[:20]

@@ -46,6 +46,7 @@ from typing import Any, Mapping
 from ..checks import MAX_RUNS, seed_bound
 from ..errors import ParameterError, ScenarioError
 from .kinds import KINDS as RUN_KINDS
+from .kinds import get_kind
 from .spec_fields import AlgorithmSpec, TargetSpec, as_list, check_keys, check_params, refine_name
 
 SPECS_DIR = Path(__file__).resolve().parent.parent / "data" / "specs"
@@ -76,7 +77,7 @@ class RunRecord:
         seed: the run's own seed.
         params: keyword arguments for the solver (``pop``, ``iters``, ``max_evals``, ...).
         inputs: content hash of every file the run reads (map, scenario, what the scenario
-            references; :func:`optplan.bench.inputs.inputs_digest`), so that editing one of
+            references; :meth:`optplan.bench.kinds.base.RunKind.inputs_digest`), so that editing one of
             them gives the run a new key; ``""`` when it reads none. For a ``module:function``
             program, the module's source file is one of them.
         program: ``program`` runs: ``{"program": name or "module:function", "args": {...},
@@ -170,12 +171,11 @@ class ExperimentSpec:
     def expand(self) -> list[RunRecord]:
         """Every run of the grid, in a fixed order: target, algorithm, refine, then seed and local
         planner (local planner innermost, so that runs sharing a global plan run close together)."""
-        from .inputs import inputs_digest
-
+        kind = get_kind(self.kind)
         out = []
         for t in self.targets:
             # read now: the files as this expansion sees them
-            inputs = inputs_digest(self.kind, t.spec, self.program or None)
+            inputs = kind.inputs_digest(t.spec, self.program or None)
             for a in self.algorithms:
                 seeds = self.seeds if a.runs is None else [self.seeds[0] + k for k in range(a.runs)]
                 for r in self.refine:

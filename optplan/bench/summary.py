@@ -155,9 +155,9 @@ def exact_optimum_of(target_spec, clearance: float = 0.0) -> float:
     """Length (metres) of the exact any-angle optimum of a plan target at ``clearance`` (with a
     clearance, the visibility planner's conservative optimum), cached per process (by the
     content of its map file too, so an edited map gets its own optimum)."""
-    from .inputs import inputs_digest
+    from .kinds import get_kind
 
-    return _exact_optimum(json.dumps(dict(target_spec), sort_keys=True), inputs_digest("plan", target_spec),
+    return _exact_optimum(json.dumps(dict(target_spec), sort_keys=True), get_kind("plan").inputs_digest(target_spec),
                           float(clearance))
 
 

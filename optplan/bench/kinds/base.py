@@ -36,6 +36,23 @@ class RunKind:
     uses_local_planners: ClassVar[bool] = False
     final_metric: ClassVar[str | None] = None
 
+    # ------------------------------------------------------------------ inputs
+    def input_files(self, target_spec: Mapping[str, Any],
+                    program: Mapping[str, Any] | None = None) -> list[tuple[str, Path | None]]:
+        """``(role, path)`` of every file a run on ``target_spec`` reads, in reading order
+        (``path`` ``None`` for a file that cannot be found); none by default."""
+        return []
+
+    def input_entries(self, target_spec: Mapping[str, Any]) -> list[list[str]]:
+        """What a run reads from a catalogue besides files (hashed after them); none by default."""
+        return []
+
+    def inputs_digest(self, target_spec: Mapping[str, Any], program: Mapping[str, Any] | None = None) -> str:
+        """One content hash of what a run on ``target_spec`` reads (part of its run key)."""
+        from ..inputs import files_digest
+
+        return files_digest(self.input_files(target_spec, program), self.input_entries(target_spec))
+
     # ------------------------------------------------------------------ validate
     def targets(self, raw: dict, base_dir: Path, where: str, from_file: bool) -> list[TargetSpec]:
         """The spec's targets, each checked now (a bad map stops the spec before any run)."""

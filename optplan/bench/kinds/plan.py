@@ -19,9 +19,7 @@ SPLIT_METRICS = ("class_gap", "in_class_gap", "optimal_class")
 def plan_target(target_json: str):
     """``(world, start, goal)`` of a plan target, cached per process by the content of its
     files as well as by its description, so an edited map file is read again."""
-    from ..inputs import inputs_digest
-
-    return _load_plan_target(target_json, inputs_digest("plan", json.loads(target_json)))
+    return _load_plan_target(target_json, PlanKind().inputs_digest(json.loads(target_json)))
 
 
 @functools.lru_cache(maxsize=32)
@@ -89,6 +87,18 @@ class PlanKind(RunKind):
 
     def targets(self, raw: dict, base_dir: Path, where: str, from_file: bool) -> list[TargetSpec]:
         return map_targets(as_list(raw.get(self.target_key), self.target_key, where), base_dir, where, from_file)
+
+    def input_files(self, target_spec: Mapping[str, Any], program: Mapping[str, Any] | None = None) -> list:
+        """The map file (and a ROS map's image)."""
+        from ..inputs import map_target_files
+
+        return map_target_files(target_spec)
+
+    def input_entries(self, target_spec: Mapping[str, Any]) -> list[list[str]]:
+        """A paper map's catalogue entry (file, start, goal)."""
+        from ..inputs import map_target_entries
+
+        return map_target_entries(target_spec)
 
     def known_algorithms(self) -> list[str]:
         return path_planner_names()

@@ -11,7 +11,7 @@ from typing import Any, ClassVar, Mapping
 from ...errors import ParameterError, ScenarioError
 from ..spec_fields import ALGO_KEYS, AlgorithmSpec, TargetSpec, as_list, check_keys, check_params
 from .base import RunKind
-from .plan import map_targets, plan_target
+from .plan import PlanKind, map_targets, plan_target
 
 PROGRAM_KEYS = ("program", "args", "init")   # kind program only
 
@@ -44,10 +44,22 @@ class ProgramKind(RunKind):
         program = check_program(raw["program"], raw.get("args"), raw.get("init"), where)
         return _parse_solvers(raw.get("algorithms"), shared, where), program
 
+    def input_files(self, target_spec: Mapping[str, Any], program: Mapping[str, Any] | None = None) -> list:
+        """The map files as for ``plan``, then for a ``module:function`` program its module's
+        source file (not the modules it imports; the built-in programs are optplan's code)."""
+        files = PlanKind().input_files(target_spec)
+        if program and ":" in str(program.get("program", "")):
+            from ..programs import program_module_file
+
+            files.append(("program module", program_module_file(str(program["program"]))))
+        return files
+
+    def input_entries(self, target_spec: Mapping[str, Any]) -> list[list[str]]:
+        return PlanKind().input_entries(target_spec)
+
     def run(self, rec) -> tuple[Any, dict]:
         """Build the run's program on its map and solve it; the seed goes to solvers that take
         one, the ``init`` path to solvers that take a start."""
-        from ..inputs import inputs_digest
         from ..programs import build_program, solver_instance
 
         target_json = json.dumps(rec.target_spec, sort_keys=True)
@@ -60,7 +72,7 @@ class ProgramKind(RunKind):
             options["seed"] = rec.seed
         planner = rec.program.get("init")
         if planner and "init" in known:
-            options["init"] = _init_path(target_json, inputs_digest("plan", rec.target_spec), planner,
+            options["init"] = _init_path(target_json, PlanKind().inputs_digest(rec.target_spec), planner,
                                          prog.clearance).copy()
         res = prog.solve(solver, **options)
         extra: dict[str, Any] = {"violation": float(sum(res.violations.values())), "program_name": prog.name}

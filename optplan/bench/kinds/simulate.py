@@ -64,11 +64,15 @@ class SimulateKind(RunKind):
     def successful(self, row: Mapping[str, Any]) -> bool:
         return bool(row.get("reached")) and not row.get("collisions")
 
+    def input_files(self, target_spec: Mapping[str, Any], program: Mapping[str, Any] | None = None) -> list:
+        """The scenario file and the map it names."""
+        from ..inputs import scenario_target_files
+
+        return scenario_target_files(target_spec)
+
 
 def _scenario_inputs(target_json: str) -> str:
-    from ..inputs import inputs_digest
-
-    return inputs_digest("simulate", json.loads(target_json))
+    return SimulateKind().inputs_digest(json.loads(target_json))
 
 
 def scenario_target(target_json: str, inputs: str | None = None):
