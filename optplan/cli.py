@@ -25,7 +25,7 @@ LAYER_COMMANDS = (
 
 EXAMPLES = {
     "plan": "example: optplan plan arena --start 1.5 37.5 --goal 40.5 10.5 --algo visibility --plot arena.png",
-    "algorithms": "example: optplan algorithms",
+    "algorithms": "example: optplan algorithms --details",
     "demo": "example: optplan demo --out demo.png",
     "simulate": "example: optplan simulate hou2024_dynamic1 --global astar --local missa-dwa --gif run.gif   "
                 "(exit status: 0 goal reached with no collision, 1 not (stuck, timeout or collision), 2 error)",
@@ -224,8 +224,18 @@ def _cmd_simulate(args) -> int:
 def _cmd_algorithms(args) -> int:
     from .registry import algorithms
 
+    if not getattr(args, "details", False):
+        for name in algorithms():
+            print(name)
+        return 0
+    from .local import algorithm_names as local_names
+    from .solvers.catalog import planner_capabilities
+
+    local = set(local_names())
+    width = max(len(n) for n in algorithms())
     for name in algorithms():
-        print(name)
+        what = "local planner" if name in local else planner_capabilities(name).describe()
+        print(f"{name:<{width}}  {what}")
     return 0
 
 
@@ -286,6 +296,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=_cmd_plan)
 
     a = sub.add_parser("algorithms", help="list every registered planner", epilog=EXAMPLES["algorithms"])
+    a.add_argument("--details", action="store_true",
+                   help="also say what each global planner can do (kind, grid only, stochastic, exact, alternatives)")
     a.set_defaults(func=_cmd_algorithms)
 
     m = sub.add_parser("simulate", help="run a robot through a scenario (global + local planner)",

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .checks import population_budget, seed_bound
+from .checks import metres, population_budget, seed_bound
 from .errors import ParameterError, UnknownAlgorithmError
 from .papers import paper_of_algorithm
 from .registry import GRAPH_METHODS
@@ -11,10 +11,6 @@ from .results import PlanResult
 from .world.queries import check_start_goal
 
 REFINE_MODES = (None, "none", "casadi", "qp")
-# planners that exist only on occupancy grids, and why
-GRID_ONLY = {"aco": "ACO walks the grid's cell graph", "iaco": "IACO walks the grid's cell graph",
-             "iga": "IGA evolves sequences of grid cells",
-             "astar": "A* searches the grid's cell graph", "dijkstra": "Dijkstra searches the grid's cell graph"}
 
 
 def global_planner_names() -> list[str]:
@@ -25,13 +21,7 @@ def global_planner_names() -> list[str]:
 
 
 def _checked_clearance(clearance) -> float:
-    try:
-        c = float(clearance)
-    except (TypeError, ValueError):
-        c = float("nan")
-    if not np.isfinite(c) or c < 0:
-        raise ParameterError(f"clearance must be a finite number >= 0 metres, got {clearance!r}")
-    return c
+    return metres("clearance", clearance)
 
 
 def _checked_refine_options(options) -> dict:
@@ -145,12 +135,15 @@ def plan(world, start, goal, algorithm: str = "astar", refine: str | None = None
         dim = max(getattr(world, "width", 8), getattr(world, "height", 8)) * 2
         population_budget(pop, iters, params.get("max_evals"), dim)
     seed_bound("seed", seed)
-    if name in GRID_ONLY and not world.is_grid:
-        raise ParameterError(f"{name!r} needs a grid map ({GRID_ONLY[name]}); on a circle world use "
-                             "'visibility' or a metaheuristic such as 'pso', 'ipso' or 'ga'")
     names = global_planner_names()
     if name not in names:
         raise UnknownAlgorithmError(f"unknown path planner {algorithm!r}; known: {', '.join(names)}")
+    from .solvers.catalog import planner_capabilities
+
+    caps = planner_capabilities(name)
+    if not caps.runs_on(world):
+        raise ParameterError(f"{name!r} needs a grid map ({caps.grid_only}); on a circle world use "
+                             "'visibility' or a metaheuristic such as 'pso', 'ipso' or 'ga'")
     from .solvers.catalog import check_plan_options, check_refine_options
 
     check_plan_options(name, world, params, names)

@@ -14,8 +14,7 @@ import dataclasses
 import inspect
 from typing import Callable, Iterable
 
-from ..errors import ParameterError
-from ..registry import GRAPH_METHODS
+from ..errors import ParameterError, UnknownAlgorithmError
 
 # keywords op.plan passes itself: never user options of the planner's entry point
 PLAN_OWN = frozenset({"world", "grid", "start", "goal", "algorithm", "seed", "pop", "iters", "clearance",
@@ -34,15 +33,42 @@ def keyword_names(fn: Callable, exclude: Iterable[str] = ()) -> set[str]:
             if p.kind not in (p.VAR_POSITIONAL, p.VAR_KEYWORD) and p.name not in skip}
 
 
+def planner_capabilities(name: str):
+    """The :class:`~optplan.solvers.capabilities.PlannerCapabilities` that ``name`` declares
+    (an UnknownAlgorithmError for an unknown planner)."""
+    from .graph import CAPABILITIES as GRAPH
+    from .gridpath.aco import CAPABILITIES as ACO
+    from .gridpath.ga_path import CAPABILITIES as CELL_GA
+    from .gridpath.iaco import CAPABILITIES as IACO
+
+    declared = {**GRAPH, ACO.name: ACO, IACO.name: IACO, **CELL_GA}
+    if name in declared:
+        return declared[name]
+    from .metaheuristics import ALGORITHMS
+
+    if name in ALGORITHMS:
+        return ALGORITHMS[name].capabilities()
+    raise UnknownAlgorithmError(f"unknown path planner {name!r}")
+
+
+def runs_on(name: str, world) -> bool:
+    """Whether the global planner ``name`` runs on ``world``, as it declares (names that are
+    not global planners, e.g. local planners, run anywhere: True)."""
+    try:
+        caps = planner_capabilities(name)
+    except UnknownAlgorithmError:
+        return True
+    return caps.runs_on(world)
+
+
 def planner_kind(name: str, world, encoding=None) -> str:
-    """``graph``, ``aco``, ``cell-ga`` (the grid GAs on their own chromosome) or ``swarm``."""
-    if name in GRAPH_METHODS:
-        return "graph"
-    if name in ("aco", "iaco"):
-        return "aco"
-    if name == "iga" or (name == "ga" and world.is_grid and encoding in (None, "columns")):
-        return "cell-ga"   # iga exists only on its cell chromosome; ga also runs as a swarm
-    return "swarm"
+    """``graph``, ``aco``, ``cell-ga`` (the grid GAs on their own chromosome) or ``swarm``: the
+    kind the planner declares (:mod:`optplan.solvers.capabilities`), except that ``ga`` runs as
+    a swarm off its cell chromosome (circle worlds, other encodings)."""
+    kind = planner_capabilities(name).kind
+    if kind == "cell-ga" and name == "ga" and not (world.is_grid and encoding in (None, "columns")):
+        return "swarm"
+    return kind
 
 
 def planner_options(name: str, world, encoding=None) -> set[str]:

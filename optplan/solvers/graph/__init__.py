@@ -16,12 +16,20 @@ from ...errors import ParameterError, UnknownAlgorithmError
 from ...results import PlanResult
 from ...world.geometry import convex_corners
 from ...world.queries import check_start_goal, check_world
+from ..capabilities import PlannerCapabilities
 from ..result import make_plan_result
 from ..tangent_graph import plan_tangent
 from .astar import CellPath, cell_path, grid_search, octile
 from .visibility import POINT_MODES, visibility_path
 
 METHODS = ("astar", "dijkstra", "visibility")
+CAPABILITIES = {
+    "astar": PlannerCapabilities("astar", "graph", grid_only="A* searches the grid's cell graph",
+                                 stochastic=False, exact=True),
+    "dijkstra": PlannerCapabilities("dijkstra", "graph", grid_only="Dijkstra searches the grid's cell graph",
+                                    stochastic=False, exact=True),
+    "visibility": PlannerCapabilities("visibility", "graph", stochastic=False, exact=True),
+}
 
 __all__ = ["METHODS", "CellPath", "cell_path", "convex_corners", "grid_search", "octile", "shortest_path", "visibility_path"]
 

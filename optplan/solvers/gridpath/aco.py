@@ -24,6 +24,9 @@ from ...rng import as_generator
 from ..budget import Budget
 from ..result import make_plan_result
 from .moves import move_table
+from ..capabilities import PlannerCapabilities
+
+CAPABILITIES = PlannerCapabilities("aco", "aco", grid_only="ACO walks the grid's cell graph")
 
 
 def aco_path(grid, start, goal, *, ants: int = 60, iters: int | None = 300, alpha: float = 2.0, beta: float = 6.0,

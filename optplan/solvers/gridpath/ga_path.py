@@ -41,6 +41,13 @@ from ..archive import ARCHIVE_EVERY, archive_alternatives
 from ..budget import Budget
 from ..metaheuristics.engine import pooled_archive
 from ..result import check_alternatives, make_plan_result
+from ..capabilities import PlannerCapabilities
+
+CAPABILITIES = {
+    # ga runs on its cell chromosome on grids (columns) and as a swarm elsewhere
+    "ga": PlannerCapabilities("ga", "cell-ga", alternatives=True),
+    "iga": PlannerCapabilities("iga", "cell-ga", grid_only="IGA evolves sequences of grid cells", alternatives=True),
+}
 
 
 @dataclass(frozen=True)

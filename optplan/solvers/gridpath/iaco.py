@@ -23,6 +23,9 @@ import numpy as np
 from ..result import make_plan_result
 from .aco import aco_path
 from .moves import move_table
+from ..capabilities import PlannerCapabilities
+
+CAPABILITIES = PlannerCapabilities("iaco", "aco", grid_only="IACO walks the grid's cell graph")
 
 
 def geodesic_goal_distance(grid, goal_cell, corner_cutting: bool = False) -> np.ndarray:

@@ -224,6 +224,15 @@ class Algorithm:
     min_pop = 2
 
     @classmethod
+    def capabilities(cls):
+        """What the planner can do (:class:`optplan.solvers.capabilities.PlannerCapabilities`):
+        a metaheuristic runs on any world, depends on its seed and can offer other valid paths
+        of its population."""
+        from ..capabilities import PlannerCapabilities
+
+        return PlannerCapabilities(cls.name, "swarm", stochastic=True, alternatives=True)
+
+    @classmethod
     def batchable(cls) -> bool:
         """Whether this very class declares ``BATCHABLE = True``."""
         return bool(vars(cls).get("BATCHABLE", False))
