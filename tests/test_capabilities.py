@@ -58,3 +58,14 @@ def test_cli_lists_the_capabilities():
     lines = dict(line.split(None, 1) for line in out.stdout.splitlines())
     assert lines["astar"].strip() == "graph, grid only, deterministic, exact"
     assert lines["dwa"].strip() == "local planner" and set(lines) == set(op.algorithms())
+
+
+def test_a_spec_pairing_a_grid_only_planner_with_a_circle_world_is_refused_at_load(tmp_path):
+    from optplan.bench.spec import load_spec
+
+    spec = tmp_path / "cw.yaml"
+    spec.write_text("name: cw\nkind: plan\nmaps: [yang2023_env1]\nalgorithms: [pso, aco]\nruns: 1\n")
+    with pytest.raises(op.ScenarioError, match="'aco' needs a grid map.*circle world"):
+        load_spec(spec)
+    spec.write_text("name: cw\nkind: plan\nmaps: [yang2023_env1]\nalgorithms: [pso, visibility]\nruns: 1\n")
+    assert len(load_spec(spec).expand()) == 2

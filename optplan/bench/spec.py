@@ -291,6 +291,7 @@ def _parse(raw: dict, path: Path | None, where: str) -> ExperimentSpec:
         raise ScenarioError(f"{where}: 'params' must be a mapping of keyword arguments, e.g. {{pop: 30, iters: 500}}")
     check_params(shared, where)
     algos, program = kind.algorithms(raw, shared, where)
+    kind.check_pairs(targets, algos, where)
 
     refine = [refine_name(r, where) for r in as_list(raw.get("refine", [None]), "refine", where)] or [None]
     if not kind.refines and refine != [None]:

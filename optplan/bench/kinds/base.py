@@ -72,6 +72,9 @@ class RunKind:
         kind has one, e.g. a program)."""
         return parse_algorithms(self, raw.get("algorithms"), shared, where), {}
 
+    def check_pairs(self, targets: list[TargetSpec], algorithms: list[AlgorithmSpec], where: str) -> None:
+        """Refuse, at load, an algorithm that cannot run on one of the targets (none by default)."""
+
     def local_planners(self, raw: dict, where: str) -> list[str | None]:
         """The local planners of the grid (``[None]`` for kinds without a closed loop)."""
         from ...errors import ScenarioError

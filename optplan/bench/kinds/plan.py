@@ -88,6 +88,22 @@ class PlanKind(RunKind):
     def targets(self, raw: dict, base_dir: Path, where: str, from_file: bool) -> list[TargetSpec]:
         return map_targets(as_list(raw.get(self.target_key), self.target_key, where), base_dir, where, from_file)
 
+    def check_pairs(self, targets: list[TargetSpec], algorithms: list, where: str) -> None:
+        """A planner that declares it needs a grid (``optplan algorithms --details``) is refused
+        on a circle-world target when the spec is loaded, not when its runs fail."""
+        from ...solvers.catalog import planner_capabilities
+
+        grid_only = {a.name: planner_capabilities(a.name).grid_only for a in algorithms}
+        grid_only = {n: why for n, why in grid_only.items() if why}
+        if not grid_only:
+            return
+        for t in targets:
+            world = plan_target(json.dumps(dict(t.spec), sort_keys=True))[0]
+            if not world.is_grid:
+                name, why = next(iter(grid_only.items()))
+                raise ScenarioError(f"{where}: algorithm {name!r} needs a grid map ({why}); target {t.name!r} is a "
+                                    f"circle world")
+
     def input_files(self, target_spec: Mapping[str, Any], program: Mapping[str, Any] | None = None) -> list:
         """The map file (and a ROS map's image)."""
         from ..inputs import map_target_files
