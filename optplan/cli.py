@@ -162,7 +162,7 @@ def _add_simulate_arguments(parser) -> None:
                         help="global planner (see 'optplan algorithms'); default astar (visibility on circle worlds)")
     parser.add_argument("--local", dest="local_planner", default="dwa",
                         help="local planner: dwa, missa-dwa, idwa, ba-dwa, iga-dwa, qp-dwa; default dwa")
-    parser.add_argument("--refine", default="none", choices=["none", "casadi", "qp"], help="refine the global path")
+    parser.add_argument("--refine", default="none", choices=_refine_choices(), help="refine the global path")
     parser.add_argument("--seed", type=int, default=0, help="random seed (global planner, random obstacles); default 0")
     parser.add_argument("--subgoals", default=None,
                         help="subgoal strategy: goal, key_points, turning_points, navigation_points "
@@ -221,6 +221,12 @@ def _cmd_simulate(args) -> int:
     return status
 
 
+def _refine_choices() -> list[str]:
+    from .solvers.refine import METHODS
+
+    return ["none", *METHODS]
+
+
 def _cmd_algorithms(args) -> int:
     from .registry import algorithms
 
@@ -276,7 +282,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--goal", nargs=2, type=float, metavar=("X", "Y"),
                    help="goal in metres (default: a paper map's own goal, or the --scen query's)")
     p.add_argument("--algo", default="astar", help="planner name (see 'optplan algorithms'); default astar")
-    p.add_argument("--refine", default="none", choices=["none", "casadi", "qp"], help="refinement stage")
+    p.add_argument("--refine", default="none", choices=_refine_choices(), help="refinement stage")
     p.add_argument("--tube-radius", type=float, default=None, metavar="M",
                    help="metres around the path in which refinement may pass obstacles on the other side "
                         "(0: purely local; default: casadi twice the widest obstacle, qp 0)")

@@ -10,7 +10,6 @@ from .registry import GRAPH_METHODS
 from .results import PlanResult
 from .world.queries import check_start_goal
 
-REFINE_MODES = (None, "none", "casadi", "qp")
 
 
 def global_planner_names() -> list[str]:
@@ -126,8 +125,10 @@ def plan(world, start, goal, algorithm: str = "astar", refine: str | None = None
     if not isinstance(algorithm, str):
         raise UnknownAlgorithmError(f"algorithm must be a name string, got {algorithm!r}")
     name = algorithm.lower()
-    if refine not in REFINE_MODES:
-        raise ParameterError(f"refine must be one of none, casadi, qp; got {refine!r}")
+    from .solvers.refine import METHODS as REFINE_METHODS
+
+    if refine is not None and refine not in ("none", *REFINE_METHODS):
+        raise ParameterError(f"refine must be one of none, {', '.join(REFINE_METHODS)}; got {refine!r}")
     refine_options = _checked_refine_options(refine_options)
     start, goal = check_start_goal(world, start, goal, _checked_clearance(clearance))
     if name not in GRAPH_METHODS:

@@ -11,7 +11,6 @@ from typing import Any, Mapping
 from ..checks import population_budget
 from ..errors import ParameterError, ScenarioError, UnknownAlgorithmError
 
-REFINE_NAMES = ("none", "casadi", "qp")
 ALGO_KEYS = {"name", "label", "params", "runs"}
 MAX_PARAMS = 200  # per algorithm entry; every parameter is a column of the results table
 MAP_KEYS = {"name", "map", "start", "goal", "scen", "queries"}
@@ -184,8 +183,11 @@ def refine_name(r, where: str) -> str | None:
     """A ``refine:`` entry as the refine mode (``None`` for none)."""
     if r is None or r is False or r == "none":
         return None
-    if r not in REFINE_NAMES:
-        raise ParameterError(f"{where}: refine must be one of {', '.join(REFINE_NAMES)}, got {r!r}")
+    from ..solvers.refine import METHODS
+
+    names = ("none", *METHODS)
+    if r not in names:
+        raise ParameterError(f"{where}: refine must be one of {', '.join(names)}, got {r!r}")
     return str(r)
 
 

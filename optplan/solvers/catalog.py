@@ -124,9 +124,11 @@ def check_plan_options(name: str, world, params: dict, planner_names: Iterable[s
         return
     names = list(planner_names)
     where = []
+    from .refine import METHODS
+
     for opt in unknown:
         takers = _takers(opt, world, names)
-        refiners = [m for m in ("casadi", "qp") if opt in refine_options(m)]
+        refiners = [m for m in METHODS if opt in refine_options(m)]
         if takers:
             shown = ", ".join(takers[:6]) + (f" and {len(takers) - 6} more" if len(takers) > 6 else "")
             where.append(f"{opt!r} is an option of {shown}")
@@ -146,8 +148,10 @@ def check_refine_options(method: str, options: dict) -> None:
     unknown = sorted(set(options) - accepted)
     if not unknown:
         return
-    other = "qp" if method == "casadi" else "casadi"
-    hint = [f"{o!r} is an option of refine={other!r}" for o in unknown if o in refine_options(other)]
+    from .refine import METHODS
+
+    hint = [f"{o!r} is an option of refine={other!r}" for other in METHODS if other != method
+            for o in unknown if o in refine_options(other)]
     raise ParameterError(f"refine={method!r} has no option {', '.join(map(repr, unknown))}"
                          f"{' (' + '; '.join(hint) + ')' if hint else ''}; its refine_options are: "
                          f"{', '.join(sorted(accepted))}")

@@ -43,19 +43,50 @@ from __future__ import annotations
 import functools
 from dataclasses import replace
 
+from dataclasses import dataclass
+from typing import Callable
+
 import numpy as np
 
 from ..errors import ParameterError
 from ..results import PlanResult
 from .result import check_optional_metres, make_plan_result
 
-METHODS = ("casadi", "qp")
-# refine method -> tube radius when none is given: "default" = default_tube_radius(world)
-DEFAULT_TUBE = {"casadi": "default", "qp": 0.0}
-# refine method -> refinement starts when none are given (the best path + starts - 1
-# alternatives from the planner's population); why 3 for casadi: docs/measurements.md.
-# qp is the fast, purely local option: one start.
-DEFAULT_STARTS = {"casadi": 3, "qp": 1}
+@dataclass(frozen=True)
+class RefineMethod:
+    """One ``refine=`` method: its smoother (``load()`` imports it when first used), the tube
+    radius it uses when none is given (``"default"`` = :func:`default_tube_radius`, else
+    metres) and its refinement starts when none are given (the best path + starts - 1
+    alternatives from the planner's population)."""
+
+    name: str
+    load: Callable[[], Callable]
+    default_tube: float | str
+    default_starts: int
+
+
+def _casadi():
+    from .nlp import smooth_path
+
+    return in_seed_class(smooth_path)
+
+
+def _qp():
+    from .qp import smooth_path_qp
+
+    return smooth_path_qp
+
+
+# the registry of refinement methods: a new method is one entry here (and its smoother).
+# casadi: 3 starts (docs/measurements.md), a tube of twice the widest obstacle; qp is the
+# fast, purely local option: one start, no tube
+REFINE_METHODS: dict[str, RefineMethod] = {m.name: m for m in (
+    RefineMethod("casadi", _casadi, "default", 3),
+    RefineMethod("qp", _qp, 0.0, 1),
+)}
+METHODS = tuple(REFINE_METHODS)
+DEFAULT_TUBE = {m.name: m.default_tube for m in REFINE_METHODS.values()}
+DEFAULT_STARTS = {m.name: m.default_starts for m in REFINE_METHODS.values()}
 MAX_STARTS = 50
 
 
@@ -98,15 +129,10 @@ def tube_radius_for(world, method: str, tube_radius=None) -> float:
 def smoother_for(method: str):
     """The smoothing function behind ``refine=method`` (``casadi``: IPOPT kept in the seed's
     class, :func:`in_seed_class`; ``qp``: the corridor QP)."""
-    if method == "casadi":
-        from .nlp import smooth_path
-
-        return in_seed_class(smooth_path)
-    if method == "qp":
-        from .qp import smooth_path_qp
-
-        return smooth_path_qp
-    raise ParameterError(f"refine must be 'casadi' or 'qp', got {method!r}")
+    entry = REFINE_METHODS.get(method)
+    if entry is None:
+        raise ParameterError(f"refine must be one of {', '.join(map(repr, METHODS))}, got {method!r}")
+    return entry.load()
 
 
 def in_seed_class(smoother):
