@@ -4,7 +4,6 @@ collision (the outcome is still printed in full)."""
 from __future__ import annotations
 
 import argparse
-import importlib
 import json
 import sys
 from pathlib import Path
@@ -18,11 +17,6 @@ EXIT_INTERNAL = 3       # an exception that is not an OptplanError: a bug, print
 # Subcommands whose arguments and handler live with their layer: each module defines
 # ``add_<name>_arguments(parser)`` and ``run_<name>(args) -> int``. ``simulate`` lives here
 # instead, because it draws (--gif) and the simulator layer must not import optplan.viz.
-LAYER_COMMANDS = (
-    ("bench", "optplan.bench.command", "run an experiment spec (maps x algorithms x seeds) into SQLite"),
-    ("reproduce", "optplan.bench.command", "run a paper's shipped experiments and print its tables"),
-)
-
 EXAMPLES = {
     "plan": "example: optplan plan arena --start 1.5 37.5 --goal 40.5 10.5 --algo visibility --plot arena.png",
     "algorithms": "example: optplan algorithms --details",
@@ -252,6 +246,67 @@ def _cmd_demo(args) -> int:
     return 0
 
 
+# ----------------------------------------------------------- bench and reproduce
+BENCH_EPILOG = """examples:
+  optplan bench chen2025_paths --quick --db results.sqlite          # a shipped spec, reduced
+  optplan bench my_spec.yaml --workers 8 --csv runs.csv --plots figs/
+  optplan bench my_spec.yaml --executor dask://10.0.0.5:8786 --db results.sqlite
+  optplan bench programs_example --db programs.sqlite                # kind program: one program, many solvers
+Rerunning the same command skips the runs already in --db (resume after an interruption).
+Spec format: optplan/data/specs/README.md"""
+
+REPRODUCE_EPILOG = """examples:
+  optplan reproduce chen2025 --quick
+  optplan reproduce hou2024 --runs 10 --workers 2 --db hou2024.sqlite   # resumable
+Shipped specs: optplan/data/specs/PAPER_*.yaml"""
+
+
+def _common_run_arguments(p: argparse.ArgumentParser) -> None:
+    from .bench.runner import EXECUTORS_HELP
+
+    p.add_argument("--executor", default="local", metavar="EXEC",
+                   help=f"where runs execute: {EXECUTORS_HELP} (default local: a process pool)")
+    p.add_argument("--workers", type=int, default=None, metavar="N",
+                   help="worker processes for local/dask-local (default: CPU count, 1 with --quick; 1 runs in "
+                        "this process)")
+    p.add_argument("--runs", type=int, default=None, metavar="N", help="seeds per (target, algorithm), overriding "
+                   "the spec")
+    p.add_argument("--quick", action="store_true", help="apply the spec's quick overrides (few runs, short budgets)")
+    p.add_argument("--format", choices=["markdown", "latex"], default="markdown", help="table format")
+    p.add_argument("--plots", metavar="DIR", help="write box plots, convergence curves and path overlays here")
+    p.add_argument("--csv", metavar="OUT.csv", help="export the runs of the spec(s) to a CSV file")
+    p.add_argument("--export-ompl", metavar="DIR", help="write the runs as OMPL benchmark logs (one per experiment "
+                   "and target) into DIR, for ompl_benchmark_statistics.py and Planner Arena")
+    p.add_argument("--retry-failed", action="store_true", help="rerun runs stored as failed (default: keep them)")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
+
+
+def add_bench_arguments(parser: argparse.ArgumentParser) -> None:
+    """Arguments of ``optplan bench``."""
+    parser.formatter_class = argparse.RawDescriptionHelpFormatter
+    parser.epilog = BENCH_EPILOG
+    parser.add_argument("spec", help="experiment spec YAML file, or the name of a shipped spec")
+    parser.add_argument("--db", default="results.sqlite", metavar="FILE",
+                        help="SQLite results database (default results.sqlite; ':memory:' keeps nothing)")
+    parser.add_argument("--layout", default=None, help="table layout (default: the spec's 'report', else summary)")
+    parser.add_argument("--summary-only", action="store_true", help="print the tables of what --db holds, run nothing")
+    _common_run_arguments(parser)
+
+
+def add_reproduce_arguments(parser: argparse.ArgumentParser) -> None:
+    """Arguments of ``optplan reproduce``."""
+    parser.formatter_class = argparse.RawDescriptionHelpFormatter
+    parser.epilog = REPRODUCE_EPILOG
+    from .bench.command import PAPERS
+
+    parser.add_argument("paper", choices=PAPERS, help="which paper's experiments to run")
+    parser.add_argument("--part", default=None, help="only this part (e.g. global, local, functions, paths)")
+    parser.add_argument("--db", default=":memory:", metavar="FILE",
+                        help="keep results in this SQLite file and resume from it (default: in memory, fresh)")
+    _common_run_arguments(parser)
+
+
+
 class _OneLineParser(argparse.ArgumentParser):
     """argparse with usage errors on one line (status 2), like every other optplan error."""
 
@@ -311,11 +366,14 @@ def build_parser() -> argparse.ArgumentParser:
     _add_simulate_arguments(m)
     m.set_defaults(func=_cmd_simulate)
 
-    for name, module, help_text in LAYER_COMMANDS:
-        mod = importlib.import_module(module)
-        c = sub.add_parser(name, help=help_text)
-        getattr(mod, f"add_{name}_arguments")(c)
-        c.set_defaults(func=getattr(mod, f"run_{name}"))
+    from .bench.command import run_bench, run_reproduce
+
+    c = sub.add_parser("bench", help="run an experiment spec (maps x algorithms x seeds) into SQLite")
+    add_bench_arguments(c)
+    c.set_defaults(func=run_bench)
+    c = sub.add_parser("reproduce", help="run a paper's shipped experiments and print its tables")
+    add_reproduce_arguments(c)
+    c.set_defaults(func=run_reproduce)
 
     d = sub.add_parser("demo", help="plan on a shipped map, print a table, write a PNG", epilog=EXAMPLES["demo"])
     d.add_argument("--out", default="optplan_demo.png", help="PNG to write (default optplan_demo.png)")

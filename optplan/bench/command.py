@@ -1,72 +1,17 @@
-"""``optplan bench`` and ``optplan reproduce`` (hooked into ``optplan.cli``)."""
+"""What ``optplan bench`` and ``optplan reproduce`` do (their arguments are defined by the
+command line, :mod:`optplan.cli`), and :func:`reproduce`, the same from Python."""
 from __future__ import annotations
 
-import argparse
 import os
 import signal
 import sys
 from contextlib import contextmanager
 from pathlib import Path
+from types import SimpleNamespace
 
 from ..errors import ParameterError
-from .runner import EXECUTORS_HELP
 
 PAPERS = ("hou2024", "yang2023", "yuan2021", "li2023", "chen2025")
-
-BENCH_EPILOG = """examples:
-  optplan bench chen2025_paths --quick --db results.sqlite          # a shipped spec, reduced
-  optplan bench my_spec.yaml --workers 8 --csv runs.csv --plots figs/
-  optplan bench my_spec.yaml --executor dask://10.0.0.5:8786 --db results.sqlite
-  optplan bench programs_example --db programs.sqlite                # kind program: one program, many solvers
-Rerunning the same command skips the runs already in --db (resume after an interruption).
-Spec format: optplan/data/specs/README.md"""
-
-REPRODUCE_EPILOG = """examples:
-  optplan reproduce chen2025 --quick
-  optplan reproduce hou2024 --runs 10 --workers 2 --db hou2024.sqlite   # resumable
-Shipped specs: optplan/data/specs/PAPER_*.yaml"""
-
-
-def _common_run_arguments(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--executor", default="local", metavar="EXEC",
-                   help=f"where runs execute: {EXECUTORS_HELP} (default local: a process pool)")
-    p.add_argument("--workers", type=int, default=None, metavar="N",
-                   help="worker processes for local/dask-local (default: CPU count, 1 with --quick; 1 runs in "
-                        "this process)")
-    p.add_argument("--runs", type=int, default=None, metavar="N", help="seeds per (target, algorithm), overriding "
-                   "the spec")
-    p.add_argument("--quick", action="store_true", help="apply the spec's quick overrides (few runs, short budgets)")
-    p.add_argument("--format", choices=["markdown", "latex"], default="markdown", help="table format")
-    p.add_argument("--plots", metavar="DIR", help="write box plots, convergence curves and path overlays here")
-    p.add_argument("--csv", metavar="OUT.csv", help="export the runs of the spec(s) to a CSV file")
-    p.add_argument("--export-ompl", metavar="DIR", help="write the runs as OMPL benchmark logs (one per experiment "
-                   "and target) into DIR, for ompl_benchmark_statistics.py and Planner Arena")
-    p.add_argument("--retry-failed", action="store_true", help="rerun runs stored as failed (default: keep them)")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
-
-
-def add_bench_arguments(parser: argparse.ArgumentParser) -> None:
-    """Arguments of ``optplan bench``."""
-    parser.formatter_class = argparse.RawDescriptionHelpFormatter
-    parser.epilog = BENCH_EPILOG
-    parser.add_argument("spec", help="experiment spec YAML file, or the name of a shipped spec")
-    parser.add_argument("--db", default="results.sqlite", metavar="FILE",
-                        help="SQLite results database (default results.sqlite; ':memory:' keeps nothing)")
-    parser.add_argument("--layout", default=None, help="table layout (default: the spec's 'report', else summary)")
-    parser.add_argument("--summary-only", action="store_true", help="print the tables of what --db holds, run nothing")
-    _common_run_arguments(parser)
-
-
-def add_reproduce_arguments(parser: argparse.ArgumentParser) -> None:
-    """Arguments of ``optplan reproduce``."""
-    parser.formatter_class = argparse.RawDescriptionHelpFormatter
-    parser.epilog = REPRODUCE_EPILOG
-    parser.add_argument("paper", choices=PAPERS, help="which paper's experiments to run")
-    parser.add_argument("--part", default=None, help="only this part (e.g. global, local, functions, paths)")
-    parser.add_argument("--db", default=":memory:", metavar="FILE",
-                        help="keep results in this SQLite file and resume from it (default: in memory, fresh)")
-    _common_run_arguments(parser)
-
 
 @contextmanager
 def _sigterm_as_interrupt():
@@ -201,7 +146,7 @@ def reproduce(paper: str, part: str | None = None, *, quick: bool = False, runs:
     both print the same tables, claims included); returns the command's exit status."""
     if paper not in PAPERS:
         raise ParameterError(f"unknown paper {paper!r}; known: {', '.join(PAPERS)}")
-    args = argparse.Namespace(paper=paper, part=part, quick=quick, runs=runs, workers=workers, db=db,
+    args = SimpleNamespace(paper=paper, part=part, quick=quick, runs=runs, workers=workers, db=db,
                               executor="local", format="markdown", plots=plots, csv=None, retry_failed=False,
                               no_progress=not progress)
     return run_reproduce(args)
