@@ -102,3 +102,15 @@ def test_an_exception_inside_a_dask_worker_is_a_failed_run_and_the_rest_continue
     status = sorted(r["status"] for r in rows.values())
     assert status == ["failed"] * 3 + ["ok"] * 3
     assert all("pop" in (r.get("error") or "") for r in rows.values() if r["status"] == "failed")
+
+
+def test_ipopt_options_per_call_reach_the_smoother_and_leave_the_defaults_alone():
+    """refine_options={"ipopt": ...} sets this call's IPOPT options (issue 24: solver settings
+    per call, not module globals); the next default call builds from the defaults again."""
+    world, s, g = paper_map("chen2025_20")
+    starved = op.plan(world, s, g, algorithm="astar", refine="casadi", refine_options={"ipopt": {"max_iter": 1}})
+    assert not starved.refined and "Maximum_Iterations_Exceeded" in starved.message
+    default = op.plan(world, s, g, algorithm="astar", refine="casadi")
+    assert default.refined and default.feasible
+    with pytest.raises(op.ParameterError, match="ipopt must be a dict"):
+        op.plan(world, s, g, algorithm="astar", refine="casadi", refine_options={"ipopt": 5})

@@ -98,8 +98,8 @@ class _BuiltNlps:
         self.per_world: dict[int, tuple[weakref.ref, dict]] = {}
 
     @staticmethod
-    def options_key() -> tuple:
-        return tuple(tuple(sorted((k, str(v)) for k, v in o.items())) for o in (IPOPT_OPTIONS, IPOPT_WARM_OPTIONS))
+    def options_key(options: tuple[dict, dict]) -> tuple:
+        return tuple(tuple(sorted((k, str(v)) for k, v in o.items())) for o in options)
 
     def of(self, world) -> dict:
         """The NLPs built for ``world`` (a dict forgotten when the world is collected)."""
@@ -116,6 +116,15 @@ class _BuiltNlps:
 
 
 _BUILT = _BuiltNlps()
+
+
+def ipopt_options(ipopt: dict | None = None) -> tuple[dict, dict]:
+    """The cold- and warm-start IPOPT options of one call: the module's defaults
+    (``IPOPT_OPTIONS``, ``IPOPT_WARM_OPTIONS``) updated by the call's own ``ipopt`` settings."""
+    if ipopt is not None and (not isinstance(ipopt, dict) or not all(isinstance(k, str) for k in ipopt)):
+        raise ParameterError(f"ipopt must be a dict of IPOPT options (e.g. {{'max_iter': 100}}), got {ipopt!r}")
+    extra = dict(ipopt or {})
+    return {**IPOPT_OPTIONS, **extra}, {**IPOPT_WARM_OPTIONS, **extra}
 
 
 def _path_expressions(ca, z, ends, N: int, w_smooth: float, per_segment: int = 1):
@@ -142,28 +151,29 @@ class _TwoSolvers(dict):
     (options are fixed per instance), each created on first use: building one takes time
     that grows with the NLP's parameter vector, and many callers never warm-start."""
 
-    def __init__(self, name: str, nlp: dict, **entries) -> None:
+    def __init__(self, name: str, nlp: dict, options: tuple[dict, dict], **entries) -> None:
         super().__init__(entries)
-        self._name, self._nlp = name, nlp
+        self._name, self._nlp, self._options = name, nlp, options
 
     def __missing__(self, which: str):
         if which not in ("cold", "warm"):
             raise KeyError(which)
         import casadi as ca
 
-        opts = IPOPT_OPTIONS if which == "cold" else IPOPT_WARM_OPTIONS
+        opts = self._options[0] if which == "cold" else self._options[1]
         name = self._name if which == "cold" else self._name + "_warm"
         solver = self[which] = ca.nlpsol(name, "ipopt", self._nlp, {"print_time": False, "ipopt": dict(opts)})
         return solver
 
 
-def circle_nlp(N: int, K: int, w_smooth: float) -> dict:
+def circle_nlp(N: int, K: int, w_smooth: float, ipopt: dict | None = None) -> dict:
     """NLP for circle worlds, built once per ``(N, K, w)`` in SX.
 
     Parameters ``p = (ends (4), centre x (M*K), centre y (M*K), grown radius (M*K))``
     with ``M = 2N - 3`` query points, column-major ``(M, K)`` blocks.
     """
-    key = ("circles", N, K, float(w_smooth), _BUILT.options_key())
+    options = ipopt_options(ipopt)
+    key = ("circles", N, K, float(w_smooth), _BUILT.options_key(options))
     if key not in _BUILT.shared:
         import casadi as ca
 
@@ -175,7 +185,7 @@ def circle_nlp(N: int, K: int, w_smooth: float) -> dict:
         cy = ca.reshape(p[4 + M * K:4 + 2 * M * K], M, K)
         R = ca.reshape(p[4 + 2 * M * K:], M, K)
         g = ca.vertcat(*[(qx - cx[:, k]) ** 2 + (qy - cy[:, k]) ** 2 - R[:, k] ** 2 for k in range(K)])
-        _BUILT.shared[key] = _TwoSolvers("smooth_circles", {"x": z, "p": p, "f": J, "g": g}, key=key)
+        _BUILT.shared[key] = _TwoSolvers("smooth_circles", {"x": z, "p": p, "f": J, "g": g}, options, key=key)
     return _BUILT.shared[key]
 
 
@@ -185,7 +195,8 @@ def circle_nlp(N: int, K: int, w_smooth: float) -> dict:
 STRIP_CELLS = 6.0
 
 
-def grid_nlp(grid, N: int, w_smooth: float, per_segment: int = 1, subdiv: int = 4, blocks: int = 1) -> dict:
+def grid_nlp(grid, N: int, w_smooth: float, per_segment: int = 1, subdiv: int = 4, blocks: int = 1,
+             ipopt: dict | None = None) -> dict:
     """NLP for a grid map, built once per ``(map, N, w, per_segment, strip capacity)``:
     parameters ``p = (ends (4), margin, longest segment, strip)``; clearance constraints at
     the interior points and at ``per_segment`` points inside each segment, and every
@@ -193,7 +204,8 @@ def grid_nlp(grid, N: int, w_smooth: float, per_segment: int = 1, subdiv: int = 
     assumes). ``blocks``: the strip's capacity (:meth:`DistanceSpline.strip`), rounded up
     to a power of two so that seeds of similar length share one NLP."""
     cap = 1 << max(int(blocks) - 1, 0).bit_length()
-    key = ("grid", N, float(w_smooth), per_segment, subdiv, cap, _BUILT.options_key())
+    options = ipopt_options(ipopt)
+    key = ("grid", N, float(w_smooth), per_segment, subdiv, cap, _BUILT.options_key(options))
     built = _BUILT.of(grid)
     cached = built.get(key)
     if cached is None:
@@ -209,7 +221,7 @@ def grid_nlp(grid, N: int, w_smooth: float, per_segment: int = 1, subdiv: int = 
         g = spline.symbolic(qx, qy, p[6:]) - p[4]
         if SEGMENT_STRETCH is not None:
             g = ca.vertcat(g, p[5] ** 2 - seg2)
-        cached = built[key] = _TwoSolvers("smooth_grid", {"x": z, "p": p, "f": J, "g": g},
+        cached = built[key] = _TwoSolvers("smooth_grid", {"x": z, "p": p, "f": J, "g": g}, options,
                                                 key=("grid", id(grid)) + key[1:], blocks=cap)
     return cached
 
@@ -274,13 +286,14 @@ def _box_bounds(world, N: int, clearance: float):
     return lbx, ubx
 
 
-def _solve_circles(world, X0, clearance, cushion, w_smooth, K, run, warm: WarmStart | None, max_rounds=6):
+def _solve_circles(world, X0, clearance, cushion, w_smooth, K, run, warm: WarmStart | None, max_rounds=6,
+                   ipopt: dict | None = None):
     N = len(X0)
     ends = np.stack([X0[0], X0[-1]])
     if len(world.circles) == 0:
         return resample(ends, N), None, "no obstacles"
     K = min(K, len(world.circles))
-    nlp = circle_nlp(N, K, w_smooth)
+    nlp = circle_nlp(N, K, w_smooth, ipopt)
     lbx, ubx = _box_bounds(world, N, clearance)
     X = X0
     lam_x = lam_g = idx = None
@@ -306,7 +319,8 @@ def _solve_circles(world, X0, clearance, cushion, w_smooth, K, run, warm: WarmSt
     return X, None, "neighbour reassignment did not settle"
 
 
-def _solve_grid(world, X0, clearance, cushion, w_smooth, per_segment, max_segment, run, warm: WarmStart | None):
+def _solve_grid(world, X0, clearance, cushion, w_smooth, per_segment, max_segment, run, warm: WarmStart | None,
+                ipopt: dict | None = None):
     N = len(X0)
     ends = np.stack([X0[0], X0[-1]])
     from ...world.fields import distance_spline
@@ -316,7 +330,7 @@ def _solve_grid(world, X0, clearance, cushion, w_smooth, per_segment, max_segmen
     radius = STRIP_CELLS * world.resolution
     spline = distance_spline(world)
     _, blocks = spline.strip(near, radius)
-    nlp = grid_nlp(world, N, w_smooth, per_segment, blocks=blocks)
+    nlp = grid_nlp(world, N, w_smooth, per_segment, blocks=blocks, ipopt=ipopt)
     strip, _ = spline.strip(near, radius, nlp["blocks"])
     lbx, ubx = _box_bounds(world, N, 0.0)
     args = dict(p=np.concatenate([ends.ravel(), [clearance + cushion, max_segment], strip]), lbx=lbx, ubx=ubx,
@@ -342,7 +356,8 @@ def _polish(world, X: np.ndarray, clearance: float, w_smooth: float) -> tuple[np
 
 def smooth_path(world, seed_path, clearance: float = 0.0, n_points: int | None = None, w_smooth: float = 0.5,
                 k_nearest: int = 2, cushion: float | None = None, grid_samples: int = 1,
-                warm_start: "WarmStart | SmoothResult | None" = None, polish: bool | None = None) -> SmoothResult:
+                warm_start: "WarmStart | SmoothResult | None" = None, polish: bool | None = None,
+                ipopt: dict | None = None) -> SmoothResult:
     """Smooth and shorten ``seed_path`` under clearance constraints with IPOPT.
 
     Args:
@@ -372,11 +387,15 @@ def smooth_path(world, seed_path, clearance: float = 0.0, n_points: int | None =
             sampling cushion away from every corner; the corridor pass works on the
             exact geometry and removes it (docs/measurements.md). Default: on for grids,
             off for circle worlds (there the cushion is ~1e-3 m).
+        ipopt: IPOPT options of this call (e.g. ``{"max_iter": 100}``), over the module's
+            defaults ``IPOPT_OPTIONS``; solvers built with other options are kept apart.
+            Through ``op.plan``: ``refine_options={"ipopt": {...}}``.
 
     Returns:
         SmoothResult; ``success`` only when the result passed ``validate_path``.
     """
     t0 = time.perf_counter()
+    ipopt_options(ipopt)   # a bad option set is refused before any work
     P, refused = check_seed_ends(world, seed_path, clearance)
     if refused is not None:
         return refused
@@ -413,9 +432,10 @@ def smooth_path(world, seed_path, clearance: float = 0.0, n_points: int | None =
             if is_grid:
                 L = float(np.hypot(*np.diff(P, axis=0).T).sum())
                 X, ws_out, note = _solve_grid(world, X0, clearance, cush, w_smooth, grid_samples,
-                                              (SEGMENT_STRETCH or 1.0) * L / (n - 1), run, ws)
+                                              (SEGMENT_STRETCH or 1.0) * L / (n - 1), run, ws, ipopt=ipopt)
             else:
-                X, ws_out, note = _solve_circles(world, X0, clearance, cush, w_smooth, k_nearest, run, ws)
+                X, ws_out, note = _solve_circles(world, X0, clearance, cush, w_smooth, k_nearest, run, ws,
+                                                 ipopt=ipopt)
         except RuntimeError as exc:  # IPOPT failures surface as RuntimeError
             reasons.append(f"attempt {attempt + 1}: IPOPT failed ({str(exc).splitlines()[0][:120]})")
             continue
