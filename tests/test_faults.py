@@ -114,3 +114,14 @@ def test_ipopt_options_per_call_reach_the_smoother_and_leave_the_defaults_alone(
     assert default.refined and default.feasible
     with pytest.raises(op.ParameterError, match="ipopt must be a dict"):
         op.plan(world, s, g, algorithm="astar", refine="casadi", refine_options={"ipopt": 5})
+
+
+def test_osqp_settings_per_call_reach_the_corridor_qp_and_leave_the_defaults_alone():
+    world, s, g = paper_map("chen2025_20")
+    starved = op.plan(world, s, g, algorithm="astar", refine="qp",
+                      refine_options={"osqp": {"max_iter": 1, "polishing": False}})
+    assert not starved.refined and "maximum iterations" in starved.message.lower()
+    default = op.plan(world, s, g, algorithm="astar", refine="qp")
+    assert default.refined and default.feasible
+    with pytest.raises(op.ParameterError, match="osqp must be a dict"):
+        op.plan(world, s, g, algorithm="astar", refine="qp", refine_options={"osqp": "fast"})

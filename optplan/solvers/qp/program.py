@@ -94,9 +94,10 @@ class OsqpCorridorQP:
     ``2 K (N-1)`` half-plane rows ordered by piece, slot, end.
     """
 
-    def __init__(self, N: int, K: int, w_smooth: float) -> None:
+    def __init__(self, N: int, K: int, w_smooth: float, settings: dict | None = None) -> None:
         import osqp
 
+        self.settings = dict(OSQP_SETTINGS if settings is None else settings)
         if N < 2:
             raise ParameterError(f"the corridor QP needs at least 2 points, got {N}")
         self.N, self.K, self.w_smooth = N, K, float(w_smooth)
@@ -116,7 +117,7 @@ class OsqpCorridorQP:
         A.data = self._values[self._perm]
         self.solver = osqp.OSQP()
         m = A.shape[0]
-        self.solver.setup(self.P, np.zeros(2 * N), A, -np.inf * np.ones(m), np.inf * np.ones(m), **OSQP_SETTINGS)
+        self.solver.setup(self.P, np.zeros(2 * N), A, -np.inf * np.ones(m), np.inf * np.ones(m), **self.settings)
 
     def _data(self, c: Corridor):
         N, K = self.N, self.K
@@ -154,7 +155,7 @@ class OsqpCorridorQP:
             # so the constraints hold to ~1e-8 m, well inside the cushion
             self.solver.update_settings(eps_abs=1e-9, eps_rel=1e-9)
             res2 = self.solver.solve(raise_error=False)
-            self.solver.update_settings(eps_abs=OSQP_SETTINGS["eps_abs"], eps_rel=OSQP_SETTINGS["eps_rel"])
+            self.solver.update_settings(eps_abs=self.settings["eps_abs"], eps_rel=self.settings["eps_rel"])
             if res2.info.status_val == 1:
                 res, polished = res2, res2.info.status_polish == 1
         dt = time.perf_counter() - t
@@ -226,17 +227,26 @@ _PROGRAMS: dict = {}
 MAX_CACHED_PROGRAMS = 64   # set-ups are cheap (ms); keep memory bounded in long sessions
 
 
-def corridor_program(N: int, K: int, w_smooth: float, backend: str = "osqp"):
+def osqp_settings(osqp: dict | None = None) -> dict:
+    """The OSQP settings of one call: the module's defaults ``OSQP_SETTINGS`` updated by the
+    call's own ``osqp`` settings."""
+    if osqp is not None and (not isinstance(osqp, dict) or not all(isinstance(k, str) for k in osqp)):
+        raise ParameterError(f"osqp must be a dict of OSQP settings (e.g. {{'max_iter': 2000}}), got {osqp!r}")
+    return {**OSQP_SETTINGS, **(osqp or {})}
+
+
+def corridor_program(N: int, K: int, w_smooth: float, backend: str = "osqp", osqp: dict | None = None):
     """The cached program for ``(N, K, w_smooth)`` and a backend (``"osqp"`` or ``"cvxpy"``).
-    The OSQP settings in force are part of the key, so changing ``OSQP_SETTINGS`` gives a
-    new set-up instead of a stale one (nothing to clear)."""
+    The OSQP settings (the defaults updated by ``osqp``) are part of the key, so changing them
+    gives a new set-up instead of a stale one (nothing to clear)."""
     if backend not in ("osqp", "cvxpy"):
         raise ParameterError(f"backend must be 'osqp' or 'cvxpy', got {backend!r}")
-    settings = tuple(sorted((k, str(v)) for k, v in OSQP_SETTINGS.items()))
+    merged = osqp_settings(osqp)
+    settings = tuple(sorted((k, str(v)) for k, v in merged.items()))
     key = (backend, N, K, float(w_smooth), settings)
     prog = _PROGRAMS.pop(key, None)   # re-inserted below: the dict's order is least recently used first
     if prog is None:
-        prog = (OsqpCorridorQP if backend == "osqp" else CvxpyCorridorQP)(N, K, w_smooth)
+        prog = OsqpCorridorQP(N, K, w_smooth, merged) if backend == "osqp" else CvxpyCorridorQP(N, K, w_smooth)
         while len(_PROGRAMS) >= MAX_CACHED_PROGRAMS:
             _PROGRAMS.pop(next(iter(_PROGRAMS)))
     _PROGRAMS[key] = prog

@@ -29,12 +29,13 @@ from ...errors import ParameterError
 from ...world.geometry import validate_path
 from ..smoother import SmoothResult, check_seed_ends, default_points
 from .corridor import build_corridor, sample_for_corridor
-from .program import corridor_program, objective_value
+from .program import corridor_program, objective_value, osqp_settings
 
 
 def smooth_path_qp(world, seed_path, clearance: float = 0.0, n_points: int | None = None, w_smooth: float = 0.5,
                    backend: str = "osqp", rounds: int = 6, tol: float = 1e-3, k_halfplanes: int = 6,
-                   max_cells: int = 3, max_step: float | None = None, cushion: float = 1e-5) -> SmoothResult:
+                   max_cells: int = 3, max_step: float | None = None, cushion: float = 1e-5,
+                   osqp: dict | None = None) -> SmoothResult:
     """Smooth and shorten a collision-free ``seed_path`` inside its safe corridor.
 
     Args:
@@ -55,11 +56,15 @@ def smooth_path_qp(world, seed_path, clearance: float = 0.0, n_points: int | Non
             (default a tenth of the shorter side of the map).
         cushion: regions shrink by this much (metres; grid: times the resolution),
             a margin over the QP solver's constraint tolerance.
+        osqp: OSQP settings of this call (e.g. ``{"max_iter": 2000}``), over the module's
+            defaults ``OSQP_SETTINGS`` (osqp backend; through ``op.plan``:
+            ``refine_options={"osqp": {...}}``).
 
     Returns:
         SmoothResult; ``success`` only when the result passed ``validate_path``.
     """
     t0 = time.perf_counter()
+    osqp_settings(osqp)   # a bad settings dict is refused before any work
     if backend not in ("osqp", "cvxpy"):
         raise ParameterError(f"backend must be 'osqp' or 'cvxpy', got {backend!r}")
     if rounds < 1:
@@ -90,7 +95,7 @@ def smooth_path_qp(world, seed_path, clearance: float = 0.0, n_points: int | Non
         y = None
         for rnd in range(rounds):
             corridor = build_corridor(world, X, clearance, split=(rnd == 0), **opts)
-            prog = corridor_program(corridor.n_points, corridor.k_slots, w_smooth, backend)
+            prog = corridor_program(corridor.n_points, corridor.k_slots, w_smooth, backend, osqp)
             sol = prog.solve(corridor) if backend == "cvxpy" else prog.solve(corridor, y0=y)
             iters += sol.iterations
             solves += 1
