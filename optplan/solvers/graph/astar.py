@@ -111,9 +111,7 @@ def astar_cells(table, sources, targets, source_bias=None, target_bias=None):
     if len(heap) > 1:
         heapq.heapify(heap)
     pop, push = heapq.heappop, heapq.heappush
-    reached, cost = -1, math.inf
-    # no counter in the loop: every expanded cell is closed (-1.0, never a distance), so the
-    # count is taken once at the end
+    reached, cost, closed = -1, math.inf, 0
     while heap:
         _, d, c = pop(heap)
         if d != dist[c]:
@@ -126,12 +124,14 @@ def astar_cells(table, sources, targets, source_bias=None, target_bias=None):
                 reached, cost = c, d + extra[c]
                 break
             dist[c], bar[c] = -1.0, CLOSED
+            closed += 1
             nd = d + extra[c]  # a path on through one target to another is longer than stopping
             if nd < dist[n]:
                 dist[n], parent[n] = nd, c
                 push(heap, (nd, nd, n))
             continue
         dist[c], bar[c] = -1.0, CLOSED
+        closed += 1
         for off, w in moves[masks[c]]:
             t = c + off
             nd = d + w
@@ -141,7 +141,7 @@ def astar_cells(table, sources, targets, source_bias=None, target_bias=None):
                 push(heap, (nd + H[t], nd, t))
     if reached < 0:
         return None
-    expanded = dist.count(-1.0) + int(single)   # a single target is expanded, not closed
+    expanded = closed + int(single)   # a single target is expanded, not closed
     cells = [reached]
     append = cells.append
     c = parent[reached]
