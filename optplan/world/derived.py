@@ -14,9 +14,7 @@ Built solver objects are not derived data and are not kept here: the solvers own
 """
 from __future__ import annotations
 
-from typing import Any, Callable
-
-_NAMES: set[str] = set()
+from typing import Any
 
 
 class DerivedStore:
@@ -24,7 +22,6 @@ class DerivedStore:
 
     def __init__(self, name: str) -> None:
         self.name = str(name)
-        _NAMES.add(self.name)
 
     def of(self, world) -> dict:
         """This builder's entries for ``world`` (a dict, created empty on first use)."""
@@ -33,13 +30,6 @@ class DerivedStore:
         if entries is None:
             entries = slot[self.name] = {}
         return entries
-
-    def get(self, world, key, build: Callable[[], Any]):
-        """The entry ``key`` for ``world``, built by ``build()`` on first use."""
-        entries = self.of(world)
-        if key not in entries:
-            entries[key] = build()
-        return entries[key]
 
     def __repr__(self) -> str:
         return f"DerivedStore({self.name!r})"

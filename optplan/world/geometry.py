@@ -195,16 +195,18 @@ def _segments_free_grid_units(occ_pad: np.ndarray, col_cum: np.ndarray, a: np.nd
 
 
 def _cached_transpose(grid) -> np.ndarray:
-    if "padded_T" not in _DERIVED.of(grid):
-        _DERIVED.of(grid)["padded_T"] = np.ascontiguousarray(grid.padded.T)
-    return _DERIVED.of(grid)["padded_T"]
+    cache = _DERIVED.of(grid)
+    if "padded_T" not in cache:
+        cache["padded_T"] = np.ascontiguousarray(grid.padded.T)
+    return cache["padded_T"]
 
 
 def _cached_prefix(grid, transposed: bool) -> np.ndarray:
     key = "col_prefix_T" if transposed else "col_prefix"
-    if key not in _DERIVED.of(grid):
-        _DERIVED.of(grid)[key] = _column_prefix(_cached_transpose(grid) if transposed else grid.padded)
-    return _DERIVED.of(grid)[key]
+    cache = _DERIVED.of(grid)
+    if key not in cache:
+        cache[key] = _column_prefix(_cached_transpose(grid) if transposed else grid.padded)
+    return cache[key]
 
 
 def _segments_rule(grid, ga: np.ndarray, gb: np.ndarray) -> np.ndarray:

@@ -82,8 +82,9 @@ def move_table(grid, corner_cutting: bool = False, clearance: float = 0.0) -> Mo
     clearance does not have to block whole cells.
     """
     key = ("moves", bool(corner_cutting), float(clearance))
-    if key in _DERIVED.of(grid):
-        return _DERIVED.of(grid)[key]
+    cache = _DERIVED.of(grid)
+    if key in cache:
+        return cache[key]
     H, W = grid.height, grid.width
     pad = grid.padded  # blocked frame: padded[iy + 1, ix + 1]
     iy, ix = np.mgrid[0:H, 0:W]
@@ -104,5 +105,5 @@ def move_table(grid, corner_cutting: bool = False, clearance: float = 0.0) -> Mo
         ok = grid.is_free(a, clearance) & grid.is_free(b, clearance) & grid.segments_free(a, b, clearance)
         nb[src[~ok], k[~ok]] = -1
     table = MoveTable(W, H, nb, STEP.copy())
-    _DERIVED.of(grid)[key] = table
+    cache[key] = table
     return table
