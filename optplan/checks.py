@@ -3,7 +3,7 @@ clean value or raises a ParameterError that names the option and what it takes."
 from __future__ import annotations
 
 import math
-from typing import Any, Callable
+from typing import Any, Callable, Mapping
 
 import numpy as np
 
@@ -165,3 +165,10 @@ def seed_bound(name: str, value) -> None:
     """An integer seed must fit the results database's signed 64-bit INTEGER."""
     if isinstance(value, (int, np.integer)) and not isinstance(value, bool) and value > MAX_SEED:
         raise ParameterError(f"{name} must be <= 2**63 - 1 (stored as a 64-bit integer), got {value}")
+
+
+def settings_key(settings: Mapping[str, Any]) -> tuple[tuple[str, str], ...]:
+    """A hashable, order-free key for a solver's settings, used to key cached solver objects by
+    the settings they were built with (values compared by their text, so ``1e-6`` and
+    ``0.000001`` are the same setting)."""
+    return tuple(sorted((str(k), str(v)) for k, v in settings.items()))

@@ -125,3 +125,13 @@ def test_osqp_settings_per_call_reach_the_corridor_qp_and_leave_the_defaults_alo
     assert default.refined and default.feasible
     with pytest.raises(op.ParameterError, match="osqp must be a dict"):
         op.plan(world, s, g, algorithm="astar", refine="qp", refine_options={"osqp": "fast"})
+
+
+def test_settings_key_ignores_order_and_separates_values():
+    """Cached solvers are keyed by their settings: the same settings in another order must hit
+    the same entry, and a changed value must not."""
+    from optplan.checks import settings_key
+    assert settings_key({"tol": 1e-6, "max_iter": 100}) == settings_key({"max_iter": 100, "tol": 1e-6})
+    assert settings_key({"tol": 1e-6}) != settings_key({"tol": 1e-7})
+    assert settings_key({"tol": 1e-6}) != settings_key({"tol": 1e-6, "max_iter": 100})
+    hash(settings_key({"warm_start": True, "eps_abs": 1e-5}))

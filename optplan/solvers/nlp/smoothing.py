@@ -45,6 +45,7 @@ import weakref
 
 import numpy as np
 
+from ...checks import settings_key
 from ...errors import ParameterError
 from ...world.geometry import validate_path
 from ..smoother import SmoothResult, WarmStart, check_seed_ends, default_points, resample
@@ -99,7 +100,7 @@ class _BuiltNlps:
 
     @staticmethod
     def options_key(options: tuple[dict, dict]) -> tuple:
-        return tuple(tuple(sorted((k, str(v)) for k, v in o.items())) for o in options)
+        return tuple(settings_key(o) for o in options)
 
     def of(self, world) -> dict:
         """The NLPs built for ``world`` (a dict forgotten when the world is collected)."""

@@ -30,6 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
+from ...checks import settings_key
 from ...errors import ParameterError
 from .corridor import Corridor
 
@@ -242,8 +243,7 @@ def corridor_program(N: int, K: int, w_smooth: float, backend: str = "osqp", osq
     if backend not in ("osqp", "cvxpy"):
         raise ParameterError(f"backend must be 'osqp' or 'cvxpy', got {backend!r}")
     merged = osqp_settings(osqp)
-    settings = tuple(sorted((k, str(v)) for k, v in merged.items()))
-    key = (backend, N, K, float(w_smooth), settings)
+    key = (backend, N, K, float(w_smooth), settings_key(merged))
     prog = _PROGRAMS.pop(key, None)   # re-inserted below: the dict's order is least recently used first
     if prog is None:
         prog = OsqpCorridorQP(N, K, w_smooth, merged) if backend == "osqp" else CvxpyCorridorQP(N, K, w_smooth)
