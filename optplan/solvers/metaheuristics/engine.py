@@ -124,6 +124,19 @@ class State:
         self.best_f = np.inf
         self.best_v = np.inf
         self.snapshots: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []  # see run(archive_every=...)
+        self._work: dict[str, np.ndarray] = {}
+
+    def work(self, name: str, shape: tuple[int, ...]) -> np.ndarray:
+        """A work array of ``shape`` kept for the whole run under ``name`` (contents undefined).
+
+        Rules that rebuild a large temporary every iteration write into it instead: a
+        fresh array of a batched run's size (hundreds of kB) is handed back to the
+        system when freed, and touching its new pages again costs more than the
+        arithmetic. Whatever is written there is overwritten by the next use."""
+        buf = self._work.get(name)
+        if buf is None or buf.shape != shape:
+            buf = self._work[name] = np.empty(shape)
+        return buf
 
     def snapshot(self) -> None:
         """Keep a copy of the current population and its values (the archive)."""
@@ -375,16 +388,22 @@ class SeedGenerators:
         shape = tuple(shape) if isinstance(shape, (tuple, list)) else (int(shape),)
         out = np.empty((len(self.generators),) + shape)
         if method == "random":
-            for g, o in zip(self.generators, out):
-                g.random(out=o)
+            return self.random(out=out)
         else:
             for i, g in enumerate(self.generators):
                 out[i] = getattr(g, method)(*args, size=shape)
         return out
 
-    def random(self, shape) -> np.ndarray:
-        """Uniform [0, 1) draws of ``shape`` per seed: ``(R, *shape)``."""
-        return self._draw("random", shape)
+    def random(self, size=None, out: np.ndarray | None = None) -> np.ndarray:
+        """Uniform [0, 1) draws of ``size`` per seed: ``(R, *size)``; or into ``out``
+        (shape ``(R, ...)``), as ``Generator.random(out=...)`` does."""
+        if out is None:
+            return self._draw("random", size)
+        if len(out) != len(self.generators):
+            raise ParameterError(f"out must have one row per seed ({len(self.generators)}), got shape {out.shape}")
+        for g, o in zip(self.generators, out):
+            g.random(out=o)
+        return out
 
     def normal(self, loc: float = 0.0, scale: float = 1.0, size=()) -> np.ndarray:
         """Normal draws (``Generator.normal``) per seed: ``(R, *size)``."""

@@ -100,17 +100,19 @@ class GWO(Algorithm):
         return self.a_initial + (self.a_final - self.a_initial) * state.progress
 
     def hunt(self, state: State, a: float) -> np.ndarray:
-        """The three leader-pulled points ``X1, X2, X3``, shape ``(3, n, d)`` (eq 3-7)."""
-        n, d = state.X.shape[-2:]
-        r = state.rng.random((2, 3, n, d))                   # ([R,] 2, 3, n, d)
-        # in place on the draws: a batched run's arrays are large enough for allocation to show
-        A = r[..., 0, :, :, :]
-        A *= 2 * a
+        """The three leader-pulled points ``X1, X2, X3``, shape ``([R,] 3, n, d)`` (eq 3-7),
+        in a work array that the next call overwrites."""
+        X = state.X
+        runs, (n, d) = X.shape[:-2], X.shape[-2:]
+        r = state.rng.random(out=state.work("gwo.draws", runs + (2, 3, n, d)))
+        # the first operation on each half of the draws writes a contiguous array: later
+        # operations on strided views of a batched run's draws run at half speed or less
+        A = np.multiply(r[..., 0, :, :, :], 2 * a, out=state.work("gwo.A", runs + (3, n, d)))
         A -= a                                                # A = 2 a r1 - a
         L = self.leaders[..., :, None, :]                     # ([R,] 3, 1, d)
         # C L = (2 r2) L computed as r2 (2 L): both round the exact 2 r2 L once, one pass fewer
-        gap = np.multiply(r[..., 1, :, :, :], 2 * L, out=r[..., 1, :, :, :])
-        gap -= state.X[..., None, :, :]
+        gap = np.multiply(r[..., 1, :, :, :], 2 * L, out=state.work("gwo.pulled", runs + (3, n, d)))
+        gap -= X[..., None, :, :]
         np.abs(gap, out=gap)
         gap *= A
         return np.subtract(L, gap, out=gap)                   # L - A |C L - X|
