@@ -84,3 +84,25 @@ def test_a_batch_of_one_is_the_single_run(algorithm):
                              seeds=[7])
     assert_same_run(batched, op.optimize(RASTRIGIN, RASTRIGIN.bounds, algorithm=algorithm, pop=9, iters=None,
                                          max_evals=400, seed=7))
+
+
+def test_generators_given_as_seeds_end_where_their_single_runs_leave_them():
+    # int seeds' generators read ahead in large blocks; a caller's Generator is not read
+    # ahead, so it can go on drawing exactly as after a single run
+    kw = dict(algorithm="gwo", pop=8, iters=12)
+    given = [np.random.default_rng(11), np.random.default_rng(12)]
+    runs = op.optimize(RASTRIGIN, RASTRIGIN.bounds, seeds=given, **kw)
+    for s, g, r in zip((11, 12), given, runs):
+        alone = np.random.default_rng(s)
+        assert_same_run(r, op.optimize(RASTRIGIN, RASTRIGIN.bounds, seed=alone, **kw))
+        assert g.bit_generator.state == alone.bit_generator.state
+
+
+def test_read_ahead_streams_refuse_other_kinds_of_draws():
+    from optplan.solvers.metaheuristics.engine import SeedGenerators
+
+    rng = SeedGenerators(range(3))
+    first = rng.random((2, 5)).copy()
+    np.testing.assert_array_equal(first[1], np.random.default_rng(1).random((2, 5)))
+    with pytest.raises(RuntimeError, match="read ahead"):
+        rng.normal(size=4)

@@ -104,14 +104,18 @@ class GWO(Algorithm):
         in a work array that the next call overwrites."""
         X = state.X
         runs, (n, d) = X.shape[:-2], X.shape[-2:]
-        r = state.rng.random(out=state.work("gwo.draws", runs + (2, 3, n, d)))
-        # the first operation on each half of the draws writes a contiguous array: later
-        # operations on strided views of a batched run's draws run at half speed or less
-        A = np.multiply(r[..., 0, :, :, :], 2 * a, out=state.work("gwo.A", runs + (3, n, d)))
+        r = state.rng.random((2, 3, n, d))                   # ([R,] 2, 3, n, d)
+        # each half of the draws is copied into a contiguous work array first: arithmetic
+        # reading a batched run's strided views of the draws runs at half speed or less
+        A = state.work("gwo.A", runs + (3, n, d))
+        np.copyto(A, r[..., 0, :, :, :])
+        A *= 2 * a
         A -= a                                                # A = 2 a r1 - a
         L = self.leaders[..., :, None, :]                     # ([R,] 3, 1, d)
+        gap = state.work("gwo.pulled", runs + (3, n, d))
+        np.copyto(gap, r[..., 1, :, :, :])
         # C L = (2 r2) L computed as r2 (2 L): both round the exact 2 r2 L once, one pass fewer
-        gap = np.multiply(r[..., 1, :, :, :], 2 * L, out=state.work("gwo.pulled", runs + (3, n, d)))
+        gap *= 2 * L
         gap -= X[..., None, :, :]
         np.abs(gap, out=gap)
         gap *= A
