@@ -92,8 +92,10 @@ class GWO(Algorithm):
         """The unconstrained single-run rule above for the batched ``runs`` (all when
         ``None``): each run's new top three (``argpartition`` picks the same rows of a
         row as of the run alone) against its leaders, in a stable sort."""
+        # ndarray methods and plain fancy indexing (pick): the numpy functions' Python
+        # wrappers (take_along_axis above all) cost more than the work at these sizes
         Fr, lf = (F, self.leader_f) if runs is None else (F[runs], self.leader_f[runs])
-        move = Fr.min(axis=-1) < lf[:, 2]
+        move = np.minimum.reduce(Fr, axis=-1) < lf[:, 2]
         if not move.all():
             if not move.any():
                 return
@@ -101,9 +103,9 @@ class GWO(Algorithm):
             Fr, lf = F[runs], self.leader_f[runs]
         rows = np.arange(len(F)) if runs is None else runs
         n = Fr.shape[-1]
-        top = np.argpartition(Fr, 2, axis=-1)[:, :3] if n > 3 else np.broadcast_to(np.arange(n), Fr.shape)
-        allF = np.concatenate([lf, np.take_along_axis(Fr, top, axis=-1)], axis=-1)
-        order = np.argsort(allF, axis=-1, kind="stable")[:, :3]
+        top = Fr.argpartition(2, axis=-1)[:, :3] if n > 3 else np.broadcast_to(np.arange(n), Fr.shape)
+        allF = np.concatenate([lf, pick(Fr, top)], axis=-1)
+        order = allF.argsort(axis=-1, kind="stable")[:, :3]
         allX = np.concatenate([self.leaders if runs is None else self.leaders[runs], X[rows[:, None], top]], axis=-2)
         if runs is None:
             self.leaders, self.leader_f = pick(allX, order), pick(allF, order)
