@@ -106,6 +106,11 @@ def test_read_ahead_streams_refuse_other_kinds_of_draws():
     np.testing.assert_array_equal(first[1], np.random.default_rng(1).random((2, 5)))
     with pytest.raises(RuntimeError, match="read ahead"):
         rng.normal(size=4)
+    many = SeedGenerators(range(4096))          # many seeds read ahead less (a bounded block)
+    for _ in range(7):                          # the seventh refills, keeping the 50 pending
+        many.random((7, 11))
+    assert many._ahead.nbytes <= SeedGenerators.READ_AHEAD_TOTAL * 8
+    np.testing.assert_array_equal(many.random(9)[4095], np.random.default_rng(4095).random(7 * 77 + 9)[-9:])
 
 
 STEP = get_function("F6", dim=8)      # a plateau: many wolves tie

@@ -386,7 +386,8 @@ class SeedGenerators:
     while read-ahead numbers are pending: they would come from the stream after those.
     """
 
-    READ_AHEAD = 32768
+    READ_AHEAD = 32768          # numbers per seed and call
+    READ_AHEAD_TOTAL = 2 ** 21  # numbers for all seeds (16 MB): many seeds read ahead less
 
     def __init__(self, seeds) -> None:
         seeds = list(seeds)
@@ -428,8 +429,9 @@ class SeedGenerators:
         """Keep the pending numbers in front and draw the rest of a block of at least ``m``."""
         pending = self._ahead[:, self._next:]
         k = pending.shape[1]
-        if self._ahead.shape[1] < max(m, self.READ_AHEAD):
-            block = np.empty((len(self.generators), max(m, self.READ_AHEAD)))
+        width = max(m, min(self.READ_AHEAD, self.READ_AHEAD_TOTAL // len(self.generators)))
+        if self._ahead.shape[1] < width:
+            block = np.empty((len(self.generators), width))
             block[:, :k] = pending
             self._ahead = block
         elif k:
