@@ -128,3 +128,20 @@ def test_batched_gwo_breaks_ties_as_each_single_run_does(constrained):
     runs = op.optimize(f, STEP.bounds, seeds=range(6), **kw)
     for s, r in enumerate(runs):
         assert_same_run(r, op.optimize(f, STEP.bounds, seed=s, **kw))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("algorithm", ["gwo", "pso"])
+def test_batched_equals_separate_on_held_out_seeds(algorithm):
+    # seeds never looked at while the batched path was written (before the tie fix: 793/800)
+    seeds = list(range(1000, 1020))
+    for name in ("F1", "F5", "F6", "F9", "F12"):
+        F = get_function(name, shifted=True, dim=10)
+        for constrained in (False, True):
+            def f(X, F=F, constrained=constrained):
+                return (F(X), np.maximum(X[:, 1] - 0.3 * F.bounds[1][1], 0.0)) if constrained else F(X)
+
+            for budget in (dict(iters=40), dict(iters=None, max_evals=517)):
+                runs = op.optimize(f, F.bounds, algorithm=algorithm, pop=11, seeds=seeds, **budget)
+                for s, r in zip(seeds, runs):
+                    assert_same_run(r, op.optimize(f, F.bounds, algorithm=algorithm, pop=11, seed=s, **budget))
