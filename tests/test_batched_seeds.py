@@ -98,6 +98,15 @@ def test_generators_given_as_seeds_end_where_their_single_runs_leave_them():
         assert g.bit_generator.state == alone.bit_generator.state
 
 
+def test_one_generator_given_twice_runs_the_seeds_one_after_the_other():
+    kw = dict(algorithm="gwo", pop=8, iters=10)
+    g = np.random.default_rng(5)
+    runs = op.optimize(RASTRIGIN, RASTRIGIN.bounds, seeds=[g, g], **kw)
+    h = np.random.default_rng(5)
+    for r in runs:
+        assert_same_run(r, op.optimize(RASTRIGIN, RASTRIGIN.bounds, seed=h, **kw))
+
+
 def test_read_ahead_streams_refuse_other_kinds_of_draws():
     from optplan.solvers.metaheuristics.engine import SeedGenerators
 
