@@ -17,8 +17,10 @@ Three tables (issue 30):
    seeds 1000, 1001, ... instead, and prints only this table.
 3. Batched seeds: 20 seeds of GWO (pop 30 x 500 iterations, 30-d) through
    ``op.optimize(..., seeds=range(20))`` against one run (goal: at most 3x), next to
-   the time the 20 seeds' own generators take to draw their numbers alone: results
-   identical seed by seed need every seed's PCG64 stream, so that is the floor.
+   the time the 20 seeds' own generators take to draw their numbers alone (results
+   identical seed by seed need every seed's PCG64 stream) and that plus GWO's update
+   arithmetic alone: two floors of the ratio. Wall and CPU time (the CPU time of this
+   process is what a loaded machine disturbs least).
 
 mealpy pins an older numpy, which breaks optplan's other dependencies, so the anchors
 run in a virtual environment of their own: ``benchmarks/anchor_runs.py`` is executed
@@ -41,6 +43,9 @@ from scipy.stats import ranksums
 import optplan as op
 from optplan.formulations.functions import get_function
 from optplan.solvers.metaheuristics import algorithm_names
+from optplan.solvers.budget import Budget
+from optplan.solvers.metaheuristics.engine import BatchState, Problem, SeedGenerators
+from optplan.solvers.metaheuristics.gwo import GWO
 
 HERE = Path(__file__).resolve().parent
 DEFAULT_VENV = Path("/tmp/mealpy-venv")
@@ -169,33 +174,60 @@ def quality_table(runs: int, anchors: dict | None, heldout: bool) -> None:
 
 def draws_only(seeds: int) -> None:
     """What a batched GWO run cannot avoid: every seed's own generator drawing that
-    seed's ``2 x 3 x pop x d`` numbers per iteration (one call each, into one block)."""
-    gens = [np.random.default_rng(s) for s in range(seeds)]
-    block = np.empty((seeds, 2, 3, POP, 30))
+    seed's ``2 x 3 x pop x d`` numbers per iteration, drawn as the batch draws them
+    (``SeedGenerators``, which reads each stream ahead in large blocks)."""
+    rng = SeedGenerators(range(seeds))
     for _ in range(ITERS):
-        for g, out in zip(gens, block):
-            g.random(out=out)
+        rng.random((2, 3, POP, 30))
+
+
+def update_only(seeds: int) -> None:
+    """The draws plus GWO's own update arithmetic (eq 3-7: ``hunt`` and ``combine``) on
+    the batch's arrays, with no objective, bounds, greedy step or leader bookkeeping."""
+    state = BatchState(Problem(sphere, np.full(30, -100.0), np.full(30, 100.0)), POP,
+                       SeedGenerators(range(seeds)), Budget(iterations=ITERS))
+    state.X = np.random.default_rng(0).uniform(-100, 100, (seeds, POP, 30))
+    gwo = GWO()
+    gwo.leaders = state.X[:, :3].copy()
+    for _ in range(ITERS):
+        gwo.combine(state, gwo.hunt(state, 1.0))
+
+
+def timed(fn) -> tuple[float, float]:
+    """``(wall, cpu)`` seconds of one call: the CPU time of this process is what
+    other jobs on a shared machine disturb least."""
+    w, c = time.perf_counter(), time.process_time()
+    fn()
+    return time.perf_counter() - w, time.process_time() - c
 
 
 def batched_table(repeats: int = 3) -> None:
-    one, batch, draws = [], [], []
-    for k in range(repeats):   # interleaved, so all three see the same machine load
-        t = time.perf_counter()
-        op.optimize(sphere, [(-100, 100)] * 30, algorithm="gwo", pop=POP, iters=ITERS, seed=k)
-        one.append(time.perf_counter() - t)
-        t = time.perf_counter()
-        op.optimize(sphere, [(-100, 100)] * 30, algorithm="gwo", pop=POP, iters=ITERS, seeds=range(20))
-        batch.append(time.perf_counter() - t)
-        t = time.perf_counter()
-        draws_only(20)
-        draws.append(time.perf_counter() - t)
-    a, b, c = float(np.median(one)), float(np.median(batch)), float(np.median(draws))
+    bounds, seeds = [(-100, 100)] * 30, range(20)
+    jobs = {"one": lambda k: op.optimize(sphere, bounds, algorithm="gwo", pop=POP, iters=ITERS, seed=k),
+            "batch": lambda k: op.optimize(sphere, bounds, algorithm="gwo", pop=POP, iters=ITERS, seeds=seeds),
+            "draws": lambda k: draws_only(len(seeds)),
+            "update": lambda k: update_only(len(seeds))}
+    jobs["one"](0)                                                    # imports and first-call set-up
+    walls, cpus = {name: [] for name in jobs}, {name: [] for name in jobs}
+    for k in range(repeats):   # interleaved, so all four see the same machine load
+        for name, job in jobs.items():
+            w, c = timed(lambda: job(k))
+            walls[name].append(w)
+            cpus[name].append(c)
+    numbers = len(seeds) * ITERS * 2 * 3 * POP * 30
     print(f"## Batched seeds: GWO, pop {POP} x {ITERS} iterations, 30-d sphere, median of {repeats}\n")
-    print("The last column is the floor for identical seed-by-seed numbers: drawing the 20 seeds'")
-    print("own PCG64 numbers alone (no arithmetic), as a multiple of one whole run.\n")
-    print("| one run [s] | 20 seeds batched [s] | ratio | goal <= 3x | 20 seeds' draws alone |")
-    print("|---|---|---|---|---|")
-    print(f"| {a:.4f} | {b:.4f} | {b / a:.1f}x | {'yes' if b / a <= 3 else 'NO'} | {c / a:.1f}x |\n")
+    print("Seed-by-seed identical results need every seed's own PCG64 numbers. 'draws alone' is the")
+    print(f"time the 20 seeds' {numbers / 1e6:.0f} M numbers take to draw (no arithmetic), 'draws + update' adds")
+    print("GWO's eq 3-7 arithmetic on the batch's arrays (no objective, bounds, greedy step or leader")
+    print("bookkeeping); as multiples of one whole run they are floors of the ratio in one thread.\n")
+    print("| clock | one run [s] | 20 seeds batched [s] | ratio | goal <= 3x | draws alone [s] | ns per number "
+          "| floor: draws | floor: draws + update |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for clock, t in (("wall", walls), ("CPU", cpus)):
+        a, b, c, u = (float(np.median(t[name])) for name in ("one", "batch", "draws", "update"))
+        print(f"| {clock} | {a:.4f} | {b:.4f} | {b / a:.1f}x | {'yes' if b / a <= 3 else 'NO'} | {c:.4f} | "
+              f"{c / numbers * 1e9:.2f} | {c / a:.1f}x | {u / a:.1f}x |")
+    print()
 
 
 def main() -> None:

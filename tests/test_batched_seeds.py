@@ -84,3 +84,73 @@ def test_a_batch_of_one_is_the_single_run(algorithm):
                              seeds=[7])
     assert_same_run(batched, op.optimize(RASTRIGIN, RASTRIGIN.bounds, algorithm=algorithm, pop=9, iters=None,
                                          max_evals=400, seed=7))
+
+
+def test_generators_given_as_seeds_end_where_their_single_runs_leave_them():
+    # int seeds' generators read ahead in large blocks; a caller's Generator is not read
+    # ahead, so it can go on drawing exactly as after a single run
+    kw = dict(algorithm="gwo", pop=8, iters=12)
+    given = [np.random.default_rng(11), np.random.default_rng(12)]
+    runs = op.optimize(RASTRIGIN, RASTRIGIN.bounds, seeds=given, **kw)
+    for s, g, r in zip((11, 12), given, runs):
+        alone = np.random.default_rng(s)
+        assert_same_run(r, op.optimize(RASTRIGIN, RASTRIGIN.bounds, seed=alone, **kw))
+        assert g.bit_generator.state == alone.bit_generator.state
+
+
+def test_one_generator_given_twice_runs_the_seeds_one_after_the_other():
+    kw = dict(algorithm="gwo", pop=8, iters=10)
+    g = np.random.default_rng(5)
+    runs = op.optimize(RASTRIGIN, RASTRIGIN.bounds, seeds=[g, g], **kw)
+    h = np.random.default_rng(5)
+    for r in runs:
+        assert_same_run(r, op.optimize(RASTRIGIN, RASTRIGIN.bounds, seed=h, **kw))
+
+
+def test_read_ahead_streams_refuse_other_kinds_of_draws():
+    from optplan.solvers.metaheuristics.engine import SeedGenerators
+
+    rng = SeedGenerators(range(3))
+    first = rng.random((2, 5)).copy()
+    np.testing.assert_array_equal(first[1], np.random.default_rng(1).random((2, 5)))
+    with pytest.raises(RuntimeError, match="read ahead"):
+        rng.normal(size=4)
+    many = SeedGenerators(range(4096))          # many seeds read ahead less (a bounded block)
+    for _ in range(7):                          # the seventh refills, keeping the 50 pending
+        many.random((7, 11))
+    assert many._ahead.nbytes <= SeedGenerators.READ_AHEAD_TOTAL * 8
+    np.testing.assert_array_equal(many.random(9)[4095], np.random.default_rng(4095).random(7 * 77 + 9)[-9:])
+
+
+STEP = get_function("F6", dim=8)      # a plateau: many wolves tie
+
+
+@pytest.mark.parametrize("constrained", [False, True])
+def test_batched_gwo_breaks_ties_as_each_single_run_does(constrained):
+    # the single run's leader update breaks ties in its own way (top three by argpartition,
+    # or the feasibility ranking when something is violated); a batched run follows each
+    # run's own rule (it used to give seeds 1, 4 and 5 other leaders on F6)
+    def f(X):
+        return (STEP(X), np.maximum(X[:, 0] - 50.0, 0.0)) if constrained else STEP(X)
+
+    kw = dict(algorithm="gwo", pop=12, iters=60)
+    runs = op.optimize(f, STEP.bounds, seeds=range(6), **kw)
+    for s, r in enumerate(runs):
+        assert_same_run(r, op.optimize(f, STEP.bounds, seed=s, **kw))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("algorithm", ["gwo", "pso"])
+def test_batched_equals_separate_on_held_out_seeds(algorithm):
+    # seeds never looked at while the batched path was written (before the tie fix: 793/800)
+    seeds = list(range(1000, 1020))
+    for name in ("F1", "F5", "F6", "F9", "F12"):
+        F = get_function(name, shifted=True, dim=10)
+        for constrained in (False, True):
+            def f(X, F=F, constrained=constrained):
+                return (F(X), np.maximum(X[:, 1] - 0.3 * F.bounds[1][1], 0.0)) if constrained else F(X)
+
+            for budget in (dict(iters=40), dict(iters=None, max_evals=517)):
+                runs = op.optimize(f, F.bounds, algorithm=algorithm, pop=11, seeds=seeds, **budget)
+                for s, r in zip(seeds, runs):
+                    assert_same_run(r, op.optimize(f, F.bounds, algorithm=algorithm, pop=11, seed=s, **budget))

@@ -87,7 +87,8 @@ def optimize(f: Callable, bounds, algorithm: str = "gwo", pop: int = 30, iters: 
     number for number. Algorithms that declare ``BATCHABLE`` (``gwo``, ``pso``) run all
     seeds as one vectorised population of ``R x pop`` rows, so ``f`` sees ``R * pop``
     rows per call; the others (and runs with a callback, progress output, an archive,
-    a stagnation or a target stop) run the seeds one after the other. A batched
+    a stagnation or a target stop, or one Generator given twice) run the seeds one
+    after the other. A batched
     result's ``runtime_s`` is the batch's wall time divided by ``R``.
 
     Args:
@@ -154,7 +155,10 @@ def _optimize_seeds(cls, f, lo, hi, pop, budget, seeds, *, init, repair, callbac
         raise ParameterError("seeds is empty; give at least one seed")
     per_run_control = (callback is not None or progress or archive_every is not None
                        or budget.stagnation is not None or budget.target is not None)
-    if not cls.batchable() or per_run_control:
+    # one Generator given twice is one stream: separate runs take it in turn, run after run
+    shared = [s for s in seeds if isinstance(s, np.random.Generator)]
+    shared_stream = len({id(g) for g in shared}) < len(shared)
+    if not cls.batchable() or per_run_control or shared_stream:
         bounds = np.stack([lo, hi], axis=1)
         return [optimize(f, bounds, algorithm=cls.name, pop=pop, iters=None, seed=s, init=init, repair=repair,
                          callback=callback, progress=progress, archive_every=archive_every, budget=budget,

@@ -124,6 +124,19 @@ class State:
         self.best_f = np.inf
         self.best_v = np.inf
         self.snapshots: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []  # see run(archive_every=...)
+        self._work: dict[str, np.ndarray] = {}
+
+    def work(self, name: str, shape: tuple[int, ...]) -> np.ndarray:
+        """A work array of ``shape`` kept for the whole run under ``name`` (contents undefined).
+
+        Rules that rebuild a large temporary every iteration write into it instead: a
+        fresh array of a batched run's size (hundreds of kB) is handed back to the
+        system when freed, and touching its new pages again costs more than the
+        arithmetic. Whatever is written there is overwritten by the next use."""
+        buf = self._work.get(name)
+        if buf is None or buf.shape != shape:
+            buf = self._work[name] = np.empty(shape)
+        return buf
 
     def snapshot(self) -> None:
         """Keep a copy of the current population and its values (the archive)."""
@@ -359,32 +372,73 @@ class SeedGenerators:
 
     ``random(shape)``, ``normal`` and ``uniform`` draw ``shape`` from every seed's own
     generator, in seed order, and stack them on a leading run axis:
-    ``random((2, 3, n, d))`` gives ``(R, 2, 3, n, d)``. Each seed's generator sees
-    exactly the calls of a single run, so its numbers are the same. Batchable rules
-    index draws from the right (``r[..., 0, :, :, :]``) so that they read the same with
-    and without the run axis.
+    ``random((2, 3, n, d))`` gives ``(R, 2, 3, n, d)``. Each seed's generator gives
+    exactly the numbers of a single run's calls. Batchable rules index draws from the
+    right (``r[..., 0, :, :, :]``) so that they read the same with and without the run axis.
+
+    Read-ahead: a ``Generator.random`` call costs about as much as 1,500 of its numbers
+    on top of them (``docs/measurements.md``), a fifth of the draw time at GWO's 5,400
+    numbers per call. So ``random`` draws at least ``READ_AHEAD`` numbers per seed in
+    one call and serves the next calls from them; a PCG64 stream gives the same doubles
+    in one call of ``k n`` as in ``k`` calls of ``n``. ``random`` then returns a view that
+    the next call may overwrite. Generators passed in as seeds are not read ahead (they
+    are left where single runs would leave them), and ``normal``/``uniform`` are refused
+    while read-ahead numbers are pending: they would come from the stream after those.
     """
 
+    READ_AHEAD = 32768          # numbers per seed and call
+    READ_AHEAD_TOTAL = 2 ** 21  # numbers for all seeds (16 MB): many seeds read ahead less
+
     def __init__(self, seeds) -> None:
+        seeds = list(seeds)
         self.generators = [as_generator(s) for s in seeds]
+        self.read_ahead = not any(isinstance(s, np.random.Generator) for s in seeds)
+        self._ahead = np.empty((len(self.generators), 0))
+        self._next = 0      # the first pending column of _ahead
 
     def __len__(self) -> int:
         return len(self.generators)
 
     def _draw(self, method: str, shape, *args) -> np.ndarray:
+        if self._next < self._ahead.shape[1]:
+            raise RuntimeError(f"SeedGenerators.{method} after random(): the streams' next numbers are already "
+                               "read ahead; a batchable rule may only draw with random()")
         shape = tuple(shape) if isinstance(shape, (tuple, list)) else (int(shape),)
         out = np.empty((len(self.generators),) + shape)
-        if method == "random":
-            for g, o in zip(self.generators, out):
+        for g, o in zip(self.generators, out):
+            if method == "random":
                 g.random(out=o)
-        else:
-            for i, g in enumerate(self.generators):
-                out[i] = getattr(g, method)(*args, size=shape)
+            else:
+                o[...] = getattr(g, method)(*args, size=shape)
         return out
 
-    def random(self, shape) -> np.ndarray:
-        """Uniform [0, 1) draws of ``shape`` per seed: ``(R, *shape)``."""
-        return self._draw("random", shape)
+    def random(self, size=()) -> np.ndarray:
+        """Uniform [0, 1) draws of ``size`` per seed: ``(R, *size)`` (a view of the
+        read-ahead block, valid until the next call)."""
+        if not self.read_ahead:
+            return self._draw("random", size)
+        shape = tuple(size) if isinstance(size, (tuple, list)) else (int(size),)
+        m = math.prod(shape)
+        if self._next + m > self._ahead.shape[1]:
+            self._refill(m)
+        block = self._ahead[:, self._next:self._next + m]
+        self._next += m
+        return block.reshape((len(self.generators),) + shape)
+
+    def _refill(self, m: int) -> None:
+        """Keep the pending numbers in front and draw the rest of a block of at least ``m``."""
+        pending = self._ahead[:, self._next:]
+        k = pending.shape[1]
+        width = max(m, min(self.READ_AHEAD, self.READ_AHEAD_TOTAL // len(self.generators)))
+        if self._ahead.shape[1] < width:
+            block = np.empty((len(self.generators), width))
+            block[:, :k] = pending
+            self._ahead = block
+        elif k:
+            self._ahead[:, :k] = pending.copy()
+        for g, row in zip(self.generators, self._ahead):
+            g.random(out=row[k:])
+        self._next = 0
 
     def normal(self, loc: float = 0.0, scale: float = 1.0, size=()) -> np.ndarray:
         """Normal draws (``Generator.normal``) per seed: ``(R, *size)``."""

@@ -62,23 +62,16 @@ class GWO(Algorithm):
         self.leader_v = pick(state.V, order).copy()
 
     def update_leaders(self, X, F, V) -> None:
-        if F.ndim == 2:  # a batched run: each run's three best of its leaders and new wolves
+        if F.ndim == 2:
+            # a batched run: every run takes the rule its single run takes (the two rules
+            # break ties differently, so a run must not follow its neighbours' choice)
             if not (V.any() or self.leader_v.any()):
-                # unconstrained: a stable sort of the values is rank()'s order, and only runs
-                # whose new best beats their third leader change
-                move = F.min(axis=1) < self.leader_f[:, 2]
-                if not move.any():
-                    return
-                allF = np.concatenate([self.leader_f[move], F[move]], axis=-1)
-                order = np.argsort(allF, axis=-1, kind="stable")[:, :3]
-                allX = np.concatenate([self.leaders[move], X[move]], axis=-2)
-                self.leaders[move], self.leader_f[move] = pick(allX, order), pick(allF, order)
+                self._top_three_by_value(X, F)
                 return
-            allX = np.concatenate([self.leaders, X], axis=-2)
-            allF = np.concatenate([self.leader_f, F], axis=-1)
-            allV = np.concatenate([self.leader_v, V], axis=-1)
-            order = rank(allF, allV)[..., :3]
-            self.leaders, self.leader_f, self.leader_v = pick(allX, order), pick(allF, order), pick(allV, order)
+            ranked = V.any(axis=-1) | self.leader_v.any(axis=-1)
+            if not ranked.all():
+                self._top_three_by_value(X, F, np.flatnonzero(~ranked))
+            self._top_three_ranked(X, F, V, np.flatnonzero(ranked))
             return
         if not (V.any() or self.leader_v.any()):
             # unconstrained: only the new top three can displace a leader
@@ -95,22 +88,62 @@ class GWO(Algorithm):
         order = rank(allF, allV)[:3]
         self.leaders, self.leader_f, self.leader_v = allX[order], allF[order], allV[order]
 
+    def _top_three_by_value(self, X, F, runs: np.ndarray | None = None) -> None:
+        """The unconstrained single-run rule above for the batched ``runs`` (all when
+        ``None``): each run's new top three (``argpartition`` picks the same rows of a
+        row as of the run alone) against its leaders, in a stable sort."""
+        # ndarray methods and plain fancy indexing (pick): the numpy functions' Python
+        # wrappers (take_along_axis above all) cost more than the work at these sizes
+        Fr, lf = (F, self.leader_f) if runs is None else (F[runs], self.leader_f[runs])
+        move = np.minimum.reduce(Fr, axis=-1) < lf[:, 2]
+        if not move.all():
+            if not move.any():
+                return
+            runs = np.flatnonzero(move) if runs is None else runs[move]
+            Fr, lf = F[runs], self.leader_f[runs]
+        rows = np.arange(len(F)) if runs is None else runs
+        n = Fr.shape[-1]
+        top = Fr.argpartition(2, axis=-1)[:, :3] if n > 3 else np.broadcast_to(np.arange(n), Fr.shape)
+        allF = np.concatenate([lf, pick(Fr, top)], axis=-1)
+        order = allF.argsort(axis=-1, kind="stable")[:, :3]
+        allX = np.concatenate([self.leaders if runs is None else self.leaders[runs], X[rows[:, None], top]], axis=-2)
+        if runs is None:
+            self.leaders, self.leader_f = pick(allX, order), pick(allF, order)
+        else:
+            self.leaders[runs], self.leader_f[runs] = pick(allX, order), pick(allF, order)
+
+    def _top_three_ranked(self, X, F, V, runs: np.ndarray) -> None:
+        """The constrained single-run rule for the batched ``runs``: the best three of
+        leaders and wolves under the feasibility rule."""
+        allX = np.concatenate([self.leaders[runs], X[runs]], axis=-2)
+        allF = np.concatenate([self.leader_f[runs], F[runs]], axis=-1)
+        allV = np.concatenate([self.leader_v[runs], V[runs]], axis=-1)
+        order = rank(allF, allV)[..., :3]
+        self.leaders[runs], self.leader_f[runs], self.leader_v[runs] = (
+            pick(allX, order), pick(allF, order), pick(allV, order))
+
     def convergence_factor(self, state: State) -> float:
         """Linear from ``a_initial`` to ``a_final`` (Mirjalili 2014)."""
         return self.a_initial + (self.a_final - self.a_initial) * state.progress
 
     def hunt(self, state: State, a: float) -> np.ndarray:
-        """The three leader-pulled points ``X1, X2, X3``, shape ``(3, n, d)`` (eq 3-7)."""
-        n, d = state.X.shape[-2:]
+        """The three leader-pulled points ``X1, X2, X3``, shape ``([R,] 3, n, d)`` (eq 3-7),
+        in a work array that the next call overwrites."""
+        X = state.X
+        runs, (n, d) = X.shape[:-2], X.shape[-2:]
         r = state.rng.random((2, 3, n, d))                   # ([R,] 2, 3, n, d)
-        # in place on the draws: a batched run's arrays are large enough for allocation to show
-        A = r[..., 0, :, :, :]
+        # each half of the draws is copied into a contiguous work array first: arithmetic
+        # reading a batched run's strided views of the draws runs at half speed or less
+        A = state.work("gwo.A", runs + (3, n, d))
+        np.copyto(A, r[..., 0, :, :, :])
         A *= 2 * a
         A -= a                                                # A = 2 a r1 - a
         L = self.leaders[..., :, None, :]                     # ([R,] 3, 1, d)
+        gap = state.work("gwo.pulled", runs + (3, n, d))
+        np.copyto(gap, r[..., 1, :, :, :])
         # C L = (2 r2) L computed as r2 (2 L): both round the exact 2 r2 L once, one pass fewer
-        gap = np.multiply(r[..., 1, :, :, :], 2 * L, out=r[..., 1, :, :, :])
-        gap -= state.X[..., None, :, :]
+        gap *= 2 * L
+        gap -= X[..., None, :, :]
         np.abs(gap, out=gap)
         gap *= A
         return np.subtract(L, gap, out=gap)                   # L - A |C L - X|
