@@ -59,7 +59,10 @@ PRESETS: dict[str, Preset] = {p.name: p for p in (
                "Fox's for h and v and 0.2 for d and o",
         terms=(Term("heading", FOX_HEADING), Term("goal_distance", 0.2), Term("end_clearance", 0.2),
                Term("velocity", FOX_VEL)),
-        mechanisms=(("initial_heading", {}), ("brake_and_wait", {})),
+        # d_s is left to "the robot's own situation" (§5.4): 1 m, not the mechanism's 2 m, with
+        # which a robot in Experiment II kept waiting beside movers shuttling within 2 m of it
+        # (docs/fidelity/li2023.md)
+        mechanisms=(("initial_heading", {}), ("brake_and_wait", {"d_s": 1.0})),
     ),
     Preset(
         name="qp-dwa",
