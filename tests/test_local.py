@@ -217,19 +217,25 @@ def test_idwa_velocity_obstacle_flags_a_crossing_mover(field):
 
 
 def test_idwa_one_step_heading_near_the_goal(field):
-    planner = make_local_planner("idwa", RobotSpec(), DT)
     st = RobotState(5.5, 5.5, 0.0, 0.3, 0.0)
+    # within 1 m only: the one-step heading for the near target, the trajectory end's for the far one
+    planner = make_local_planner("idwa", RobotSpec(), DT, heading={"one_step_within": 1.0})
     for goal, near in (((6.2, 5.9), True), ((9.5, 5.5), False)):
         step = planner.evaluate(ctx_at(field, st, goal), planner.window(ctx_at(field, st, goal)))
         planner.terms[0][0].score(step)
         assert step.aux.get("heading_one_step", False) is near
+    # the preset: its targets are navigation points a few metres ahead, always "approached"
+    planner = make_local_planner("idwa", RobotSpec(), DT)
+    step = planner.evaluate(ctx_at(field, st, (9.5, 5.5)), planner.window(ctx_at(field, st, (9.5, 5.5))))
+    planner.terms[0][0].score(step)
+    assert step.aux.get("heading_one_step", False)
 
 
 def test_iga_dwa_brakes_and_waits_for_a_crossing_mover(field):
     robot = RobotSpec()
     st = RobotState(2.0, 5.0, 0.0, 0.5, 0.0)
     path = [[2.0, 5.0], [9.5, 5.0]]
-    planner = make_local_planner("iga-dwa", robot, DT)
+    planner = make_local_planner("iga-dwa", robot, DT, brake_and_wait={"d_s": 2.0})
     planner.reset(st, path)
     crossing = [3.2, 4.4, 0.0, 0.5, 0.3]  # ahead, 1.3 m away, moving across the robot's path
     cmd = planner.command(ctx_at(field, st, (9.5, 5.0), [crossing], path))
@@ -251,7 +257,7 @@ def test_iga_dwa_does_not_wait_on_the_movers_track(field):
     st = RobotState(2.0, 5.0, -0.3, 0.0, 0.0)
     goal = (2.0 + 7.0 * np.cos(-0.3), 5.0 + 7.0 * np.sin(-0.3))  # path along the robot's heading
     path = [[2.0, 5.0], list(goal)]
-    planner = make_local_planner("iga-dwa", robot, DT)
+    planner = make_local_planner("iga-dwa", robot, DT, brake_and_wait={"d_s": 2.0})
     planner.reset(st, path)
     on_track = [2.45, 4.1, 0.0, 0.5, 0.3]  # passes 0.45 m from the robot's centre (< 0.2 + 0.3)
     mech = next(m for m in planner.mechanisms if m.name == "brake_and_wait")
@@ -271,7 +277,7 @@ def test_iga_dwa_does_not_brake_onto_the_movers_track(field):
     path = [[2.0, 5.0], [9.5, 5.0]]
     crossing = [3.2, 4.4, 0.0, 0.5, 0.3]
     for at_rest, waits in ((True, False), (False, True)):
-        planner = make_local_planner("iga-dwa", robot, DT, brake_and_wait={"judge_at_rest": at_rest})
+        planner = make_local_planner("iga-dwa", robot, DT, brake_and_wait={"judge_at_rest": at_rest, "d_s": 2.0})
         planner.reset(st, path)
         mode = planner.command(ctx_at(field, st, (9.5, 5.0), [crossing], path)).info["mode"]
         assert (mode == "brake-and-wait") is waits

@@ -97,6 +97,26 @@ def test_navigation_points_jump_from_i_plus_n_to_i_plus_kn_on_collision_risk():
     assert nav.select(pos, vel, passing) == pytest.approx([6.0, 0.0])
 
 
+def test_navigation_point_is_no_nearer_than_the_turning_diameter():
+    """A point nearer than 2 v / w_max can lie inside the robot's tightest circle (orbited at
+    full speed), so the lookahead is at least that; the Navigator hands the robot's w_max over,
+    and a caller's subgoal_options may override it."""
+    path = np.array([[0.0, 0.0], [20.0, 0.0]])
+    bounded = make_strategy("navigation_points", 0.1, w_max=0.5)   # 2 * 1 m/s / 0.5 rad/s = 4 m
+    free = make_strategy("navigation_points", 0.1)
+    for nav in (bounded, free):
+        nav.reset(path, None, path[-1])
+    pos, vel = np.array([5.0, 0.0]), np.array([1.0, 0.0])
+    assert bounded.select(pos, vel, np.zeros((0, 5))) == pytest.approx([9.0, 0.0])
+    assert free.select(pos, vel, np.zeros((0, 5))) == pytest.approx([6.5, 0.0])   # 1.5 s at 1 m/s
+    grid = op.GridMap(np.zeros((5, 25), dtype=bool))
+    robot = RobotSpec(radius=0.1, w_max=0.5)
+    assert Navigator(grid, robot, (0.5, 0.5), (20.5, 0.5), subgoals="navigation_points").strategy.w_max == 0.5
+    own = Navigator(grid, robot, (0.5, 0.5), (20.5, 0.5), subgoals="navigation_points",
+                    subgoal_options={"w_max": None})
+    assert own.strategy.w_max is None
+
+
 def blocked_upper_corridor(grid: op.GridMap, path: np.ndarray) -> op.GridMap:
     occ = grid.occ.copy()
     occ[6:9, 7] = True   # close the upper door region

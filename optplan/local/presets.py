@@ -10,6 +10,13 @@ from .dwa import Preset, Term
 # Fox, Burgard & Thrun 1997 use alpha = 2, beta = 0.2, gamma = 0.2 for heading, dist, vel.
 FOX_HEADING, FOX_DIST, FOX_VEL = 2.0, 0.2, 0.2
 
+# yang2023 §5.2 takes the heading after one control period "when the robot approaches the
+# target point"; idwa's targets are §6's navigation points, which are never more than a few
+# metres ahead, so the robot always approaches one. (Within 1 m only, the end-of-trajectory
+# heading of a 3 s rollout passed the nearby navigation point and capped the speed at
+# min_lookahead / horizon = 0.33 m/s; see docs/fidelity/yang2023.md.)
+ONE_STEP_ALWAYS = float("inf")
+
 PRESETS: dict[str, Preset] = {p.name: p for p in (
     Preset(
         name="dwa",
@@ -33,7 +40,7 @@ PRESETS: dict[str, Preset] = {p.name: p for p in (
         source="yang2023 §5: VO collision test (eq 12-14), one-step heading near the goal (§5.2), "
                "binary Dist (eq 16), vh term (eq 17) with lambda = 1.5 alpha when the VO predicts a "
                "collision (eq 19); alpha, beta, gamma are not given and taken from Fox (as the DWA baseline)",
-        terms=(Term("heading", FOX_HEADING, {"one_step_within": 1.0}),
+        terms=(Term("heading", FOX_HEADING, {"one_step_within": ONE_STEP_ALWAYS}),
                Term("binary_distance", FOX_DIST),
                Term("velocity", FOX_VEL),
                Term("heading_change", 1.5 * FOX_HEADING)),  # lambda, eq 19 (0 unless VO flags a mover)
@@ -52,7 +59,10 @@ PRESETS: dict[str, Preset] = {p.name: p for p in (
                "Fox's for h and v and 0.2 for d and o",
         terms=(Term("heading", FOX_HEADING), Term("goal_distance", 0.2), Term("end_clearance", 0.2),
                Term("velocity", FOX_VEL)),
-        mechanisms=(("initial_heading", {}), ("brake_and_wait", {})),
+        # d_s is left to "the robot's own situation" (§5.4): 1 m, not the mechanism's 2 m, with
+        # which a robot in Experiment II kept waiting beside movers shuttling within 2 m of it
+        # (docs/fidelity/li2023.md)
+        mechanisms=(("initial_heading", {}), ("brake_and_wait", {"d_s": 1.0})),
     ),
     Preset(
         name="qp-dwa",

@@ -110,7 +110,7 @@ class Navigator:
         self.sweep_detour = None if sweep_detour is None else float(sweep_detour)
         self.global_options = dict(global_options or {})
         self.strategy = subgoals if isinstance(subgoals, SubgoalStrategy) else \
-            make_strategy(subgoals, robot.radius, **(subgoal_options or {}))
+            make_strategy(subgoals, robot.radius, **{"w_max": robot.w_max, **(subgoal_options or {})})
         self.replans = 0
         self.stuck_replans = 0
         self._n_sweeps = 0

@@ -149,7 +149,10 @@ class NavigationPoints(SubgoalStrategy):
             current speed (yang2023 §6 lets ``n`` grow with the robot's speed); 3 s (the
             prediction period) helps the yang2023 fusion but stalls idwa in a small room,
             see docs/fidelity/yang2023.md ...
-        min_lookahead: ... but never less than this many metres.
+        min_lookahead: ... but never less than this many metres ...
+        w_max: ... nor than the diameter ``2 v / w_max`` of the tightest circle the robot
+            can drive at its current speed ``v`` (rad/s; ``None``: no such bound). A point
+            nearer than that can lie inside the circle, which the robot then orbits.
         avoid_distance: a moving obstacle closer than this (centre distance minus both
             radii, metres) is checked with the velocity obstacle.
     """
@@ -157,13 +160,20 @@ class NavigationPoints(SubgoalStrategy):
     name = "navigation_points"
 
     def __init__(self, robot_radius: float, switch_radius: float = 0.6, spacing: float = 0.25,
-                 lookahead_time: float = 1.5, min_lookahead: float = 1.0, avoid_distance: float = 2.0):
+                 lookahead_time: float = 1.5, min_lookahead: float = 1.0, avoid_distance: float = 2.0,
+                 w_max: float | None = None):
         super().__init__(robot_radius, switch_radius)
         self.spacing = float(spacing)
         self.lookahead_time = float(lookahead_time)
         self.min_lookahead = float(min_lookahead)
         self.avoid_distance = float(avoid_distance)
+        self.w_max = None if w_max is None else float(w_max)
         self.last_k = 1
+
+    def lookahead(self, speed: float) -> float:
+        """Distance (m) along the path from the robot's point to its navigation point."""
+        turning_diameter = 2.0 * speed / self.w_max if self.w_max else 0.0
+        return max(speed * self.lookahead_time, self.min_lookahead, turning_diameter)
 
     def stage_targets(self, path, world):
         seg = np.diff(path, axis=0)
@@ -179,7 +189,7 @@ class NavigationPoints(SubgoalStrategy):
         i = self.index + int(np.argmin(np.hypot(window[:, 0] - position[0], window[:, 1] - position[1])))
         self.index = i
         speed = float(np.hypot(*velocity))
-        n = max(math.ceil(max(speed * self.lookahead_time, self.min_lookahead) / self.spacing), 1)
+        n = max(math.ceil(self.lookahead(speed) / self.spacing), 1)
         k = 1
         if len(dynamic):
             gap = np.hypot(dynamic[:, 0] - position[0], dynamic[:, 1] - position[1]) - dynamic[:, 4] - self.radius
@@ -198,10 +208,13 @@ class NavigationPoints(SubgoalStrategy):
         return T[j]
 
 
-def make_strategy(name: str, robot_radius: float, **params) -> SubgoalStrategy:
-    """A subgoal strategy by name (see ``STRATEGIES``)."""
+def make_strategy(name: str, robot_radius: float, w_max: float | None = None, **params) -> SubgoalStrategy:
+    """A subgoal strategy by name (see ``STRATEGIES``); ``w_max`` (rad/s, the robot's) bounds
+    the navigation points' lookahead (:class:`NavigationPoints`) and is unused by the others."""
     classes = {"goal": GoalOnly, "key_points": KeyPoints, "turning_points": TurningPoints,
                "navigation_points": NavigationPoints}
     if name not in classes:
         raise UnknownAlgorithmError(f"unknown subgoal strategy {name!r}; known: {', '.join(STRATEGIES)}")
+    if classes[name] is NavigationPoints:
+        params.setdefault("w_max", w_max)
     return classes[name](robot_radius, **params)
