@@ -119,17 +119,20 @@ def rollout_ramped(state: RobotState, lin_v: np.ndarray, lin_vy: np.ndarray, w: 
     n_w, n_lin = len(w), len(lin_v)
     t = np.arange(steps) * dt  # velocity held during step j is the ramp's value at j dt... (j+1) dt
     t1 = t + dt
-    v = np.repeat(_ramp(state.v, lin_v, accel[0], t1), n_w, axis=0)
-    vy = np.repeat(_ramp(state.vy, lin_vy, accel[2], t1), n_w, axis=0)
+    v = _ramp(state.v, lin_v, accel[0], t1)  # (n_lin, H)
+    vy = _ramp(state.vy, lin_vy, accel[2], t1)
     wr = _ramp(state.w, w, accel[1], t1)  # (n_w, H)
     theta_w = state.theta + np.cumsum(wr, axis=1) * dt  # heading after each step
     start_heading = np.concatenate([np.full((n_w, 1), state.theta), theta_w[:, :-1]], axis=1)
     theta = np.tile(theta_w, (n_lin, 1))
-    z = np.cumsum((v + 1j * vy) * np.tile(np.exp(1j * start_heading), (n_lin, 1)), axis=1) * dt
+    # (n_lin, 1, H) x (1, n_w, H) broadcast: the same products as repeating and tiling both
+    z = ((v + 1j * vy)[:, None, :] * np.exp(1j * start_heading)[None]).reshape(-1, steps)
+    z = np.cumsum(z, axis=1) * dt
     z0 = complex(state.x, state.y)
     z += z0
     return Rollouts(v=np.repeat(lin_v, n_w), vy=np.repeat(lin_vy, n_w), w=np.tile(w, n_lin), z=z, t=t1, z0=z0,
-                    theta0=float(state.theta), dt=float(dt), theta=theta, profile=np.hypot(v, vy))
+                    theta0=float(state.theta), dt=float(dt), theta=theta,
+                    profile=np.repeat(np.hypot(v, vy), n_w, axis=0))
 
 
 def predict_movers(dynamic: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -251,23 +251,50 @@ class SweepGate(Mechanism, MoverSweepSource):
         return lo - slack, hi + slack
 
     def gaps(self, view: PlannerView, step: Step) -> tuple[np.ndarray, float]:
-        """Smallest edge gap ``(S,)`` of every rollout to the swept intervals, and the gap now."""
+        """Smallest edge gap ``(S,)`` of every rollout to the swept intervals, and the gap now.
+
+        Gaps up to ``margin`` are exact; a larger value only says the gap exceeds ``margin``
+        (rollout times that provably keep farther are not measured), which is all the
+        filter's rules (strict, and its least-close relaxation) ask of it."""
         roll = step.roll
         R = view.robot.radius
         out, now = np.full(roll.n, np.inf), math.inf
         state = step.ctx.state
         # every rollout point at time t lies within (fastest speed) t of the start
         reach = max(roll.max_speed, math.hypot(state.v, state.vy)) * roll.t
+        x = None
         for k in self._now:
             lo, hi = self.swept(k, roll.t)
             s0, off0 = k.along(roll.z0)
             now = min(now, math.hypot(off0, s0 - k.s) - k.radius - R)
             nearest = np.hypot(off0, np.maximum(np.maximum(lo - s0, s0 - hi), 0.0)) - k.radius - R
-            if (nearest - reach).min() > self.margin:
-                continue  # no rollout can come near this mover's interval (exact bound)
-            q = (roll.z - k.origin) * np.conj(k.axis)
-            beyond = np.maximum(np.maximum(lo - q.real, q.real - hi), 0.0)
-            np.minimum(out, (np.hypot(q.imag, beyond) - k.radius - R).min(axis=1), out=out)
+            near = np.flatnonzero(nearest - reach <= self.margin)  # the other times keep farther (exact bound)
+            if len(near) == 0:
+                continue
+            if x is None:  # contiguous coordinates shared by the tracks, and scratch arrays written in place
+                x, y = np.ascontiguousarray(roll.z.real), np.ascontiguousarray(roll.z.imag)
+                along, off, tmp = np.empty(x.shape), np.empty(x.shape), np.empty(x.shape)
+            c = slice(near[0], near[-1] + 1)  # every near time (and any far one between)
+            a, o = k.axis, k.origin
+            shape = (roll.n, c.stop - c.start)
+            al, of, tm = along.ravel()[:shape[0] * shape[1]].reshape(shape), off.ravel()[:shape[0] * shape[1]].reshape(shape), tmp.ravel()[:shape[0] * shape[1]].reshape(shape)
+            # position along the track's line and distance off it, in the line's frame
+            np.multiply(x[:, c], a.real, out=al)
+            np.multiply(y[:, c], a.imag, out=tm)
+            al += tm
+            al -= o.real * a.real + o.imag * a.imag
+            np.multiply(y[:, c], a.real, out=of)
+            np.multiply(x[:, c], a.imag, out=tm)
+            of -= tm
+            of -= o.imag * a.real - o.real * a.imag
+            np.subtract(lo[c], al, out=tm)  # beyond the interval's ends, 0 inside
+            al -= hi[c]
+            np.maximum(al, tm, out=al)
+            np.maximum(al, 0.0, out=al)
+            np.square(al, out=al)
+            np.square(of, out=of)
+            of += al
+            np.minimum(out, np.sqrt(of.min(axis=1)) - k.radius - R, out=out)
         return out, now
 
     def strict_filter(self, view, step) -> np.ndarray | None:
