@@ -250,15 +250,17 @@ class SweepGate(Mechanism, MoverSweepSource):
         slack = 0.5 * reach / self.grid
         return lo - slack, hi + slack
 
-    def gaps(self, view: PlannerView, step: Step) -> tuple[np.ndarray, float]:
-        """Smallest edge gap ``(S,)`` of every rollout to the swept intervals, and the gap now.
+    def gaps(self, view: PlannerView, step: Step, rows: np.ndarray | None = None) -> tuple[np.ndarray, float]:
+        """Smallest edge gap ``(S,)`` of every rollout to the swept intervals, and the gap now;
+        with ``rows`` (indices) only those samples are measured (the others are ``inf``).
 
         Gaps up to ``margin`` are exact; a larger value only says the gap exceeds ``margin``
         (rollout times that provably keep farther are not measured), which is all the
         filter's rules (strict, and its least-close relaxation) ask of it."""
         roll = step.roll
         R = view.robot.radius
-        out, now = np.full(roll.n, np.inf), math.inf
+        z = roll.z if rows is None else roll.z[rows]
+        out, now = np.full(len(z), np.inf), math.inf
         state = step.ctx.state
         # every rollout point at time t lies within (fastest speed) t of the start
         reach = max(roll.max_speed, math.hypot(state.v, state.vy)) * roll.t
@@ -272,12 +274,12 @@ class SweepGate(Mechanism, MoverSweepSource):
             if len(near) == 0:
                 continue
             if x is None:  # contiguous coordinates shared by the tracks, and scratch arrays written in place
-                x, y = np.ascontiguousarray(roll.z.real), np.ascontiguousarray(roll.z.imag)
+                x, y = np.ascontiguousarray(z.real), np.ascontiguousarray(z.imag)
                 along, off, tmp = np.empty(x.shape), np.empty(x.shape), np.empty(x.shape)
             c = slice(near[0], near[-1] + 1)  # every near time (and any far one between)
             a, o = k.axis, k.origin
-            shape = (roll.n, c.stop - c.start)
-            al, of, tm = along.ravel()[:shape[0] * shape[1]].reshape(shape), off.ravel()[:shape[0] * shape[1]].reshape(shape), tmp.ravel()[:shape[0] * shape[1]].reshape(shape)
+            size, shape = len(z) * (c.stop - c.start), (len(z), c.stop - c.start)
+            al, of, tm = (buf.ravel()[:size].reshape(shape) for buf in (along, off, tmp))  # contiguous views
             # position along the track's line and distance off it, in the line's frame
             np.multiply(x[:, c], a.real, out=al)
             np.multiply(y[:, c], a.imag, out=tm)
@@ -295,6 +297,10 @@ class SweepGate(Mechanism, MoverSweepSource):
             np.square(of, out=of)
             of += al
             np.minimum(out, np.sqrt(of.min(axis=1)) - k.radius - R, out=out)
+        if rows is not None:
+            full = np.full(roll.n, np.inf)
+            full[rows] = out
+            out = full
         return out, now
 
     def strict_filter(self, view, step) -> np.ndarray | None:
@@ -306,13 +312,19 @@ class SweepGate(Mechanism, MoverSweepSource):
         return gap >= min(self.margin, now)
 
     def filter(self, view, step) -> np.ndarray | None:
-        keep = self.strict_filter(view, step)
-        if keep is None:
-            return None
-        gap = step.aux["gate_gap"]
+        """The strict test over the samples the planner may choose among (admissible, clear of
+        the predicted movers); the others are not measured and not kept (the planner discards
+        them anyway, and when none is left it ignores the filters). When no such sample keeps
+        off, those that come least close are kept."""
+        self.update(step.ctx)
         safe = step.admissible & step.mover_free
-        if safe.any() and not (keep & safe).any():
-            keep = gap >= gap[safe].max() - 1e-9  # nothing safe keeps off: come least close
+        if not self._now or not safe.any():
+            return None
+        gap, now = self.gaps(view, step, np.flatnonzero(safe))
+        step.aux["gate_gap"] = gap
+        keep = (gap >= min(self.margin, now)) & safe
+        if not keep.any():
+            keep = (gap >= gap[safe].max() - 1e-9) & safe  # nothing safe keeps off: come least close
         step.aux["gate_rejected"] = int((~keep).sum())
         return keep
 
