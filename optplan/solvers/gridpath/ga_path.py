@@ -31,6 +31,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ...checks import integer, number
 from ...errors import ParameterError
 from ...formulations.encodings import ColumnNodes
 from ...formulations.problem import PathProblem
@@ -65,6 +66,20 @@ class GAParams:
     sigma2: float = 1.0              # §4.3 mean distance-to-best threshold (cells)
     redraw: int = 5                  # m chromosomes redrawn per diversity check
     stall: int = 50                  # §4.5 generations without improvement before stopping
+
+    def __post_init__(self) -> None:
+        share, positive = number(0.0, 1.0), number(0.0)
+        for name in ("pc", "pm", "k_e"):
+            share(name, getattr(self, name))
+        for name in ("ps_range", "pc_range", "pm_range"):
+            lo_hi = getattr(self, name)
+            if not (isinstance(lo_hi, (tuple, list)) and len(lo_hi) == 2
+                    and 0 <= share(name, lo_hi[0]) <= share(name, lo_hi[1])):
+                raise ParameterError(f"{name} must be (low, high) with 0 <= low <= high <= 1, got {lo_hi!r}")
+        positive("sigma1", self.sigma1)
+        positive("sigma2", self.sigma2)
+        integer(1)("redraw", self.redraw)
+        integer(1)("stall", self.stall)
 
 
 def adaptive_probabilities(f: np.ndarray, lo_hi: tuple[float, float], protect: bool) -> np.ndarray:
