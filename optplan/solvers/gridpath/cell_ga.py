@@ -53,17 +53,25 @@ def drop_loops(C: np.ndarray) -> np.ndarray:
     last = np.full((n, max(ncell, 1)), -1, dtype=np.int64)
     r, k = np.nonzero(C >= 0)
     np.maximum.at(last, (r, C[r, k]), k)           # last position of every visited cell
-    out = np.full_like(C, -1)
-    rows = np.arange(n)
-    at = np.zeros(n, dtype=np.int64)
-    length = (C >= 0).sum(axis=1)
+    looped = np.zeros(n, dtype=bool)
+    looped[r[last[r, C[r, k]] != k]] = True          # rows that revisit a cell
+    if not looped.any():
+        return C
+    out = C.copy()
+    rows = np.nonzero(looped)[0]
+    sub = C[rows]
+    walked = np.full_like(sub, -1)
+    idx = np.arange(len(rows))
+    at = np.zeros(len(rows), dtype=np.int64)
+    length = (sub >= 0).sum(axis=1)
     for j in range(L):
         live = at < length
         if not live.any():
             break
-        cell = C[rows[live], at[live]]
-        out[rows[live], j] = cell
+        cell = sub[idx[live], at[live]]
+        walked[idx[live], j] = cell
         at[live] = last[rows[live], cell] + 1
+    out[rows] = walked
     return out
 
 
@@ -118,6 +126,7 @@ class CellChromosomes:
         (over-long, the paper's discontinuous individual) violates eq 3 (infinitely)."""
         C = C.astype(np.int64)
         length = self.lengths(C)
+        C = C[:, : max(int(length.max(initial=0)), 2)]     # the padding changes no term; skip it
         ok = (length >= 2) & (C[:, 0] == self.s_cell)
         ok &= C[np.arange(len(C)), np.maximum(length - 1, 0)] == self.g_cell
         f = np.full(len(C), np.inf)
@@ -212,8 +221,8 @@ class CellChromosomes:
             head = np.hstack([x, np.full_like(x, -1)])
             return np.where(pos < cut_x[:, None], head, from_y)
 
-        ka = self._fit(drop_loops(splice(a, b, i, j)))
-        kb = self._fit(drop_loops(splice(b, a, j, i)))
+        kids = self._fit(drop_loops(np.vstack([splice(a, b, i, j), splice(b, a, j, i)])))
+        ka, kb = kids[:half], kids[half:]
         out = C.copy()
         out[0:2 * half:2] = np.where(go[:, None], ka, a)
         out[1:2 * half:2] = np.where(go[:, None], kb, b)
