@@ -73,3 +73,16 @@ def test_bad_cell_ga_options_raise_parameter_error(options):
 def test_drop_loops_cuts_revisits():
     C = np.array([[0, 1, 2, 1, 5, -1], [3, 4, 3, 4, 6, 7]])
     np.testing.assert_array_equal(drop_loops(C), [[0, 1, 5, -1, -1, -1], [3, 4, 6, 7, -1, -1]])
+
+
+def test_start_and_goal_in_one_cell_give_the_straight_segment():
+    r = op.plan(serpentine(), (0.2, 0.2), (0.7, 0.7), algorithm="iga", encoding="cells", seed=0, pop=6, iters=5)
+    assert r.feasible
+    np.testing.assert_allclose(r.path, [[0.2, 0.2], [0.7, 0.7]])
+
+
+def test_unreachable_goal_raises_infeasible_query():
+    occ = np.zeros((5, 5), bool)
+    occ[:, 2] = True                                     # a wall across the map
+    with pytest.raises(op.InfeasibleQueryError, match="cannot be reached"):
+        op.plan(GridMap(occ), (0.5, 0.5), (4.5, 4.5), algorithm="ga", encoding="cells", seed=0, pop=6, iters=5)

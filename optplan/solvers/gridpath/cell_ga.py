@@ -282,9 +282,11 @@ def plan_cell_ga(world, start, goal, *, improved: bool, seed=0, pop: int = 50, i
     except TypeError:
         raise ParameterError(f"unknown GA option(s) {', '.join(sorted(params))}; known: "
                              f"{', '.join(f for f in GAParams.__dataclass_fields__ if f != 'improved')}") from None
+    name = "iga" if improved else "ga"
+    if np.array_equal(world.cell_of(s), world.cell_of(g)):   # one cell: the straight move is the path
+        return make_plan_result(world, np.stack([s, g]), name, time.perf_counter() - t0, clearance=clearance)
     rng = as_generator(seed)
     ops = CellChromosomes(world, s, g, rng, preset=preset, clearance=clearance)
-    name = "iga" if improved else "ga"
     c, fbest, history, nfev, gens = evolve(ops, rng, pop=pop, iters=iters, params=p, max_evals=max_evals)
     raw = ops.path(c)
     mode = postprocess or ("keypoints" if improved else "collinear")
