@@ -233,7 +233,8 @@ class CellChromosomes:
 
     def mutate(self, C: np.ndarray, pm: np.ndarray) -> np.ndarray:
         """Each mutating chromosome replaces one random interior cell by another cell that
-        both of its neighbours can move to (the path stays a chain)."""
+        both of its neighbours can move to, or deletes it when they are adjacent (the path
+        stays a chain)."""
         C = C.astype(np.int64)
         out = C.copy()
         length = self.lengths(C)
@@ -246,10 +247,13 @@ class CellChromosomes:
         ok = (cand >= 0) & (cand != here[:, None])
         ok &= (cand[:, :, None] == self.nb[nxt][:, None, :]).any(axis=2)   # nxt can move there too
         ok &= cand != nxt[:, None]
+        # a ninth choice: delete the cell when its neighbours are adjacent (-1, compacted below)
+        cand = np.hstack([cand, np.full((who.size, 1), -1, dtype=np.int64)])
+        ok = np.hstack([ok, (self.nb[prev] == nxt[:, None]).any(axis=1, keepdims=True)])
         pick = np.argmax(ok * self.rng.random(ok.shape), axis=1)
         has = ok.any(axis=1)
         out[who[has], k[has]] = cand[has, pick[has]]
-        return drop_loops(out)
+        return drop_loops(self._concat(out))
 
     def similarity(self, fresh: np.ndarray, best: np.ndarray) -> np.ndarray:
         """li2023 §4.3's distance of each chromosome to the best one: the Euclidean distance of
