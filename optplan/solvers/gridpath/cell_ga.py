@@ -12,11 +12,12 @@ asks for):
 
 * random paths (initialisation, §4.1, and regeneration, §4.3): through a random free
   via cell, joined to the start and to the goal by a random descent of the geodesic
-  distance to each (one random choice among the neighbours that are closer);
+  distance to each (each step one of the closer neighbours, drawn with weight = how much
+  closer it is);
 * crossover at a common cell: two parents that share an interior cell swap the tails
   after it;
 * mutation: one interior cell is replaced by another cell adjacent to both of its
-  neighbours;
+  neighbours, or deleted when they are adjacent themselves;
 * loops (a cell visited twice) are cut after every operator; a child longer than the
   padded width is discontinuous in the paper's sense: TGA scores it as its fitness says
   (infinite) and IGA's regeneration operator replaces it.
