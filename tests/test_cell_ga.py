@@ -86,3 +86,12 @@ def test_unreachable_goal_raises_infeasible_query():
     occ[:, 2] = True                                     # a wall across the map
     with pytest.raises(op.InfeasibleQueryError, match="cannot be reached"):
         op.plan(GridMap(occ), (0.5, 0.5), (4.5, 4.5), algorithm="ga", encoding="cells", seed=0, pop=6, iters=5)
+
+
+def test_li2023_global_runs_the_paper_chromosome_with_the_columns_next_to_it():
+    from optplan.bench.spec import load_spec
+
+    spec = load_spec("li2023_global")
+    encodings = {a.label: a.params.get("encoding") for a in spec.algorithms}
+    assert encodings == {"ga": "cells", "iga": "cells", "ga-columns": "columns", "iga-columns": "columns",
+                         "astar": None}
