@@ -64,7 +64,7 @@ def test_cell_sequence_ga_honours_an_evaluation_budget():
 
 
 @pytest.mark.parametrize("options", [{"pc": 1.5}, {"pm_range": (0.3, 0.1)}, {"pop": 1}, {"bogus": 1}, {"postprocess": "spline"},
-                                     {"alternatives": 2}])
+                                     {"alternatives": -1}])
 def test_bad_cell_ga_options_raise_parameter_error(options):
     with pytest.raises(op.ParameterError):
         op.plan(serpentine(), START, GOAL, algorithm="iga", encoding="cells", seed=0, iters=5, **options)
@@ -95,3 +95,14 @@ def test_li2023_global_runs_the_paper_chromosome_with_the_columns_next_to_it():
     encodings = {a.label: a.params.get("encoding") for a in spec.algorithms}
     assert encodings == {"ga": "cells", "iga": "cells", "ga-columns": "columns", "iga-columns": "columns",
                          "astar": None}
+
+
+def test_cell_sequence_iga_refines_and_offers_valid_alternatives():
+    from optplan.world.papermaps import paper_map
+
+    world, s, g = paper_map("li2023_30")
+    r = op.plan(world, s, g, algorithm="iga", encoding="cells", seed=0, pop=30, iters=40, alternatives=2)
+    assert r.feasible and r.alternatives
+    assert all(validate_path(world, p).ok for p in r.alternatives)
+    refined = op.plan(world, s, g, algorithm="iga", encoding="cells", seed=0, pop=30, iters=40, refine="casadi")
+    assert refined.feasible and refined.length <= r.length + 1e-9

@@ -148,10 +148,9 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
     if name in ("ga", "iga") and encoding == "cells":
         from .gridpath.cell_ga import plan_cell_ga
 
-        if alternatives:
-            raise ParameterError("encoding='cells' returns no alternatives; use encoding='columns' for them")
         return plan_cell_ga(world, s, g, improved=name == "iga", seed=seed, pop=pop, iters=iters, clearance=clearance,
-                            preset=preset or "li2023", postprocess=postprocess, max_evals=max_evals, **params)
+                            preset=preset or "li2023", postprocess=postprocess, max_evals=max_evals,
+                            alternatives=alternatives, alternative_separation=alternative_separation, **params)
     from . import metaheuristics
 
     if name == "iga" and encoding is not None:

@@ -38,7 +38,9 @@ from ...errors import InfeasibleQueryError, ParameterError
 from ...formulations.paper_programs import paper_program
 from ...rng import as_generator
 from ...world.postprocess import key_points, remove_collinear
-from ..result import make_plan_result
+from ..archive import ARCHIVE_EVERY, archive_alternatives
+from ..metaheuristics.engine import pooled_archive
+from ..result import check_alternatives, make_plan_result
 from .ga_path import GAParams, check_budget, evolve
 from .moves import move_table
 
@@ -120,6 +122,8 @@ class CellChromosomes:
     def path(self, c: np.ndarray) -> np.ndarray:
         """One chromosome's path, without the padding."""
         return self.paths(c[None])[0][: max(int(self.lengths(c[None])[0]), 2)]
+
+    waypoints = path   # the name the population archive decodes rows with (solvers/archive.py)
 
     # ------------------------------------------------------------ ops of evolve
     def evaluate(self, C: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -270,10 +274,11 @@ class CellChromosomes:
 
 def plan_cell_ga(world, start, goal, *, improved: bool, seed=0, pop: int = 50, iters: int | None = 200,
                  clearance: float = 0.0, preset: str = "li2023", postprocess: str | None = None,
-                 max_evals: int | None = None, **params):
+                 max_evals: int | None = None, alternatives: int = 0, alternative_separation: float | None = None,
+                 **params):
     """``op.plan(..., algorithm="ga" | "iga", encoding="cells")`` on a grid map: TGA or IGA
     (li2023 §3-4) on li2023's cell-sequence chromosome. Options as
-    :func:`optplan.solvers.gridpath.ga_path.plan_ga` (no alternatives)."""
+    :func:`optplan.solvers.gridpath.ga_path.plan_ga`."""
     t0 = time.perf_counter()
     if not world.is_grid:
         raise ParameterError("encoding='cells' (li2023's cell sequences) needs a grid map")
@@ -292,12 +297,24 @@ def plan_cell_ga(world, start, goal, *, improved: bool, seed=0, pop: int = 50, i
         return make_plan_result(world, np.stack([s, g]), name, time.perf_counter() - t0, clearance=clearance)
     rng = as_generator(seed)
     ops = CellChromosomes(world, s, g, rng, preset=preset, clearance=clearance)
-    c, fbest, history, nfev, gens = evolve(ops, rng, pop=pop, iters=iters, params=p, max_evals=max_evals)
-    raw = ops.path(c)
+    count, separation = check_alternatives(alternatives, alternative_separation)
+    snapshots = [] if count else None
+    c, fbest, history, nfev, gens = evolve(ops, rng, pop=pop, iters=iters, params=p, max_evals=max_evals,
+                                           snapshots=snapshots, archive_every=ARCHIVE_EVERY)
     mode = postprocess or ("keypoints" if improved else "collinear")
-    path = key_points(world, raw, clearance) if mode == "keypoints" else remove_collinear(raw) if mode == "collinear" \
-        else raw
+
+    def finish(raw):
+        return key_points(world, raw, clearance) if mode == "keypoints" else remove_collinear(raw) \
+            if mode == "collinear" else raw
+
+    path = finish(ops.path(c))
+    others = []
+    if count:
+        # infinite cost = not a chain from start to goal; every kept path is validated anyway
+        X, _, V = pooled_archive([(X, f, np.where(np.isfinite(f), 0.0, np.inf)) for X, f in snapshots])
+        others = archive_alternatives(world, X, V, ops, finish, c, path, count, separation, clearance)
     result = make_plan_result(world, path, name, time.perf_counter() - t0, clearance=clearance, history=history,
                               seed=seed if isinstance(seed, int) else None, nfev=nfev,
                               message=f"{gens} generations on li2023's cell-sequence chromosome")
+    result.alternatives = others
     return result
