@@ -112,7 +112,10 @@ def plan(world, start, goal, algorithm: str = "astar", refine: str | None = None
         **params: extra keyword arguments for the chosen planner, e.g. ``encoding="general"``
             for a metaheuristic (every path class on every map; ``op.plan`` also falls back to
             it when the paper's encoding cannot represent a solution, and says so in
-            ``result.encoding`` and ``message``; see :func:`optplan.solvers.paths.plan_path`).
+            ``result.encoding`` and ``message``; see :func:`optplan.solvers.paths.plan_path`),
+            or ``encoding="cells"`` for ``ga``/``iga`` on a grid (li2023's own chromosome, a
+            general cell sequence that may double back; ``"columns"``, one cell per column, is
+            their default).
 
     Returns:
         A :class:`PlanResult`; ``feasible`` is the verdict of the exact ``validate_path``.

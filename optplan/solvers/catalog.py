@@ -66,7 +66,7 @@ def planner_kind(name: str, world, encoding=None) -> str:
     kind the planner declares (:mod:`optplan.solvers.capabilities`), except that ``ga`` runs as
     a swarm off its cell chromosome (circle worlds, other encodings)."""
     kind = planner_capabilities(name).kind
-    if kind == "cell-ga" and name == "ga" and not (world.is_grid and encoding in (None, "columns")):
+    if kind == "cell-ga" and name == "ga" and not (world.is_grid and encoding in (None, "columns", "cells")):
         return "swarm"
     return kind
 
@@ -88,7 +88,7 @@ def planner_options(name: str, world, encoding=None) -> set[str]:
         from .gridpath.ga_path import GAParams, plan_ga
 
         fields = {f.name for f in dataclasses.fields(GAParams)} - {"improved"}
-        return keyword_names(plan_ga, PLAN_OWN) | fields | {"encoding"}   # encoding="columns" is its own
+        return keyword_names(plan_ga, PLAN_OWN) | fields | {"encoding"}   # "columns" and "cells" are its own
     from .metaheuristics import get_algorithm, optimize
     from .paths import plan_path
 

@@ -96,7 +96,9 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
     ``encoding`` defaults to one node per column on grids (spline handles for the
     yang2023 planners ``pso``/``ipso``, :data:`GRID_ENCODING`) and spline handles on
     circle worlds. ``"general"`` (:class:`GeneralPath`: ``waypoints`` via points joined by
-    geodesic roadmap legs) represents every path class on every map. When the default
+    geodesic roadmap legs) represents every path class on every map. ``ga``/``iga`` also take
+    ``"cells"`` on grids: li2023's own chromosome, a general cell sequence
+    (:mod:`optplan.solvers.gridpath.cell_ga`). When the default
     (paper) encoding cannot represent a solution — no collision-free path with one node
     per column exists, or the paper encoding's best path is infeasible — the run is done
     again with the general encoding (same budget) and the result says so (``encoding``,
@@ -143,12 +145,18 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
         return plan_ga(world, s, g, improved=name == "iga", seed=seed, pop=pop, iters=iters, clearance=clearance,
                        preset=preset or "li2023", postprocess=postprocess, max_evals=max_evals,
                        alternatives=alternatives, alternative_separation=alternative_separation, **params)
+    if name in ("ga", "iga") and encoding == "cells":
+        from .gridpath.cell_ga import plan_cell_ga
+
+        return plan_cell_ga(world, s, g, improved=name == "iga", seed=seed, pop=pop, iters=iters, clearance=clearance,
+                            preset=preset or "li2023", postprocess=postprocess, max_evals=max_evals,
+                            alternatives=alternatives, alternative_separation=alternative_separation, **params)
     from . import metaheuristics
 
     if name == "iga" and encoding is not None:
-        raise ParameterError(f"iga evolves sequences of grid cells (li2023 §3), which already represent every "
-                             f"path class on a grid; it takes no encoding={encoding!r}. Use 'ga' (the vector "
-                             "GA) for other encodings")
+        raise ParameterError(f"iga evolves grid chromosomes (li2023 §3): encoding='columns' (one cell per column) "
+                             f"or 'cells' (the paper's general cell sequence), not encoding={encoding!r}. Use "
+                             "'ga' (the vector GA) for other encodings")
     if name not in _metaheuristic_names():
         raise UnknownAlgorithmError(f"unknown path planner {algorithm!r}; known: {', '.join(algorithm_names())}")
     paper = PAPER_OF.get(name, "length")

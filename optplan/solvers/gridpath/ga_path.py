@@ -31,6 +31,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ...checks import integer, number
 from ...errors import ParameterError
 from ...formulations.encodings import ColumnNodes
 from ...formulations.problem import PathProblem
@@ -65,6 +66,20 @@ class GAParams:
     sigma2: float = 1.0              # §4.3 mean distance-to-best threshold (cells)
     redraw: int = 5                  # m chromosomes redrawn per diversity check
     stall: int = 50                  # §4.5 generations without improvement before stopping
+
+    def __post_init__(self) -> None:
+        share, positive = number(0.0, 1.0), number(0.0)
+        for name in ("pc", "pm", "k_e"):
+            share(name, getattr(self, name))
+        for name in ("ps_range", "pc_range", "pm_range"):
+            lo_hi = getattr(self, name)
+            if not (isinstance(lo_hi, (tuple, list)) and len(lo_hi) == 2
+                    and 0 <= share(name, lo_hi[0]) <= share(name, lo_hi[1])):
+                raise ParameterError(f"{name} must be (low, high) with 0 <= low <= high <= 1, got {lo_hi!r}")
+        positive("sigma1", self.sigma1)
+        positive("sigma2", self.sigma2)
+        integer(1)("redraw", self.redraw)
+        integer(1)("stall", self.stall)
 
 
 def adaptive_probabilities(f: np.ndarray, lo_hi: tuple[float, float], protect: bool) -> np.ndarray:
@@ -127,7 +142,7 @@ def _mutate(rows: np.ndarray, pm: np.ndarray, moves: ColumnSegments, rng: np.ran
     return out
 
 
-def _variance_checked(sample, evaluate, n: int, p: GAParams, rng) -> np.ndarray:
+def variance_checked(sample, evaluate, n: int, p: GAParams, rng) -> np.ndarray:
     """§4.1: redraw ``p.redraw`` random chromosomes until the fitness variance exceeds sigma1."""
     X = sample(n)
     f = evaluate(X)
@@ -140,20 +155,70 @@ def _variance_checked(sample, evaluate, n: int, p: GAParams, rng) -> np.ndarray:
     return X
 
 
-def _regenerate(X: np.ndarray, bad: np.ndarray, best: np.ndarray, sample, p: GAParams, rng) -> np.ndarray:
-    """§4.3: replace colliding offspring by fresh paths, diverse w.r.t. the best chromosome."""
+def euclidean_to(fresh: np.ndarray, best: np.ndarray) -> np.ndarray:
+    """li2023 §4.3's similarity of each chromosome to the best one: the Euclidean distance of
+    their genes (rows of a column chromosome, in cells)."""
+    return np.linalg.norm(fresh - best, axis=1)
+
+
+def regenerate(X: np.ndarray, bad: np.ndarray, best: np.ndarray, sample, p: GAParams, rng,
+               similarity=euclidean_to) -> np.ndarray:
+    """§4.3: replace colliding offspring by fresh paths, diverse w.r.t. the best chromosome
+    (``similarity(fresh, best)``: each fresh chromosome's distance to the best, in cells)."""
     idx = np.nonzero(bad)[0]
     if idx.size == 0:
         return X
     fresh = sample(idx.size)
     for _ in range(20):
-        if np.linalg.norm(fresh - best, axis=1).mean() > p.sigma2:
+        if similarity(fresh, best).mean() > p.sigma2:
             break
         k = rng.choice(idx.size, size=min(p.redraw, idx.size), replace=False)
         fresh[k] = sample(len(k))
     X = X.copy()
     X[idx] = fresh
     return X
+
+
+class ColumnChromosomes:
+    """The operators on the column chromosome (one row per column, genes at cell centres)."""
+
+    def __init__(self, problem: PathProblem, rng: np.random.Generator) -> None:
+        enc = problem.encoding
+        if not isinstance(enc, ColumnNodes) or not enc.snap:
+            raise ParameterError("the path GA works on snapped ColumnNodes encodings")
+        self.problem, self.rng = problem, rng
+        # the moves the operators may take, decided for the rows they ask about (not a table of
+        # every segment of the map: (d - 1) H^2 of them)
+        self.moves = column_segments(enc, problem.clearance)
+        self.similarity = euclidean_to
+
+    def sample(self, k: int) -> np.ndarray:
+        return self.problem.encoding.sample_feasible(k, self.rng, self.problem.clearance)
+
+    def evaluate(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        return self.problem.evaluate(X)
+
+    def canonical(self, X: np.ndarray) -> np.ndarray:
+        return np.floor(X) + 0.5
+
+    def crossover(self, X: np.ndarray, pc: np.ndarray) -> np.ndarray:
+        return _crossover(np.floor(X).astype(np.int64), pc, self.rng) + 0.5
+
+    def mutate(self, X: np.ndarray, pm: np.ndarray) -> np.ndarray:
+        return _mutate(np.floor(X).astype(np.int64), pm, self.moves, self.rng) + 0.5
+
+
+def check_budget(pop, iters, max_evals) -> None:
+    """The path GAs' population and budget arguments (ParameterError when wrong)."""
+    if isinstance(pop, bool) or not isinstance(pop, (int, np.integer)) or pop < 2:
+        raise ParameterError(f"pop must be an integer >= 2, got {pop!r}")
+    if iters is not None and (isinstance(iters, bool) or not isinstance(iters, (int, np.integer)) or iters < 0):
+        raise ParameterError(f"iters must be an integer >= 0 or None, got {iters!r}")
+    if max_evals is not None and (isinstance(max_evals, bool) or not isinstance(max_evals, (int, np.integer))
+                                  or max_evals < pop):
+        raise ParameterError(f"max_evals must be an integer >= pop ({pop}) or None, got {max_evals!r}")
+    if iters is None and max_evals is None:
+        raise ParameterError("give iters, max_evals or both; the GA needs a budget")
 
 
 def ga_path(problem: PathProblem, *, pop: int = 50, iters: int | None = 200, seed=0, params: GAParams = GAParams(),
@@ -174,28 +239,22 @@ def ga_path(problem: PathProblem, *, pop: int = 50, iters: int | None = 200, see
 
     Returns ``(best_x, best_f, history, nfev, generations)``.
     """
-    enc = problem.encoding
-    if not isinstance(enc, ColumnNodes) or not enc.snap:
-        raise ParameterError("the path GA works on snapped ColumnNodes encodings")
-    if isinstance(pop, bool) or not isinstance(pop, (int, np.integer)) or pop < 2:
-        raise ParameterError(f"pop must be an integer >= 2, got {pop!r}")
-    if iters is not None and (isinstance(iters, bool) or not isinstance(iters, (int, np.integer)) or iters < 0):
-        raise ParameterError(f"iters must be an integer >= 0 or None, got {iters!r}")
-    if max_evals is not None and (isinstance(max_evals, bool) or not isinstance(max_evals, (int, np.integer))
-                                  or max_evals < pop):
-        raise ParameterError(f"max_evals must be an integer >= pop ({pop}) or None, got {max_evals!r}")
-    if iters is None and max_evals is None:
-        raise ParameterError("give iters, max_evals or both; the GA needs a budget")
+    check_budget(pop, iters, max_evals)
+    rng = as_generator(seed)
+    return evolve(ColumnChromosomes(problem, rng), rng, pop=pop, iters=iters, params=params, callback=callback,
+                  max_evals=max_evals, snapshots=snapshots, archive_every=archive_every)
+
+
+def evolve(ops, rng: np.random.Generator, *, pop: int, iters: int | None, params: GAParams, callback=None,
+           max_evals: int | None = None, snapshots: list | None = None, archive_every: int = 10):
+    """The GA loop of li2023 §4 (TGA when ``params.improved`` is false) over a chromosome's
+    operators ``ops`` (``sample``, ``evaluate``, ``canonical``, ``crossover``, ``mutate``,
+    ``similarity``; :class:`ColumnChromosomes`, :class:`~optplan.solvers.gridpath.cell_ga.CellChromosomes`).
+    Arguments and result as :func:`ga_path`."""
     budget = Budget(iterations=iters, evaluations=max_evals, stagnation=params.stall if params.improved else None)
     horizon = iters if iters is not None else max(1, max_evals // pop - 1)  # T of li2023 eq 5
-    rng = as_generator(seed)
-    # the moves the operators may take, decided for the rows they ask about (not a table of
-    # every segment of the map: (d - 1) H^2 of them)
-    moves = column_segments(enc, problem.clearance)
     nfev = 0
-
-    def sample(k: int) -> np.ndarray:
-        return enc.sample_feasible(k, rng, problem.clearance)
+    sample = ops.sample
 
     def evaluate(X: np.ndarray) -> np.ndarray:
         nonlocal nfev
@@ -204,13 +263,13 @@ def ga_path(problem: PathProblem, *, pop: int = 50, iters: int | None = 200, see
         out = np.full(n, np.inf)
         if k > 0:
             nfev += k
-            f, v = problem.evaluate(X[:k])
+            f, v = ops.evaluate(X[:k])
             out[:k] = np.where(v > 0, np.inf, f) if params.improved else f
         return out
 
     if params.improved:
         half = pop // 2
-        X = np.vstack([sample(pop - half), _variance_checked(sample, evaluate, half, params, rng)])
+        X = np.vstack([sample(pop - half), variance_checked(sample, evaluate, half, params, rng)])
     else:
         X = sample(pop)
     f = evaluate(X)
@@ -223,7 +282,7 @@ def ga_path(problem: PathProblem, *, pop: int = 50, iters: int | None = 200, see
     gen = 0
     while budget.spent(gen, nfev) is None:
         gen += 1
-        rows = np.floor(X).astype(np.int64)
+        rows = ops.canonical(X)
         finite = np.isfinite(f)
         fs = np.where(finite, f, f[finite].max() if finite.any() else 0.0)
         if params.improved:
@@ -240,16 +299,14 @@ def ga_path(problem: PathProblem, *, pop: int = 50, iters: int | None = 200, see
         elites = rows[order[:k_el]]
         w = ps / ps.sum()
         parents = rng.choice(pop, size=pop - k_el, p=w)
-        kids = _crossover(rows[parents], pc[parents], rng)
-        kids = _mutate(kids, pm[parents], moves, rng)
-        Xk = kids + 0.5
+        Xk = ops.mutate(ops.crossover(rows[parents], pc[parents]), pm[parents])
         fk = evaluate(Xk)
         if params.improved:
             bad = ~np.isfinite(fk)
             if bad.any():
-                Xk = _regenerate(Xk, bad, best_x, sample, params, rng)
+                Xk = regenerate(Xk, bad, best_x, sample, params, rng, ops.similarity)
                 fk[bad] = evaluate(Xk[bad])
-        X = np.vstack([elites + 0.5, Xk])
+        X = np.vstack([elites, Xk])
         f = np.concatenate([f[order[:k_el]], fk])
         i = int(np.argmin(f))
         if f[i] < best_f - 1e-12:
