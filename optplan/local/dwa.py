@@ -35,7 +35,8 @@ from .base import LocalContext, MoverSweepSource
 from .critics import CRITICS, Critic
 from .hooks import Mechanism, PlannerView, Roles
 from .mechanisms import MECHANISMS, InitialHeading
-from .rollout import Rollouts, Step, assess, rollout, rollout_ramped, static_gradient
+from .rollout import (Rollouts, Step, assess, join_rollouts, rollout, rollout_ramped, rollout_tracking,
+                      static_gradient)
 from .window import Window, dynamic_window, sample_grid
 
 
@@ -110,6 +111,10 @@ class DWAPlanner(MoverSweepSource):
         "growth_cap": 0.0,    # ... up to this much, m (cost terms only)
         "lookahead": None,    # s: sample targets reachable within this time and roll out the
                               # ramp to them (None = the classic window of one period)
+        "path_samples": (),   # speeds (fractions of v_max) of extra samples that follow the
+                              # global path by pure pursuit (rollout.rollout_tracking); () = none
+        "path_look_aheads": (0.25, 0.5),  # m: their pure-pursuit look-ahead distances ...
+        "path_turn_first": (1.5708, 0.3),  # ... and bearings (rad) beyond which they turn in place
     }
 
     def __init__(self, preset: Preset, robot: RobotSpec, dt: float, **params: Any) -> None:
@@ -189,6 +194,16 @@ class DWAPlanner(MoverSweepSource):
             o["rollout_dt"] = self._number("rollout_dt", o["rollout_dt"])
         for k in ("margin", "reaction", "mover_range", "mover_growth", "growth_cap"):
             o[k] = self._number(k, o[k], allow_zero=True)
+        for k, hi in (("path_samples", 1.0), ("path_look_aheads", np.inf), ("path_turn_first", np.pi)):
+            try:
+                vals = tuple(float(x) for x in o[k])
+            except (TypeError, ValueError):
+                raise ParameterError(f"{k} must be a list of numbers, got {o[k]!r}") from None
+            if not all(0 < x <= hi for x in vals):
+                raise ParameterError(f"{k} must hold numbers in (0, {hi:g}], got {o[k]!r}")
+            o[k] = vals
+        if o["path_samples"] and not (o["path_look_aheads"] and o["path_turn_first"]):
+            raise ParameterError("path_samples need at least one of path_look_aheads (m) and of path_turn_first (rad)")
         if o["normalise"] not in ("sum", "minmax", "none"):
             raise ParameterError(f"normalise must be 'sum', 'minmax' or 'none', got {o['normalise']!r}")
         return o
@@ -227,7 +242,13 @@ class DWAPlanner(MoverSweepSource):
         """Roll out and assess the sample grid of ``window``."""
         o = self.options
         lin_v, lin_vy, w = sample_grid(window, o["n_v"], o["n_w"], o["n_vy"] if self.omni else 1)
-        step = self._assess(ctx, self.rollout_of(ctx.state, lin_v, lin_vy, w))
+        roll = self.rollout_of(ctx.state, lin_v, lin_vy, w)
+        if o["path_samples"]:
+            track = rollout_tracking(ctx.state, ctx.global_path, self.robot.v_max * np.asarray(o["path_samples"]),
+                                     np.asarray(o["path_look_aheads"]), self.rollout_dt, self.steps, self.robot,
+                                     np.asarray(o["path_turn_first"]))
+            roll = join_rollouts(roll, track)
+        step = self._assess(ctx, roll)
         if self.omni:  # the acceleration limit bounds the (v, vy) vector: keep the disc of the box
             dv = np.hypot(step.roll.v - ctx.state.v, step.roll.vy - ctx.state.vy)
             step.admissible &= dv <= self.robot.a_max * (o["lookahead"] or ctx.dt) * (1 + 1e-9)

@@ -196,7 +196,10 @@ class QPDWAPlanner(DWAPlanner):
 
     def finish(self, ctx, window, u, step, info):
         target = u
-        if step is not None and info.get("mode") in ("sample", "sample-relaxed", "evade"):
+        tracking = step is not None and step.roll.tracking is not None and info.get("index") is not None and bool(step.roll.tracking[info["index"]])
+        if tracking:  # its command changes along the horizon; the QP linearises a constant one
+            info["qp"] = "path sample"
+        elif step is not None and info.get("mode") in ("sample", "sample-relaxed", "evade"):
             target = self.refine(ctx, window, u, step, info)
         # recursive feasibility: the command must leave a safe continuation (see
         # safe_continuation); else the sampled command, else braking, is commanded
