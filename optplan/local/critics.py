@@ -223,33 +223,14 @@ class Clearance(Critic):
     """Fox's ``dist``: the smallest edge-to-edge distance (m) to any obstacle, static or
     moving, along the trajectory, capped at ``cap`` (no obstacle close to the trajectory)
     and floored at ``floor`` (0: every contact scores the same; a negative floor lets a
-    deeper predicted overlap with an uncertain mover disc score worse).
-
-    ``path_relative``: the cap is also no higher than the clearance (edge to edge) the
-    global path keeps at its tightest point within reach of the robot (the passage it is
-    about to thread). With a fixed cap, the open pockets beside a narrow passage scored up
-    to the cap more than the passage itself, and the robot was drawn off the path into them
-    (issue 27)."""
+    deeper predicted overlap with an uncertain mover disc score worse)."""
 
     name: ClassVar[str] = "clearance"
     cap: float = 2.0
     floor: float = 0.0
-    path_relative: bool = False
 
     def score(self, step: Step) -> np.ndarray:
-        cap = min(self.cap, max(path_bottleneck(step), 0.0)) if self.path_relative else self.cap
-        return np.clip(step.gap.min(axis=1), self.floor, cap)
-
-
-def path_bottleneck(step: Step, spacing: float = 0.05) -> float:
-    """Smallest static clearance (m, edge to edge) of the global path from the robot's nearest
-    path point to as far ahead as any rollout reaches (sampled every ``spacing`` metres)."""
-    roll = step.roll
-    reach = _reach(step)
-    s0, _ = project_on_path(step.ctx.global_path, np.array([roll.z0]), roll.z0, reach)
-    pts = point_at_arc(step.ctx.global_path, s0[0] + np.arange(0.0, reach, spacing))
-    dist = np.asarray(step.ctx.static_distance(np.column_stack([pts.real, pts.imag])), float)
-    return float(dist.min()) - step.robot.radius
+        return np.clip(step.gap.min(axis=1), self.floor, self.cap)
 
 
 @dataclass

@@ -103,6 +103,8 @@ class DWAPlanner(MoverSweepSource):
         "margin": 0.02,       # extra clearance counted as collision, m: covers the sampled
                               # distance field's interpolation and the straight swept segments
                               # between rollout points, which the exact check sees
+        "swept_margin": 0.005,  # m: the swept-segment part alone; when the context gives the
+                              # field's error bound, the static margin is at most the two summed
         "reaction": 0.0,      # reaction time in the stopping distance, s (eq 22)
         "normalise": "sum",   # "sum" | "minmax" | "none"
         "omni": False,        # sample vy too when the robot is omnidirectional (hou2024 eq 19)
@@ -192,7 +194,7 @@ class DWAPlanner(MoverSweepSource):
             o["lookahead"] = self._number("lookahead", o["lookahead"])
         if o["rollout_dt"] is not None:
             o["rollout_dt"] = self._number("rollout_dt", o["rollout_dt"])
-        for k in ("margin", "reaction", "mover_range", "mover_growth", "growth_cap"):
+        for k in ("margin", "swept_margin", "reaction", "mover_range", "mover_growth", "growth_cap"):
             o[k] = self._number(k, o[k], allow_zero=True)
         for k, hi in (("path_samples", 1.0), ("path_look_aheads", np.inf), ("path_turn_first", np.pi)):
             try:
@@ -272,11 +274,24 @@ class DWAPlanner(MoverSweepSource):
                 centres = m.predict(self.view, ctx, centres, t)
             return centres
 
-        return assess(ctx, self.robot, roll, margin=o["margin"], reaction=self._reaction(), mover_range=o["mover_range"],
+        return assess(ctx, self.robot, roll, margin=o["margin"], static_margin=self.static_margin(ctx),
+                      reaction=self._reaction(), mover_range=o["mover_range"],
                       mover_growth=o["mover_growth"], growth_cap=o["growth_cap"], predict=predict)
 
     def _reaction(self) -> float:
         return self.options["reaction"]
+
+    def static_margin(self, ctx: LocalContext) -> float:
+        """Clearance (m) below which a rollout point counts as a static collision: ``margin``,
+        or less where the context says how far its distance field may be off
+        (``distance_error``, plus ``swept_margin`` for the straight segments between rollout
+        points). The fixed 2 cm were sized for the 1 m cells of the shipped maps; on a map of
+        0.15 m cells the field errs by 3 mm, and the 2 cm closed gaps the global path threads
+        with 1-2 cm to spare (issue 27)."""
+        o = self.options
+        if ctx.distance_error is None:
+            return o["margin"]
+        return min(o["margin"], float(ctx.distance_error) + o["swept_margin"])
 
     def choose(self, step: Step) -> tuple[int | None, dict]:
         """Index of the best candidate sample (``None`` if none is admissible) and diagnostics."""

@@ -359,7 +359,8 @@ def first_hit(hit: np.ndarray) -> np.ndarray:
     return np.where(hit.any(axis=1), np.argmax(hit, axis=1), hit.shape[1])
 
 
-def assess(ctx: LocalContext, robot: RobotSpec, roll: Rollouts, *, margin: float = 0.0, reaction: float = 0.0,
+def assess(ctx: LocalContext, robot: RobotSpec, roll: Rollouts, *, margin: float = 0.0,
+           static_margin: float | None = None, reaction: float = 0.0,
            mover_range: float = 3.0, mover_growth: float = 0.0, growth_cap: float = 0.0,
            predict: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None) -> Step:
     """Clearance of every rollout point, the free distance and the admissibility of every sample.
@@ -370,6 +371,7 @@ def assess(ctx: LocalContext, robot: RobotSpec, roll: Rollouts, *, margin: float
 
     Args:
         margin: extra clearance, m, below which a point counts as a collision.
+        static_margin: the same for static obstacles (``None``: ``margin``).
         reaction: reaction time in the stopping distance (see :func:`_stopping_test`).
         mover_range: movers that provably stay more than this far (edge to edge) from every
             rollout are skipped; cost terms therefore see mover clearances up to this value.
@@ -390,7 +392,8 @@ def assess(ctx: LocalContext, robot: RobotSpec, roll: Rollouts, *, margin: float
     fastest = float(np.abs(vel[keep]).max(initial=0.0))
     growth = np.minimum(mover_growth * fastest * roll.t, growth_cap) if mover_growth > 0 else 0.0
     now_static, now_moving = current_gaps(ctx, robot)
-    first = first_hit(static_gap < min(margin, now_static))  # 0 = the point after one step
+    s_margin = margin if static_margin is None else static_margin
+    first = first_hit(static_gap < min(s_margin, now_static))  # 0 = the point after one step
     free, stopping = _stopping_test(roll, first, robot.a_max, reaction)
     admissible = stopping <= free + 1e-12
     contact = first_hit(dyn_gap < min(margin, now_moving))
