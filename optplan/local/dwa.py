@@ -295,7 +295,7 @@ class DWAPlanner(MoverSweepSource):
 
     def choose(self, step: Step) -> tuple[int | None, dict]:
         """Index of the best candidate sample (``None`` if none is admissible) and diagnostics."""
-        legal = np.ones(step.roll.n, dtype=bool)
+        legal = self.legal_samples(step)
         for m in self.roles.filters:
             keep = m.filter(self.view, step)
             if keep is not None:
@@ -343,6 +343,11 @@ class DWAPlanner(MoverSweepSource):
         best = int(np.argmax(total))
         return best, {"mode": mode, "index": best, "score": float(total[best]), "n_candidates": int(cand.sum()),
                       "free_distance": float(step.free_distance[best])}
+
+    def legal_samples(self, step: Step) -> np.ndarray:
+        """``(S,)`` samples the planner itself allows before the mechanisms' and critics' vetoes
+        (all; ``qp-dwa`` restricts its path-following samples)."""
+        return np.ones(step.roll.n, dtype=bool)
 
     def _escape_turn(self, step: Step, pool: np.ndarray) -> int | None:
         """The turn in place (among ``pool``) towards open space when static obstacles

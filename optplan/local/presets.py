@@ -60,15 +60,11 @@ PRESETS: dict[str, Preset] = {p.name: p for p in (
                "mover clearance) with the sweep gate (keep off a mover's track unless crossing is safe "
                "whatever turn it makes next) -> QP refinement with linearised clearance (OSQP) -> "
                "Ruckig jerk-limited velocity profile",
-        # raw physical units (no normalisation): weights are per metre / per radian; the path
-        # terms judge a trajectory up to where it must stop before a static obstacle, and
-        # pure-pursuit samples along the global path join the window's arcs (issue 27)
-        terms=(Term("path_progress", 1.0, {"until_stop": True}),
-               Term("path_deviation", 0.5, {"paired": False, "until_stop": True}),
-               Term("path_heading", 0.3, {"until_stop": True}),
+        # raw physical units (no normalisation): weights are per metre / per radian
+        terms=(Term("path_progress", 1.0), Term("path_deviation", 0.5, {"paired": False}), Term("path_heading", 0.3),
                Term("clearance", 1.0, {"cap": 0.5})),
         options={"omni": True, "normalise": "none", "mover_growth": 1.0, "growth_cap": 1.0,
-                 "lookahead": 1.0, "path_samples": (0.5, 1.0)},
+                 "lookahead": 1.0},
         mechanisms=(("sweep_gate", {}),),
         refine="qp",
     ),

@@ -239,6 +239,19 @@ class QPDWAPlanner(DWAPlanner):
             info["ruckig_resync"] = True
         return float(out[0]), float(out[1]), float(out[2]) if self.n_u == 3 else 0.0
 
+    def legal_samples(self, step: Step) -> np.ndarray:
+        """Path-following samples only where no mover comes within ``qp_activate`` of them over
+        ``qp_horizon``: they are not refined (their command changes along the horizon), so
+        near a mover they would forgo the mover clearance the QP adds to an arc. Taken
+        there, the sluggish robots of li2023 Experiment II were run into in 3 of the 40 runs
+        of ``benchmarks/dynamic_qp_dwa.yaml --runs 4``."""
+        legal = super().legal_samples(step)
+        if step.roll.tracking is not None and len(step.mover_r):
+            H = max(1, min(step.roll.z.shape[1], int(round(self.options["qp_horizon"] / step.roll.dt))))
+            near = step.dyn_gap[:, :H].min(axis=1) < self.options["qp_activate"]
+            legal &= ~(step.roll.tracking & near)
+        return legal
+
     # ------------------------------------------------------------------ recursive feasibility
     def continuation_rollout(self, ctx: LocalContext, out: np.ndarray, brake: bool) -> Rollouts:
         """The trajectory (one sample) when ``out`` is commanded for one period and then either
