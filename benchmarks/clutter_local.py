@@ -56,8 +56,11 @@ def run_world(task: tuple[str, int, tuple[str, ...], str, dict]) -> list[dict]:
                 qp[key] = qp.get(key, 0) + 1
 
         opts = dict(SHARED_NAV) if nav == "shared" else {}
-        if planner == "qp-dwa" and qp_params:
-            opts["planner_params"] = qp_params
+        # the family's local parameters (op.simulate lays them under its own only for a family name)
+        params = {**family_options(family).get("local_params", {}).get(planner, {}),
+                  **(qp_params if planner == "qp-dwa" else {})}
+        if params:
+            opts["planner_params"] = params
         res = simulate(sc, global_planner="astar", local_planner=planner, seed=seed, global_plan=gp, progress=count,
                        **opts)
         rows.append({"family": family, "seed": seed, "planner": planner, "nav": nav, "status": res.status,

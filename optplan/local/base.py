@@ -42,6 +42,8 @@ class LocalContext:
         static_points: optional ``(m, 2)`` centres of sensed static obstacle cells or
             circles near the robot, for terms that reason about individual obstacles.
         bounds: ``(xmin, ymin, xmax, ymax)`` of the world, metres.
+        distance_error: how much ``static_distance`` may overestimate the true distance, m
+            (an interpolated field near convex corners); ``None``: not known.
     """
 
     state: RobotState
@@ -54,6 +56,7 @@ class LocalContext:
     t: float = 0.0
     static_points: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
     bounds: tuple[float, float, float, float] | None = None
+    distance_error: float | None = None
 
 
 class LocalPlanner(Protocol):

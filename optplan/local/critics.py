@@ -150,6 +150,18 @@ def path_carrot(path: np.ndarray, z: np.ndarray, look_ahead: float, near: comple
     return point_at_arc(path, s + look_ahead)
 
 
+def _trajectory_end(step: Step, until_stop: bool) -> tuple[np.ndarray, np.ndarray]:
+    """``(position (S,) complex, heading (S,))`` a path critic judges each trajectory by: its
+    end, or with ``until_stop`` its last point before the first static collision, where
+    the robot following it has to stop. Judged by its end, a trajectory that runs into a
+    wall 0.3 m ahead was credited the progress of the 1.5 m it cannot drive; it beat every
+    free trajectory, and the QP then braked it to a standstill, step after step, in front
+    of the obstacle (issue 27)."""
+    if until_stop:
+        return step.pose_at_stop()
+    return step.roll.position(), step.roll.heading()
+
+
 def _reach(step: Step) -> float:
     """How far (m) from the robot any rollout point can be, plus a metre of slack."""
     roll = step.roll
@@ -162,16 +174,17 @@ class PathHeading(Heading):
     ``look_ahead`` metres beyond the path point nearest to the trajectory's end (the
     pure-pursuit target; Nav2 DWB's path-align idea), instead of the subgoal. The robot then
     follows the path around corners that the straight line to a subgoal would cut, and a
-    trajectory never "passes" its target."""
+    trajectory never "passes" its target. ``until_stop``: see :func:`_trajectory_end`."""
 
     name: ClassVar[str] = "path_heading"
     look_ahead: float = 1.0
+    until_stop: bool = False
 
     def score(self, step: Step) -> np.ndarray:
         roll = step.roll
-        end = roll.position()
+        end, heading = _trajectory_end(step, self.until_stop)
         bearing = np.angle(path_carrot(step.ctx.global_path, end, self.look_ahead, roll.z0, _reach(step)) - end)
-        return np.pi - np.abs(wrap_angle(bearing - roll.heading()))
+        return np.pi - np.abs(wrap_angle(bearing - heading))
 
 
 @dataclass
@@ -184,19 +197,24 @@ class PathProgress(Critic):
     trajectory that heads straight past a bend of the path projects onto the path beyond
     the bend and was credited more progress than it drove, so the sum of terms preferred
     cutting the corner into clutter the global path keeps clear of (issue 27, where such
-    runs ended pinned in a gap off the path)."""
+    runs ended pinned in a gap off the path). ``until_stop``: see :func:`_trajectory_end`."""
 
     name: ClassVar[str] = "path_progress"
     within_travel: bool = False
+    until_stop: bool = False
 
     def score(self, step: Step) -> np.ndarray:
         roll = step.roll
-        s, _ = project_on_path(step.ctx.global_path, np.r_[roll.z0, roll.position()], roll.z0, _reach(step))
+        end, _ = _trajectory_end(step, self.until_stop)
+        s, _ = project_on_path(step.ctx.global_path, np.r_[roll.z0, end], roll.z0, _reach(step))
         gain = s[1:] - s[0]
         if not self.within_travel:
             return gain
         fastest = roll.speed[:, None] if roll.profile is None else roll.profile
-        driven = np.broadcast_to(fastest, roll.z.shape).sum(axis=1) * roll.dt
+        held = np.broadcast_to(fastest, roll.z.shape)
+        if self.until_stop:
+            held = np.where(np.arange(roll.z.shape[1])[None, :] < step.stop_index()[:, None], held, 0.0)
+        driven = held.sum(axis=1) * roll.dt
         return np.minimum(gain, driven)
 
 
@@ -236,17 +254,20 @@ class PathDeviation(Critic):
     the i-th path point, the path being sampled ahead of the robot's nearest path point at
     the spacing of a robot that follows it at ``v_max`` - so lagging behind the path costs
     as much as leaving it sideways, and standing still is not free. ``paired=False``
-    measures each trajectory point's distance to the nearest point of the path instead."""
+    measures each trajectory point's distance to the nearest point of the path instead.
+    ``until_stop``: the points from the first static collision on are taken where the robot
+    has to stop, before it (see :func:`_trajectory_end`)."""
 
     name: ClassVar[str] = "path_deviation"
     cost: ClassVar[bool] = True
     stride: int = 3
     paired: bool = True
+    until_stop: bool = False
 
     def score(self, step: Step) -> np.ndarray:
         roll = step.roll
         idx = np.arange(self.stride - 1, roll.z.shape[1], self.stride)
-        pts = roll.z[:, idx]
+        pts = (step.held_at_stop() if self.until_stop else roll.z)[:, idx]
         path = step.ctx.global_path
         if self.paired:
             s0, _ = project_on_path(path, np.array([roll.z0]), roll.z0, 1.0)

@@ -35,7 +35,8 @@ from .base import LocalContext, MoverSweepSource
 from .critics import CRITICS, Critic
 from .hooks import Mechanism, PlannerView, Roles
 from .mechanisms import MECHANISMS, InitialHeading
-from .rollout import Rollouts, Step, assess, rollout, rollout_ramped, static_gradient
+from .rollout import (Rollouts, Step, assess, join_rollouts, rollout, rollout_ramped, rollout_tracking,
+                      static_gradient)
 from .window import Window, dynamic_window, sample_grid
 
 
@@ -102,6 +103,8 @@ class DWAPlanner(MoverSweepSource):
         "margin": 0.02,       # extra clearance counted as collision, m: covers the sampled
                               # distance field's interpolation and the straight swept segments
                               # between rollout points, which the exact check sees
+        "swept_margin": 0.005,  # m: the swept-segment part alone; when the context gives the
+                              # field's error bound, the static margin is at most the two summed
         "reaction": 0.0,      # reaction time in the stopping distance, s (eq 22)
         "normalise": "sum",   # "sum" | "minmax" | "none"
         "omni": False,        # sample vy too when the robot is omnidirectional (hou2024 eq 19)
@@ -110,6 +113,10 @@ class DWAPlanner(MoverSweepSource):
         "growth_cap": 0.0,    # ... up to this much, m (cost terms only)
         "lookahead": None,    # s: sample targets reachable within this time and roll out the
                               # ramp to them (None = the classic window of one period)
+        "path_samples": (),   # speeds (fractions of v_max) of extra samples that follow the
+                              # global path by pure pursuit (rollout.rollout_tracking); () = none
+        "path_look_aheads": (0.25, 0.5),  # m: their pure-pursuit look-ahead distances ...
+        "path_turn_first": (1.5708, 0.3),  # ... and bearings (rad) beyond which they turn in place
     }
 
     def __init__(self, preset: Preset, robot: RobotSpec, dt: float, **params: Any) -> None:
@@ -187,8 +194,18 @@ class DWAPlanner(MoverSweepSource):
             o["lookahead"] = self._number("lookahead", o["lookahead"])
         if o["rollout_dt"] is not None:
             o["rollout_dt"] = self._number("rollout_dt", o["rollout_dt"])
-        for k in ("margin", "reaction", "mover_range", "mover_growth", "growth_cap"):
+        for k in ("margin", "swept_margin", "reaction", "mover_range", "mover_growth", "growth_cap"):
             o[k] = self._number(k, o[k], allow_zero=True)
+        for k, hi in (("path_samples", 1.0), ("path_look_aheads", np.inf), ("path_turn_first", np.pi)):
+            try:
+                vals = tuple(float(x) for x in o[k])
+            except (TypeError, ValueError):
+                raise ParameterError(f"{k} must be a list of numbers, got {o[k]!r}") from None
+            if not all(0 < x <= hi for x in vals):
+                raise ParameterError(f"{k} must hold numbers in (0, {hi:g}], got {o[k]!r}")
+            o[k] = vals
+        if o["path_samples"] and not (o["path_look_aheads"] and o["path_turn_first"]):
+            raise ParameterError("path_samples need at least one of path_look_aheads (m) and of path_turn_first (rad)")
         if o["normalise"] not in ("sum", "minmax", "none"):
             raise ParameterError(f"normalise must be 'sum', 'minmax' or 'none', got {o['normalise']!r}")
         return o
@@ -227,7 +244,13 @@ class DWAPlanner(MoverSweepSource):
         """Roll out and assess the sample grid of ``window``."""
         o = self.options
         lin_v, lin_vy, w = sample_grid(window, o["n_v"], o["n_w"], o["n_vy"] if self.omni else 1)
-        step = self._assess(ctx, self.rollout_of(ctx.state, lin_v, lin_vy, w))
+        roll = self.rollout_of(ctx.state, lin_v, lin_vy, w)
+        if o["path_samples"]:
+            track = rollout_tracking(ctx.state, ctx.global_path, self.robot.v_max * np.asarray(o["path_samples"]),
+                                     np.asarray(o["path_look_aheads"]), self.rollout_dt, self.steps, self.robot,
+                                     np.asarray(o["path_turn_first"]))
+            roll = join_rollouts(roll, track)
+        step = self._assess(ctx, roll)
         if self.omni:  # the acceleration limit bounds the (v, vy) vector: keep the disc of the box
             dv = np.hypot(step.roll.v - ctx.state.v, step.roll.vy - ctx.state.vy)
             step.admissible &= dv <= self.robot.a_max * (o["lookahead"] or ctx.dt) * (1 + 1e-9)
@@ -251,15 +274,28 @@ class DWAPlanner(MoverSweepSource):
                 centres = m.predict(self.view, ctx, centres, t)
             return centres
 
-        return assess(ctx, self.robot, roll, margin=o["margin"], reaction=self._reaction(), mover_range=o["mover_range"],
+        return assess(ctx, self.robot, roll, margin=o["margin"], static_margin=self.static_margin(ctx),
+                      reaction=self._reaction(), mover_range=o["mover_range"],
                       mover_growth=o["mover_growth"], growth_cap=o["growth_cap"], predict=predict)
 
     def _reaction(self) -> float:
         return self.options["reaction"]
 
+    def static_margin(self, ctx: LocalContext) -> float:
+        """Clearance (m) below which a rollout point counts as a static collision: ``margin``,
+        or less where the context says how far its distance field may be off
+        (``distance_error``, plus ``swept_margin`` for the straight segments between rollout
+        points). The fixed 2 cm were sized for the 1 m cells of the shipped maps; on a map of
+        0.15 m cells the field errs by 3 mm, and the 2 cm closed gaps the global path threads
+        with 1-2 cm to spare (issue 27)."""
+        o = self.options
+        if ctx.distance_error is None:
+            return o["margin"]
+        return min(o["margin"], float(ctx.distance_error) + o["swept_margin"])
+
     def choose(self, step: Step) -> tuple[int | None, dict]:
         """Index of the best candidate sample (``None`` if none is admissible) and diagnostics."""
-        legal = np.ones(step.roll.n, dtype=bool)
+        legal = self.legal_samples(step)
         for m in self.roles.filters:
             keep = m.filter(self.view, step)
             if keep is not None:
@@ -307,6 +343,11 @@ class DWAPlanner(MoverSweepSource):
         best = int(np.argmax(total))
         return best, {"mode": mode, "index": best, "score": float(total[best]), "n_candidates": int(cand.sum()),
                       "free_distance": float(step.free_distance[best])}
+
+    def legal_samples(self, step: Step) -> np.ndarray:
+        """``(S,)`` samples the planner itself allows before the mechanisms' and critics' vetoes
+        (all; ``qp-dwa`` restricts its path-following samples)."""
+        return np.ones(step.roll.n, dtype=bool)
 
     def _escape_turn(self, step: Step, pool: np.ndarray) -> int | None:
         """The turn in place (among ``pool``) towards open space when static obstacles

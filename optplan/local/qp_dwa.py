@@ -196,7 +196,10 @@ class QPDWAPlanner(DWAPlanner):
 
     def finish(self, ctx, window, u, step, info):
         target = u
-        if step is not None and info.get("mode") in ("sample", "sample-relaxed", "evade"):
+        tracking = step is not None and step.roll.tracking is not None and info.get("index") is not None and bool(step.roll.tracking[info["index"]])
+        if tracking:  # its command changes along the horizon; the QP linearises a constant one
+            info["qp"] = "path sample"
+        elif step is not None and info.get("mode") in ("sample", "sample-relaxed", "evade"):
             target = self.refine(ctx, window, u, step, info)
         # recursive feasibility: the command must leave a safe continuation (see
         # safe_continuation); else the sampled command, else braking, is commanded
@@ -235,6 +238,19 @@ class QPDWAPlanner(DWAPlanner):
         if self._resynced:
             info["ruckig_resync"] = True
         return float(out[0]), float(out[1]), float(out[2]) if self.n_u == 3 else 0.0
+
+    def legal_samples(self, step: Step) -> np.ndarray:
+        """Path-following samples only where no mover comes within ``qp_activate`` of them over
+        ``qp_horizon``: they are not refined (their command changes along the horizon), so
+        near a mover they would forgo the mover clearance the QP adds to an arc. Taken
+        there, the sluggish robots of li2023 Experiment II were run into in 3 of the 40 runs
+        of ``benchmarks/dynamic_qp_dwa.yaml --runs 4``."""
+        legal = super().legal_samples(step)
+        if step.roll.tracking is not None and len(step.mover_r):
+            H = max(1, min(step.roll.z.shape[1], int(round(self.options["qp_horizon"] / step.roll.dt))))
+            near = step.dyn_gap[:, :H].min(axis=1) < self.options["qp_activate"]
+            legal &= ~(step.roll.tracking & near)
+        return legal
 
     # ------------------------------------------------------------------ recursive feasibility
     def continuation_rollout(self, ctx: LocalContext, out: np.ndarray, brake: bool) -> Rollouts:

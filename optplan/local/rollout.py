@@ -40,6 +40,9 @@ class Rollouts:
         theta: ``(S, H)`` headings after each step (ramped rollouts; ``None``: ``theta0 + w t``).
         profile: ``(S, H)`` planar speed held during each step (ramped rollouts, whose speed
             changes along the horizon; ``None``: the sampled speed throughout).
+        tracking: ``(S,)`` mask of the samples that follow the global path with a command that
+            changes along the horizon (:func:`rollout_tracking`; their ``v, w`` is the first
+            period's command); ``None``: none does.
     """
 
     v: np.ndarray
@@ -52,6 +55,7 @@ class Rollouts:
     dt: float
     theta: np.ndarray | None = None
     profile: np.ndarray | None = None
+    tracking: np.ndarray | None = None
 
     @property
     def n(self) -> int:
@@ -135,6 +139,85 @@ def rollout_ramped(state: RobotState, lin_v: np.ndarray, lin_vy: np.ndarray, w: 
                     profile=np.repeat(np.hypot(v, vy), n_w, axis=0))
 
 
+def join_rollouts(a: Rollouts, b: Rollouts) -> Rollouts:
+    """The samples of ``a`` followed by those of ``b`` (same start, step and horizon)."""
+    def per_step(r: Rollouts) -> tuple[np.ndarray, np.ndarray]:
+        theta = r.theta if r.theta is not None else r.theta0 + np.multiply.outer(r.w, r.t)
+        profile = r.profile if r.profile is not None else np.broadcast_to(r.speed[:, None], r.z.shape)
+        return theta, profile
+
+    (ta, pa), (tb, pb) = per_step(a), per_step(b)
+    mask = [r.tracking if r.tracking is not None else np.zeros(r.n, dtype=bool) for r in (a, b)]
+    return Rollouts(v=np.r_[a.v, b.v], vy=np.r_[a.vy, b.vy], w=np.r_[a.w, b.w], z=np.vstack([a.z, b.z]), t=a.t,
+                    z0=a.z0, theta0=a.theta0, dt=a.dt, theta=np.vstack([ta, tb]), profile=np.vstack([pa, pb]),
+                    tracking=np.r_[mask[0], mask[1]])
+
+
+def rollout_tracking(state: RobotState, path: np.ndarray, speeds: np.ndarray, look_aheads: np.ndarray, dt: float,
+                     steps: int, robot: RobotSpec, turn_first: np.ndarray = (np.pi / 2,),
+                     spacing: float = 0.05) -> Rollouts:
+    """Trajectories that follow the global path by pure pursuit, one per ``(speed, look-ahead,
+    turn_first)`` triple (all triples of the three arrays), every step at once across the samples.
+
+    At each step a sample steers towards the path point ``look_ahead`` metres beyond the path
+    point nearest to it (curvature ``2 sin(alpha) / look_ahead``, ``alpha`` the bearing of that
+    point in the robot frame), at its speed times ``cos alpha``: it slows down to turn, and
+    while ``|alpha|`` exceeds ``turn_first`` (rad) it turns in place towards the point (a robot
+    squeezed into a gap at an angle can only leave it after facing along it). The velocities
+    change by at most
+    ``a_max dt`` and ``alpha_max dt`` per step and stay within the speed limits, so the first
+    step's velocity (``v, w`` of the result) can be commanded for the next period.
+
+    A constant command over the horizon is an arc; in clutter no arc follows a bend of the
+    path for three seconds, so every arc sample met an obstacle and the robot stopped in
+    front of a passage the path threads (issue 27). These samples can take the bend; they
+    are judged by the same critics and the same admissibility test as the others.
+    """
+    P = np.asarray(path, dtype=float).reshape(-1, 2)
+    pc = P[:, 0] + 1j * P[:, 1]
+    z0 = complex(state.x, state.y)
+    if len(pc) > 1:  # the path densely resampled from near the robot on (arc lengths s)
+        L = np.abs(np.diff(pc))
+        along = np.r_[0.0, np.cumsum(L)]
+        j = int(np.argmin(np.abs(pc - z0)))
+        s_to = min(along[-1], along[j] + robot.v_max * steps * dt + float(np.max(look_aheads)) + 1.0)
+        s = np.arange(along[max(j - 1, 0)], s_to + spacing, spacing)
+        k = np.clip(np.searchsorted(along, s, side="right") - 1, 0, len(L) - 1)
+        dense = pc[k] + (np.clip(s, 0, along[-1]) - along[k]) / np.maximum(L[k], 1e-18) * np.diff(pc)[k]
+    else:
+        dense = pc
+    speeds, look_aheads, turn_first = (np.asarray(x, dtype=float).ravel() for x in (speeds, look_aheads, turn_first))
+    v_target, ahead, align = (g.ravel() for g in np.meshgrid(speeds, look_aheads, turn_first, indexing="ij"))
+    shift = np.maximum(1, np.round(ahead / spacing).astype(int))
+    n = len(v_target)
+    z = np.full(n, z0)
+    theta = np.full(n, float(state.theta))
+    v = np.full(n, float(state.v))
+    w = np.full(n, float(state.w))
+    dv, dw = robot.a_max * dt, robot.alpha_max * dt
+    v_lo = max(robot.v_min, 0.0)
+    # an omni robot's sideways speed is commanded to 0 and decays at a_max
+    vy = float(state.vy) - np.clip(float(state.vy), -dv, dv) * (np.arange(steps) + 1)
+    vy = np.where(np.sign(vy) == np.sign(state.vy), vy, 0.0)
+    Z, TH, V, W = (np.empty((n, steps), dtype=complex), np.empty((n, steps)), np.empty((n, steps)),
+                   np.empty((n, steps)))
+    for k in range(steps):  # a loop over the horizon; each step is vectorised over the samples
+        near = np.argmin(np.abs(z[:, None] - dense[None, :]), axis=1)
+        carrot = dense[np.minimum(near + shift, len(dense) - 1)]
+        alpha = np.angle((carrot - z) * np.exp(-1j * theta))
+        go = np.abs(alpha) <= align
+        v_want = np.where(go, v_target * np.maximum(np.cos(alpha), 0.0), 0.0)
+        w_want = np.where(go, 2.0 * v_want * np.sin(alpha) / ahead, np.sign(alpha) * robot.w_max)
+        v = np.clip(np.clip(v_want, v - dv, v + dv), v_lo, robot.v_max)
+        w = np.clip(np.clip(w_want, w - dw, w + dw), -robot.w_max, robot.w_max)
+        z = z + (v + 1j * vy[k]) * dt * np.exp(1j * theta)
+        theta = theta + w * dt
+        Z[:, k], TH[:, k], V[:, k], W[:, k] = z, theta, v, w
+    return Rollouts(v=V[:, 0].copy(), vy=np.full(n, vy[0]), w=W[:, 0].copy(), z=Z, t=(np.arange(steps) + 1) * dt,
+                    z0=z0, theta0=float(state.theta), dt=float(dt), theta=TH, profile=np.hypot(V, vy[None, :]),
+                    tracking=np.ones(n, bool))
+
+
 def predict_movers(dynamic: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Constant-velocity prediction of the sensed moving obstacles.
 
@@ -195,6 +278,34 @@ class Step:
     def mover_free(self) -> np.ndarray:
         return self.mover_contact >= self.roll.z.shape[1]
 
+    def stop_index(self) -> np.ndarray:
+        """``(S,)`` rollout points each trajectory can be followed for: those before its first
+        static collision (``static_hit``; all ``H`` without one)."""
+        H = self.roll.z.shape[1]
+        return np.full(self.roll.n, H) if self.static_hit is None else np.minimum(self.static_hit, H)
+
+    def held_at_stop(self) -> np.ndarray:
+        """``(S, H)`` positions with every point from the first static collision on replaced by
+        the last point before it: where the robot following the sample ends up, since it has
+        to stop before the obstacle (the start when the very first point collides)."""
+        k = self.stop_index()
+        z = self.roll.z
+        last = np.where(k > 0, z[np.arange(self.roll.n), np.maximum(k - 1, 0)], self.roll.z0)
+        return np.where(np.arange(z.shape[1])[None, :] < k[:, None], z, last[:, None])
+
+    def pose_at_stop(self) -> tuple[np.ndarray, np.ndarray]:
+        """``(position (S,) complex, heading (S,) rad)`` at the last point before each
+        trajectory's first static collision (the trajectory's end without one)."""
+        k = self.stop_index()
+        roll = self.roll
+        rows = np.arange(roll.n)
+        z = np.where(k > 0, roll.z[rows, np.maximum(k - 1, 0)], roll.z0)
+        if roll.theta is not None:
+            heading = np.where(k > 0, roll.theta[rows, np.maximum(k - 1, 0)], roll.theta0)
+        else:
+            heading = roll.theta0 + roll.w * (k * roll.dt)
+        return z, heading
+
     @property
     def gap(self) -> np.ndarray:
         """``(S, H)`` clearance to any obstacle, static or moving, m; the movers' predicted
@@ -251,7 +362,8 @@ def first_hit(hit: np.ndarray) -> np.ndarray:
     return np.where(hit.any(axis=1), np.argmax(hit, axis=1), hit.shape[1])
 
 
-def assess(ctx: LocalContext, robot: RobotSpec, roll: Rollouts, *, margin: float = 0.0, reaction: float = 0.0,
+def assess(ctx: LocalContext, robot: RobotSpec, roll: Rollouts, *, margin: float = 0.0,
+           static_margin: float | None = None, reaction: float = 0.0,
            mover_range: float = 3.0, mover_growth: float = 0.0, growth_cap: float = 0.0,
            predict: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None) -> Step:
     """Clearance of every rollout point, the free distance and the admissibility of every sample.
@@ -262,6 +374,7 @@ def assess(ctx: LocalContext, robot: RobotSpec, roll: Rollouts, *, margin: float
 
     Args:
         margin: extra clearance, m, below which a point counts as a collision.
+        static_margin: the same for static obstacles (``None``: ``margin``).
         reaction: reaction time in the stopping distance (see :func:`_stopping_test`).
         mover_range: movers that provably stay more than this far (edge to edge) from every
             rollout are skipped; cost terms therefore see mover clearances up to this value.
@@ -282,7 +395,8 @@ def assess(ctx: LocalContext, robot: RobotSpec, roll: Rollouts, *, margin: float
     fastest = float(np.abs(vel[keep]).max(initial=0.0))
     growth = np.minimum(mover_growth * fastest * roll.t, growth_cap) if mover_growth > 0 else 0.0
     now_static, now_moving = current_gaps(ctx, robot)
-    first = first_hit(static_gap < min(margin, now_static))  # 0 = the point after one step
+    s_margin = margin if static_margin is None else static_margin
+    first = first_hit(static_gap < min(s_margin, now_static))  # 0 = the point after one step
     free, stopping = _stopping_test(roll, first, robot.a_max, reaction)
     admissible = stopping <= free + 1e-12
     contact = first_hit(dyn_gap < min(margin, now_moving))

@@ -135,7 +135,9 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
         raise ParameterError(f"unknown simulate option(s) {unknown}; known: {', '.join(OPTIONS)}")
     checked_seed("seed", seed)
     seed_bound("seed", seed)
-    options = {**family_options(scenario), **options}
+    family = family_options(scenario)
+    local_params = family.pop("local_params", {})
+    options = {**family, **options}
     sc = scenario_for(scenario, seed)
     if "time_limit" in options:
         sc = replace(sc, time_limit=options["time_limit"])
@@ -149,7 +151,8 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
                     stuck_time=options.get("stuck_time", 10.0), stuck_distance=options.get("stuck_distance", 0.3),
                     max_replans=options.get("max_replans", 5), global_options=options.get("global_options"),
                     subgoal_options=options.get("subgoal_options"), sweep_detour=options.get("sweep_detour", 1.5))
-    planner = make_planner(local_planner, robot, dt, dict(options.get("planner_params") or {}))
+    params = local_params.get(str(local_name).lower(), {}) if isinstance(local_planner, str) else {}
+    planner = make_planner(local_planner, robot, dt, {**params, **(options.get("planner_params") or {})})
     # the global plan comes first: random obstacles are placed on the path the robot is given
     nav.plan_initial(options.get("global_plan"))
     sc = realize(sc, seed, path=nav.path)
@@ -193,7 +196,8 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
         ctx = LocalContext(state=RobotState(state.x, state.y, state.theta, state.v, state.w, state.vy),
                            subgoal=subgoal.copy(), goal=sc.goal.copy(), global_path=nav.path,
                            static_distance=env.static_distance, dynamic=seen, dt=dt, t=t,
-                           static_points=env.static_points(pos), bounds=sc.bounds)
+                           static_points=env.static_points(pos), bounds=sc.bounds,
+                           distance_error=env.distance_error)
         t0 = time.perf_counter()
         cmd = planner.command(ctx)
         step_ms.append((time.perf_counter() - t0) * 1e3)
