@@ -409,8 +409,11 @@ class QPDWAPlanner(DWAPlanner):
         gap_new = min(check.static_gap[0, :Hs].min(), check.dyn_gap[0, :H].min())
         gap_old = min(step.static_gap[i, :Hs].min(), step.dyn_gap[i, :H].min())
         worse = gap_new < min(gap_old, float(margins.min())) - 1e-9
-        if not check.admissible[0] or check.mover_contact[0] < step.mover_contact[i] or worse:
-            info["qp"] = "fallback: refined command failed the rollout check"
+        failed = ("not admissible" if not check.admissible[0] else
+                  "earlier mover contact" if check.mover_contact[0] < step.mover_contact[i] else
+                  "closer to an obstacle" if worse else "")
+        if failed:
+            info["qp"] = f"fallback: refined command failed the rollout check ({failed})"
             return u0
         if info.get("mode") == "sample" and not self._legal_after_filters(check):
             info["qp"] = "fallback: refined command failed a filter the sampled one passed"
