@@ -30,7 +30,6 @@ from pathlib import Path
 import numpy as np
 
 SHARED_NAV = {"subgoals": "key_points", "on_blocked": "replan"}  # qp-dwa's policy (PRESET_DEFAULTS)
-QP_NOT_RUN = ("inactive", "path sample")  # qp-dwa's info["qp"] when its QP stage does not solve anything
 
 
 def run_world(task: tuple[str, int, tuple[str, ...], str, dict]) -> list[dict]:
@@ -38,6 +37,7 @@ def run_world(task: tuple[str, int, tuple[str, ...], str, dict]) -> list[dict]:
     from optplan.sim.closed_loop import scenario_for, simulate
     from optplan.sim.experiments import barn_score, optimal_time, plan_global
     from optplan.solvers.graph import shortest_path
+    from optplan.local.qp_dwa import qp_outcome
     from optplan.worldgen.clutter import family_options
 
     family, seed, planners, nav, qp_params = task
@@ -52,13 +52,10 @@ def run_world(task: tuple[str, int, tuple[str, ...], str, dict]) -> list[dict]:
         reasons: dict[str, int] = {}
 
         def count(t, state, info, qp=qp, reasons=reasons):
-            status = info["command"].info.get("qp")
-            if status is not None:
-                # "path sample" steps never run the QP (their command changes along the horizon):
-                # counting them as fallbacks put the share at 17.6 % instead of 80 %+ (issue 30)
-                key = ("used" if status.startswith("solved") else "not run" if status in QP_NOT_RUN
-                       else "fallback")
+            key = qp_outcome(info["command"].info)
+            if key is not None:
                 qp[key] = qp.get(key, 0) + 1
+                status = info["command"].info["qp"]
                 reasons[status] = reasons.get(status, 0) + 1
 
         opts = dict(SHARED_NAV) if nav == "shared" else {}

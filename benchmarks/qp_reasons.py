@@ -11,6 +11,7 @@ from __future__ import annotations
 import argparse
 from collections import Counter
 
+from optplan.local.qp_dwa import qp_outcome
 from optplan.sim.closed_loop import scenario_for, simulate
 from optplan.sim.experiments import plan_global
 from optplan.worldgen.clutter import family_options
@@ -20,33 +21,35 @@ DYNAMIC = ["hou2024_dynamic1", "hou2024_dynamic2", "hou2024_dynamic3", "hou2024_
            "li2023_exp2_3", "li2023_exp2_4", "li2023_exp2_5", "yang2023_idwa_crossing", "yang2023_fusion"]
 
 
-def reasons(scenario, seed: int, global_plan=None, params: dict | None = None) -> tuple[Counter, str]:
-    """``info["qp"]`` counts of one qp-dwa run and its status."""
-    seen: Counter = Counter()
+def reasons(scenario, seed: int, global_plan=None, params: dict | None = None) -> tuple[Counter, Counter, str]:
+    """One qp-dwa run: counts of ``info["qp"]``, counts of the outcomes (``qp_outcome``, plus
+    ``"changed"``: used results that moved the command by more than ``CHANGED``), its status."""
+    statuses: Counter = Counter()
+    outcomes: Counter = Counter()
 
     def count(t, state, info):
-        status = info["command"].info.get("qp")
-        if status is not None:
-            seen[status] += 1
-            if status == "solved" and info["command"].info.get("qp_change", 0.0) > CHANGED:
-                seen["(of solved: changed the command)"] += 1
+        step = info["command"].info
+        outcome = qp_outcome(step)
+        if outcome is not None:
+            statuses[step["qp"]] += 1
+            outcomes[outcome] += 1
+            if outcome == "used" and step.get("qp_change", 0.0) > CHANGED:
+                outcomes["changed"] += 1
 
     opts = {"planner_params": params} if params else {}
     res = simulate(scenario, global_planner="astar", local_planner="qp-dwa", seed=seed, global_plan=global_plan,
                    progress=count, **opts)
-    return seen, res.status
+    return statuses, outcomes, res.status
 
 
-def table(title: str, seen: Counter) -> str:
-    changed = seen.get("(of solved: changed the command)", 0)
-    active = {k: v for k, v in seen.items() if k not in ("inactive", "path sample", "(of solved: changed the command)")}
-    used = sum(v for k, v in active.items() if k.startswith("solved"))
-    total = sum(active.values())
+def table(title: str, statuses: Counter, outcomes: Counter) -> str:
+    used, changed = outcomes["used"], outcomes["changed"]
+    total = used + outcomes["fallback"]  # the steps where the QP ran
     lines = [f"{title}: QP used in {used} of {total} active steps ({100 * used / max(total, 1):.1f} %); "
              f"it changed the command by more than {CHANGED:g} in {changed} ({100 * changed / max(total, 1):.1f} % "
              "of active steps)",
              "| info[\"qp\"] | steps |", "|---|---|"]
-    lines += [f"| {k} | {v} |" for k, v in seen.most_common()]
+    lines += [f"| {k} | {v} |" for k, v in statuses.most_common()]
     return "\n".join(lines)
 
 
@@ -57,22 +60,25 @@ def main(argv=None) -> int:
     a = ap.parse_args(argv)
     if a.clutter_seeds:
         lo, hi = (int(x) for x in a.clutter_seeds.split(":"))
-        total: Counter = Counter()
+        statuses: Counter = Counter()
+        outcomes: Counter = Counter()
         fam = family_options("clutter")
         for seed in range(lo, hi):
             sc = scenario_for("clutter", seed)
             gp = plan_global(sc, "astar", None, seed, fam.get("global_options"))
-            seen, status = reasons(sc, seed, gp, fam.get("local_params", {}).get("qp-dwa"))
-            total += seen
+            st, oc, status = reasons(sc, seed, gp, fam.get("local_params", {}).get("qp-dwa"))
+            statuses += st
+            outcomes += oc
             print(f"clutter {seed}: {status}", flush=True)
-        print(table(f"clutter seeds {lo}..{hi - 1}", total))
+        print(table(f"clutter seeds {lo}..{hi - 1}", statuses, outcomes))
     if a.dynamic_seed >= 0:
-        total = Counter()
+        statuses, outcomes = Counter(), Counter()
         for name in DYNAMIC:
-            seen, status = reasons(name, a.dynamic_seed)
-            total += seen
+            st, oc, status = reasons(name, a.dynamic_seed)
+            statuses += st
+            outcomes += oc
             print(f"{name} {a.dynamic_seed}: {status}", flush=True)
-        print(table(f"dynamic scenarios seed {a.dynamic_seed}", total))
+        print(table(f"dynamic scenarios seed {a.dynamic_seed}", statuses, outcomes))
     return 0
 
 

@@ -144,3 +144,12 @@ def test_lean_osqp_calls_match_the_public_api():
         assert out[0][0] == out[1][0] == osqp.SolverStatus.OSQP_SOLVED
         np.testing.assert_allclose(out[0][2], out[1][2], atol=1e-6)
         assert np.all(rows[n:] @ out[0][2] >= lower[n:] - 1e-5)  # constraints hold
+
+
+def test_qp_outcome_classifies_the_planners_statuses():
+    from optplan.local.qp_dwa import qp_outcome
+    assert qp_outcome({}) is None
+    assert qp_outcome({"qp": "solved"}) == "used"
+    assert qp_outcome({"qp": "inactive"}) == qp_outcome({"qp": "path sample"}) == "not run"
+    assert qp_outcome({"qp": "fallback: OSQP status 'maximum iterations reached'"}) == "fallback"
+    assert qp_outcome({"qp": "fallback: refined command failed the rollout check (not admissible)"}) == "fallback"

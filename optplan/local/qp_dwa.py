@@ -40,7 +40,7 @@ from __future__ import annotations
 
 import math
 import time
-from typing import Any
+from typing import Any, Mapping
 
 import numpy as np
 import osqp
@@ -56,6 +56,22 @@ from .rollout import Rollouts, Step, static_gradient
 from .window import Window, dynamic_window
 
 _SLACK_LINEAR, _SLACK_QUADRATIC = 1e2, 1e4
+
+# info["qp"] of the steps whose QP stage solves nothing: no row is active, or the chosen sample
+# follows the path with a command that changes along the horizon (the QP linearises a constant one)
+QP_NOT_RUN = ("inactive", "path sample")
+
+
+def qp_outcome(info: Mapping[str, Any]) -> str | None:
+    """How a qp-dwa step's QP stage ended, from its command's ``info``: ``"used"`` (the QP
+    result was commanded), ``"not run"`` or ``"fallback"`` (``None``: the stage was not reached).
+    The QP's share is used / (used + fallback)."""
+    status = info.get("qp")
+    if status is None:
+        return None
+    if status.startswith("solved"):
+        return "used"
+    return "not run" if status in QP_NOT_RUN else "fallback"
 
 
 class LeanOSQP:
