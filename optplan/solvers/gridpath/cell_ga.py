@@ -37,11 +37,9 @@ from scipy.sparse.csgraph import dijkstra
 from ...errors import InfeasibleQueryError, ParameterError
 from ...formulations.paper_programs import paper_program
 from ...rng import as_generator
-from ...world.postprocess import key_points, remove_collinear
-from ..archive import ARCHIVE_EVERY, archive_alternatives
-from ..metaheuristics.engine import pooled_archive
+from ..archive import ARCHIVE_EVERY
 from ..result import check_alternatives, make_plan_result
-from .ga_path import GAParams, check_budget, evolve
+from .ga_path import GAParams, check_budget, evolve, ga_result
 from .moves import move_table
 
 
@@ -301,20 +299,6 @@ def plan_cell_ga(world, start, goal, *, improved: bool, seed=0, pop: int = 50, i
     snapshots = [] if count else None
     c, fbest, history, nfev, gens = evolve(ops, rng, pop=pop, iters=iters, params=p, max_evals=max_evals,
                                            snapshots=snapshots, archive_every=ARCHIVE_EVERY)
-    mode = postprocess or ("keypoints" if improved else "collinear")
-
-    def finish(raw):
-        return key_points(world, raw, clearance) if mode == "keypoints" else remove_collinear(raw) \
-            if mode == "collinear" else raw
-
-    path = finish(ops.path(c))
-    others = []
-    if count:
-        # infinite cost = not a chain from start to goal; every kept path is validated anyway
-        X, _, V = pooled_archive([(X, f, np.where(np.isfinite(f), 0.0, np.inf)) for X, f in snapshots])
-        others = archive_alternatives(world, X, V, ops, finish, c, path, count, separation, clearance)
-    result = make_plan_result(world, path, name, time.perf_counter() - t0, clearance=clearance, history=history,
-                              seed=seed if isinstance(seed, int) else None, nfev=nfev,
-                              message=f"{gens} generations on li2023's cell-sequence chromosome")
-    result.alternatives = others
-    return result
+    return ga_result(world, ops, c, name, improved, postprocess, clearance, t0, history=history, nfev=nfev,
+                     seed=seed, message=f"{gens} generations on li2023's cell-sequence chromosome",
+                     snapshots=snapshots, count=count, separation=separation)

@@ -41,6 +41,7 @@ from ...world.postprocess import key_points, remove_collinear
 from ..archive import ARCHIVE_EVERY, archive_alternatives
 from ..budget import Budget
 from ..metaheuristics.engine import pooled_archive
+from ...results import PlanResult
 from ..result import check_alternatives, make_plan_result
 from ..capabilities import PlannerCapabilities
 
@@ -346,19 +347,31 @@ def plan_ga(world, start, goal, *, improved: bool, seed=0, pop: int = 50, iters:
     snapshots = [] if count else None
     x, fbest, history, nfev, gens = ga_path(problem, pop=pop, iters=iters, seed=seed, params=p, max_evals=max_evals,
                                             snapshots=snapshots, archive_every=ARCHIVE_EVERY)
+    return ga_result(world, problem.encoding, x, name, improved, postprocess, clearance, t0, history=history,
+                     nfev=nfev, seed=seed, message=f"{gens} generations", snapshots=snapshots, count=count,
+                     separation=separation)
+
+
+def ga_result(world, decoder, best, name: str, improved: bool, postprocess: str | None, clearance: float,
+              t0: float, *, history, nfev: int, seed, message: str, snapshots: list | None, count: int,
+              separation) -> PlanResult:
+    """The result of a path GA run on either chromosome: the best one decoded
+    (``decoder.waypoints``) and post-processed (IGA's key points, TGA's collinear points
+    removed, unless ``postprocess`` says otherwise), with its alternatives from the population
+    archive; every path is validated by the exact check on the way (``make_plan_result``,
+    ``archive_alternatives``)."""
     mode = postprocess or ("keypoints" if improved else "collinear")
 
     def finish(raw):
         return key_points(world, raw, clearance) if mode == "keypoints" else remove_collinear(raw) if mode == "collinear" else raw
 
-    path = finish(problem.encoding.waypoints(x))
+    path = finish(decoder.waypoints(best))
     others = []
     if count:
-        # infinite cost = a colliding chromosome (IGA); every kept path is validated anyway
+        # infinite cost = a colliding chromosome (IGA) or, on cells, no chain from start to goal
         X, _, V = pooled_archive([(X, f, np.where(np.isfinite(f), 0.0, np.inf)) for X, f in snapshots])
-        others = archive_alternatives(world, X, V, problem.encoding, finish, x, path, count, separation, clearance)
+        others = archive_alternatives(world, X, V, decoder, finish, best, path, count, separation, clearance)
     result = make_plan_result(world, path, name, time.perf_counter() - t0, clearance=clearance, history=history,
-                              seed=seed if isinstance(seed, int) else None, nfev=nfev,
-                              message=f"{gens} generations")
+                              seed=seed if isinstance(seed, int) else None, nfev=nfev, message=message)
     result.alternatives = others
     return result
