@@ -23,6 +23,8 @@ from ..world.robot import Command, RobotSpec, RobotState
 # to the nearest static obstacle (known map + unknown obstacles sensed so far);
 # negative inside obstacles. The robot radius is not subtracted.
 DistanceFn = Callable[[np.ndarray], np.ndarray]
+# (n, 2), (n, 2) segment ends in metres, clearance in metres -> (n,) bool: the exact segment rule
+SegmentsFreeFn = Callable[[np.ndarray, np.ndarray, float], np.ndarray]
 
 
 @dataclass
@@ -44,6 +46,10 @@ class LocalContext:
         bounds: ``(xmin, ymin, xmax, ymax)`` of the world, metres.
         distance_error: how much ``static_distance`` may overestimate the true distance, m
             (an interpolated field near convex corners); ``None``: not known.
+        segments_free: the exact segment rule of DESIGN.md on the static world known now
+            (``segments_free(a, b, clearance) -> (n,) bool`` for segments ``a[i] -> b[i]``,
+            ``(n, 2)`` metres); ``None``: not given. Slower than ``static_distance`` per
+            query, but exact where the field errs (a gap a centimetre wider than the robot).
     """
 
     state: RobotState
@@ -57,6 +63,7 @@ class LocalContext:
     static_points: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
     bounds: tuple[float, float, float, float] | None = None
     distance_error: float | None = None
+    segments_free: SegmentsFreeFn | None = None
 
 
 class LocalPlanner(Protocol):

@@ -4,7 +4,8 @@ Each one plays roles of :mod:`optplan.local.hooks` in the control step: hou2024'
 adaptive velocity (:class:`~optplan.local.hooks.CapsWindow`), yang2023's velocity
 obstacles (:class:`~optplan.local.hooks.FiltersSamples`), li2023's brake-and-wait and
 initial heading (:class:`~optplan.local.hooks.TakesOver`). This
-project's sweep gate of ``qp-dwa`` lives in :mod:`optplan.local.sweep_gate`.
+project's sweep gate of ``qp-dwa`` lives in :mod:`optplan.local.sweep_gate`, its path creep
+in :mod:`optplan.local.creep`.
 :data:`MECHANISMS` names them all for the presets.
 """
 from __future__ import annotations
@@ -22,6 +23,7 @@ from .base import LocalContext
 from .critics import body_direction
 from .hooks import Mechanism, PlannerView
 from .rollout import Step
+from .creep import PathCreep
 from .sweep_gate import SweepGate
 from .window import Window
 
@@ -277,4 +279,4 @@ class InitialHeading(Mechanism):
 
 
 MECHANISMS: dict[str, type[Mechanism]] = {m.name: m for m in (
-    AdaptiveVelocity, VelocityObstacle, BrakeAndWait, InitialHeading, SweepGate)}
+    AdaptiveVelocity, VelocityObstacle, BrakeAndWait, InitialHeading, SweepGate, PathCreep)}

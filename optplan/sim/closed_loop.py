@@ -197,7 +197,7 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
                            subgoal=subgoal.copy(), goal=sc.goal.copy(), global_path=nav.path,
                            static_distance=env.static_distance, dynamic=seen, dt=dt, t=t,
                            static_points=env.static_points(pos), bounds=sc.bounds,
-                           distance_error=env.distance_error)
+                           distance_error=env.distance_error, segments_free=env.known_segments_free)
         t0 = time.perf_counter()
         cmd = planner.command(ctx)
         step_ms.append((time.perf_counter() - t0) * 1e3)

@@ -106,6 +106,7 @@ class SimEnvironment:
         self.sensed_circles = np.zeros(len(self.circles), dtype=bool)
         self._tree = None
         self._table: np.ndarray | None = None
+        self._known_world = None  # (sensed counts, world) of known_segments_free
         if len(self._known_points):
             from scipy.spatial import cKDTree
 
@@ -209,6 +210,18 @@ class SimEnvironment:
         if not len(circles):
             return sc.world
         return CircleWorld(sc.world.bounds, np.vstack([sc.world.circles, circles]), sc.world.safety, sc.world.name)
+
+    def known_segments_free(self, a, b, clearance: float) -> np.ndarray:
+        """The exact segment rule (``segments_free``) on the static world the robot knows now,
+        without a circle world's planning ``safety``: ``(n,)`` bool for segments ``a[i] -> b[i]``."""
+        key = (int(self.sensed_cells.sum()), int(self.sensed_circles.sum()))
+        if self._known_world is None or self._known_world[0] != key:
+            world = self.believed_world()
+            if not self.is_grid:
+                world = CircleWorld(world.bounds, world.circles, 0.0, world.name)
+            self._known_world = (key, world)
+        return self._known_world[1].segments_free(np.asarray(a, float).reshape(-1, 2),
+                                                  np.asarray(b, float).reshape(-1, 2), clearance)
 
     # ------------------------------------------------------------ what the planner gets
     def static_distance(self, points) -> np.ndarray:
