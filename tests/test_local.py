@@ -375,3 +375,27 @@ def test_missa_dwa_uses_the_omni_model(field):
 def test_presets_are_data():
     for name, preset in PRESETS.items():
         assert preset.name == name and preset.source and preset.terms
+
+
+def test_movers_meet_the_robot_where_a_rollout_stops_before_a_wall():
+    """A robot driving at a wall 1 m ahead stops there; a mover crossing just before the
+    wall arrives after the straight continuation of the rollout has passed its line. Judged
+    along the continuation the sample is clear of the mover; held at its last free point
+    (``movers_meet_stop``) it is hit, which is what would happen."""
+    robot = RobotSpec(radius=0.2, v_max=0.5, a_max=1.0)
+    state = RobotState(0.0, 0.0, 0.0, 0.5, 0.0)
+    roll = rollout(state, np.array([0.5]), np.array([0.0]), np.array([0.0]), 0.1, 30)
+    wall = lambda p: 1.0 - np.asarray(p, float)[..., 0]                     # noqa: E731
+    # a mover on the line x = 0.7 reaches the robot's lane at t = 2.6 s, when the
+    # continuation is at x = 1.3 and the stopped robot at x ~ 0.78
+    mover = np.array([[0.7, 1.3, 0.0, -0.5, 0.15]])
+    ctx = LocalContext(state=state, subgoal=np.array([3.0, 0.0]), goal=np.array([3.0, 0.0]),
+                       global_path=np.array([[0.0, 0.0], [3.0, 0.0]]), static_distance=wall, dynamic=mover,
+                       dt=0.1)
+    through = assess(ctx, robot, roll, margin=0.02)
+    held = assess(ctx, robot, roll, margin=0.02, movers_meet_stop=True)
+    H = roll.z.shape[1]
+    assert through.static_hit[0] < H                                    # the wall stops the rollout
+    assert through.mover_contact[0] == H                                 # the continuation misses the mover
+    assert held.mover_contact[0] < H                                     # the stopped robot does not
+    assert np.array_equal(held.static_gap, through.static_gap) and held.static_hit[0] == through.static_hit[0]

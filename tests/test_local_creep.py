@@ -118,6 +118,34 @@ def test_the_creep_waits_for_a_stall_and_leaves_waiting_among_movers_to_the_samp
     assert 0 < v <= creep.speed and w == 0.0
 
 
+def test_a_robot_held_in_a_movers_way_creeps_out_of_it_at_once_but_not_towards_it():
+    """Standing on a lane a mover comes along: the creep takes over at once (no stall wait)
+    when driving on along the path keeps the robot ahead of the mover, and stays out when
+    the mover comes from ahead, where driving on would meet it sooner."""
+    view = PlannerView(BARN_ROBOT, 0.1, {})
+    g = GridMap(np.zeros((20, 40), dtype=bool), RES)
+    state = RobotState(1.0, 1.5, 0.0)
+    path = np.array([[1.0, 1.5], [5.0, 1.5]])
+    win = dynamic_window(BARN_ROBOT, state, 0.1)
+
+    def first_command(mover):
+        creep = PathCreep()
+        creep.reset(view, state, path)
+        ctx = LocalContext(state=state, subgoal=path[-1], goal=path[-1], global_path=path,
+                           static_distance=g.clearance, dynamic=np.array([mover]), dt=0.1,
+                           segments_free=lambda a, b, c: g.segments_free(a, b, c))
+        return creep, creep.override(view, ctx, win)
+
+    creep, took = first_command([0.3, 1.5, 0.3, 0.0, 0.15])     # from behind, 0.3 m/s
+    moving, standing = creep.mover_gaps(view, LocalContext(
+        state=state, subgoal=path[-1], goal=path[-1], global_path=path, static_distance=g.clearance,
+        dynamic=np.array([[0.3, 1.5, 0.3, 0.0, 0.15]]), dt=0.1), complex(1.0, 1.5), 1.0, 1.5)
+    assert standing < 0 < moving                                  # standing is hit, driving on is not
+    assert took is not None and took[2]["mode"] == "creep-drive" and took[0] > 0
+    _, took = first_command([2.0, 1.5, -0.3, 0.0, 0.15])           # from ahead
+    assert took is None
+
+
 def test_bad_creep_parameters_say_what_is_wrong():
     with pytest.raises(op.OptplanError, match="path_creep"):
         make_local_planner("qp-dwa", BARN_ROBOT, 0.1, path_creep={"speed": -1.0})

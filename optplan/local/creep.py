@@ -24,9 +24,14 @@ once the robot has stood still for ``stall_time`` seconds with no mover near:
    admissible speed stays admissible the next (recursive feasibility for static obstacles).
 
 The creep ends (the sampler takes over again) once the robot has followed ``length``
-metres of path, when no carrot is visible, or as soon as a sensed mover comes within
-``mover_gap`` metres (edge to edge) of the robot's checked leg over ``mover_time`` seconds
-at its current velocity: waiting among movers is the sampler's and its mover terms' job.
+metres of path, when no carrot is visible, or when the leg would bring the robot within
+``mover_gap`` metres (edge to edge) of a sensed mover within ``mover_time`` seconds (both
+at constant velocity) and standing would not be clearly worse: waiting among movers is
+the sampler's and its mover terms' job. One case is the creep's at once, without the
+stall: a robot standing where a mover will come within ``mover_gap`` of it. In clutter
+the sampler's window can hold the robot pinned against an obstacle (every forward arc
+grazes it) while a mover closes in along its track; a straight leg that the exact rule
+lets through often leads out of the mover's way.
 """
 from __future__ import annotations
 
@@ -52,21 +57,27 @@ class PathCreep(Mechanism):
     """Follow the global path by checked straight legs after a stall (module docstring).
 
     Attributes:
-        stall_time: seconds the robot must have stood (speed below ``stall_speed``) first.
+        stall_time: seconds the robot must have stood (speed below ``stall_speed``) first,
+            without turning on the spot by more than ``stall_turn`` rad in one direction.
         stall_speed: m/s under which the robot counts as standing.
+        stall_turn: rad of steady turning on the spot that restart the count: the sampler
+            turning the robot away from a wall (its escape turn) is a way out, not a stall;
+            standing ``3 * stall_time`` s in all counts whatever the turning.
         speed: top speed of the creep, m/s (at most the robot's ``v_max``).
         look_ahead: metres of path beyond the robot's projection searched for the carrot.
         length: metres of path progress after which the sampler takes over again.
         clearance: metres kept beyond the robot radius along a leg, on top of the distance
             field's error bound when the context gives it.
         aim: bearing error (rad) below which the robot drives instead of turning.
-        mover_gap, mover_time: a sensed mover predicted within ``mover_gap`` m of the leg
-            within ``mover_time`` s stops the creep.
+        mover_gap, mover_time, mover_gain: a leg on which a sensed mover comes within
+            ``mover_gap`` m of the robot within ``mover_time`` s (constant velocity) is driven
+            only if it keeps ``mover_gain`` m more from the movers than standing would.
     """
 
     name: ClassVar[str] = "path_creep"
     stall_time: float = 1.0
     stall_speed: float = 0.02
+    stall_turn: float = 0.3
     speed: float = 0.25
     look_ahead: float = 1.5
     length: float = 1.5
@@ -74,7 +85,10 @@ class PathCreep(Mechanism):
     aim: float = 0.01
     mover_gap: float = 0.5
     mover_time: float = 3.0
+    mover_gain: float = 0.05
     stalled_for: float = field(default=0.0, init=False)
+    standing_for: float = field(default=0.0, init=False)
+    stall_heading: float = field(default=0.0, init=False)
     active: bool = field(default=False, init=False)
     start_arc: float = field(default=0.0, init=False)
     arc: float = field(default=0.0, init=False)
@@ -84,8 +98,8 @@ class PathCreep(Mechanism):
     path: np.ndarray | None = field(default=None, init=False, repr=False)
 
     def __post_init__(self) -> None:
-        for key in ("stall_time", "stall_speed", "speed", "look_ahead", "length", "clearance", "aim", "mover_gap",
-                    "mover_time"):
+        for key in ("stall_time", "stall_speed", "stall_turn", "speed", "look_ahead", "length", "clearance", "aim", "mover_gap",
+                    "mover_time", "mover_gain"):
             value = getattr(self, key)
             if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value < 0 \
                     or (value == 0 and key in ("speed", "look_ahead", "length", "aim")):
@@ -95,6 +109,7 @@ class PathCreep(Mechanism):
 
     def reset(self, view: PlannerView, state: RobotState, global_path: np.ndarray) -> None:
         self.stalled_for, self.active, self.start_arc, self.arc, self.legs = 0.0, False, 0.0, 0.0, 0
+        self.standing_for, self.stall_heading = 0.0, float(state.theta)
         self.leg, self.floor, self.path = None, np.inf, None
 
     # ------------------------------------------------------------------ geometry
@@ -144,18 +159,42 @@ class PathCreep(Mechanism):
         k = int(np.flatnonzero(full)[-1])
         return complex(pts[k]), float(s[k])
 
-    def mover_near(self, ctx: LocalContext, here: complex, reach: float, radius: float) -> bool:
-        """Whether a sensed mover comes within ``mover_gap`` of the leg from ``here`` ``reach`` m
-        along the heading, over ``mover_time`` s at its measured velocity."""
+    def mover_gaps(self, view: PlannerView, ctx: LocalContext, here: complex, heading: complex, reach: float,
+                   wait: float = 0.0) -> tuple[float, float]:
+        """Least edge-to-edge gap (m) to any sensed mover over ``mover_time`` s at its measured
+        velocity: ``(moving, standing)`` - the robot waiting ``wait`` s, then driving ``reach`` m
+        along ``heading`` (at ``a_max`` up to the creep speed, stopping at the end), versus
+        the robot standing where it is. ``inf`` without movers."""
         movers = np.asarray(ctx.dynamic, dtype=float).reshape(-1, 5)
         if not len(movers):
-            return False
-        t = np.linspace(0.0, self.mover_time, 16)
+            return math.inf, math.inf
+        robot = view.robot
+        t = np.linspace(0.0, self.mover_time, 31)
+        v0 = max(0.0, ctx.state.v)
+        vc, a = max(v0, min(self.speed, robot.v_max)), robot.a_max
+        # distance driven by time tau of a trapezoid from v0 to vc that stops at ``reach``
+        tau = np.maximum(t - wait, 0.0)
+        t_up = (vc - v0) / a
+        up = np.where(tau < t_up, v0 * tau + 0.5 * a * tau ** 2, v0 * t_up + 0.5 * a * t_up ** 2 + vc * (tau - t_up))
+        stop_from = max(0.0, reach - 0.5 * vc * vc / a)
+        t_stop = t_up + max(0.0, stop_from - (v0 * t_up + 0.5 * a * t_up ** 2)) / vc if vc > 0 else 0.0
+        after = np.maximum(tau - t_stop, 0.0)
+        down = stop_from + vc * np.minimum(after, vc / a) - 0.5 * a * np.minimum(after, vc / a) ** 2
+        driven = np.clip(np.where(tau <= t_stop, up, down), 0.0, max(reach, 0.0))
+        robot_at = here + heading * driven
         centres = (movers[:, 0] + 1j * movers[:, 1])[:, None] + (movers[:, 2] + 1j * movers[:, 3])[:, None] * t
-        a, u = here, np.exp(1j * ctx.state.theta)
-        along = np.clip(((centres - a) * np.conj(u)).real, 0.0, max(reach, 0.0))
-        gap = np.abs(centres - (a + along * u)) - movers[:, 4:5] - radius
-        return bool((gap < self.mover_gap).any())
+        edge = movers[:, 4:5] + robot.radius
+        moving = float((np.abs(centres - robot_at) - edge).min())
+        standing = float((np.abs(centres - here) - edge).min())
+        return moving, standing
+
+    def leg_safe_from_movers(self, view: PlannerView, ctx: LocalContext, here: complex, heading: complex,
+                             reach: float, wait: float = 0.0) -> bool:
+        """Whether creeping ``reach`` m along ``heading`` (after ``wait`` s) is safe enough from
+        the movers: it keeps ``mover_gap`` from them, or it keeps clearly more than standing
+        does (a robot the sampler holds pinned in a mover's way moves out of it)."""
+        moving, standing = self.mover_gaps(view, ctx, here, heading, reach, wait)
+        return moving >= self.mover_gap or (moving > 0.0 and moving >= standing + self.mover_gain)
 
     # ------------------------------------------------------------------ the role
     def override(self, view: PlannerView, ctx: LocalContext, window: Window) -> tuple[float, float, dict] | None:
@@ -165,9 +204,21 @@ class PathCreep(Mechanism):
         standing = speed < self.stall_speed
         if not self.active:
             # standing while a mover is near is waiting for it, not a stall: the count restarts
-            near = self.mover_near(ctx, here, 0.0, robot.radius)
-            self.stalled_for = self.stalled_for + dt if standing and not near else 0.0
-            if self.stalled_for < self.stall_time - 1e-9:
+            _, standing_gap = self.mover_gaps(view, ctx, here, 1.0, 0.0)
+            threatened = standing_gap < self.mover_gap
+            if not standing:
+                self.stalled_for = self.standing_for = 0.0
+                self.stall_heading = float(state.theta)
+            elif threatened:
+                # held still in a mover's way: creep at once if a leg is safer than standing
+                # (checked below); a mover that keeps its distance is waited for by the sampler
+                self.stalled_for = self.stall_time
+            else:
+                self.stalled_for += dt
+                self.standing_for += dt
+                if abs(wrap_angle(state.theta - self.stall_heading)) > self.stall_turn:
+                    self.stalled_for, self.stall_heading = 0.0, float(state.theta)
+            if self.stalled_for < self.stall_time - 1e-9 and self.standing_for < 3 * self.stall_time - 1e-9:
                 return None
             s0, _ = project_on_path(ctx.global_path, np.array([here]), near=here, reach=1.0)
             self.active, self.start_arc, self.arc, self.leg = True, float(s0[0]), float(s0[0]), None
@@ -175,8 +226,7 @@ class PathCreep(Mechanism):
             # never ask less of a leg than the robot has where the creep starts: a threshold that
             # followed the robot's own clearance down would let it creep into a wall
             self.floor = self.start_floor(view, ctx, here)
-        stopping = speed * dt + 0.5 * speed * speed / robot.a_max
-        if ctx.global_path is not self.path or self.mover_near(ctx, here, stopping, robot.radius):
+        if ctx.global_path is not self.path:
             return self._release()
         progress, _ = project_on_path(ctx.global_path, np.array([here]), near=here, reach=1.0)
         self.arc = max(self.arc, float(progress[0]))
@@ -188,8 +238,14 @@ class PathCreep(Mechanism):
                 return self._release()
             self.leg = found[0]
         target = self.leg
-        err = float(wrap_angle(math.atan2(target.imag - here.imag, target.real - here.real) - state.theta))
+        bearing = math.atan2(target.imag - here.imag, target.real - here.real)
+        err = float(wrap_angle(bearing - state.theta))
         info = {"carrot": [target.real, target.imag], "heading_error": err}
+        # the turn still to make, then the leg: is it safe enough from the movers?
+        turning = 0.0 if not standing else abs(err) / robot.w_max + robot.w_max / robot.alpha_max
+        way = np.exp(1j * (bearing if standing else state.theta))
+        if not self.leg_safe_from_movers(view, ctx, here, way, abs(target - here), turning):
+            return self._release()
         if standing and abs(err) > self.aim:
             return self._turn(robot, dt, err, info)
         heading = np.exp(1j * state.theta)
@@ -227,5 +283,5 @@ class PathCreep(Mechanism):
         return 0.0, w, {"mode": "creep-turn", **info}
 
     def _release(self) -> None:
-        self.active, self.stalled_for, self.leg, self.path = False, 0.0, None, None
+        self.active, self.stalled_for, self.standing_for, self.leg, self.path = False, 0.0, 0.0, None, None
         return None

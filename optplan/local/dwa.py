@@ -111,6 +111,8 @@ class DWAPlanner(MoverSweepSource):
         "mover_range": 3.0,   # movers provably farther than this (edge to edge) are skipped, m
         "mover_growth": 0.0,  # predicted movers grow by this times their speed per second ...
         "growth_cap": 0.0,    # ... up to this much, m (cost terms only)
+        "movers_meet_stop": False,  # movers judged against the robot held where a rollout meets
+                              # a static obstacle (rollout.assess), not its straight continuation
         "lookahead": None,    # s: sample targets reachable within this time and roll out the
                               # ramp to them (None = the classic window of one period)
         "path_samples": (),   # speeds (fractions of v_max) of extra samples that follow the
@@ -276,7 +278,8 @@ class DWAPlanner(MoverSweepSource):
 
         return assess(ctx, self.robot, roll, margin=o["margin"], static_margin=self.static_margin(ctx),
                       reaction=self._reaction(), mover_range=o["mover_range"],
-                      mover_growth=o["mover_growth"], growth_cap=o["growth_cap"], predict=predict)
+                      mover_growth=o["mover_growth"], growth_cap=o["growth_cap"], predict=predict,
+                      movers_meet_stop=o["movers_meet_stop"])
 
     def _reaction(self) -> float:
         return self.options["reaction"]

@@ -365,7 +365,8 @@ def first_hit(hit: np.ndarray) -> np.ndarray:
 def assess(ctx: LocalContext, robot: RobotSpec, roll: Rollouts, *, margin: float = 0.0,
            static_margin: float | None = None, reaction: float = 0.0,
            mover_range: float = 3.0, mover_growth: float = 0.0, growth_cap: float = 0.0,
-           predict: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None) -> Step:
+           predict: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
+           movers_meet_stop: bool = False) -> Step:
     """Clearance of every rollout point, the free distance and the admissibility of every sample.
 
     A rollout point collides when its clearance is below ``margin``; when the robot already
@@ -384,6 +385,11 @@ def assess(ctx: LocalContext, robot: RobotSpec, roll: Rollouts, *, margin: float
             prediction does not see. The contact test uses the prediction without growth.
         predict: ``(centres (K, H), t) -> centres``: replaces the constant-velocity
             prediction of movers whose motion is known better (a planner's mechanisms).
+        movers_meet_stop: judge the movers against where the robot would really be: a rollout
+            that meets a static obstacle holds its last free point for the rest of the
+            horizon. Otherwise the rollout runs on through the obstacle, and a trajectory
+            that would leave the robot stopped in a pocket of clutter on a mover's track
+            counts as clear of the mover because its straight continuation is.
     """
     static_gap = np.asarray(ctx.static_distance(roll.xy), dtype=float) - robot.radius
     movers, vel, radii = predict_movers(ctx.dynamic, roll.t)
@@ -391,12 +397,16 @@ def assess(ctx: LocalContext, robot: RobotSpec, roll: Rollouts, *, margin: float
         movers = predict(movers, roll.t)
     keep = relevant_movers(roll.z0, movers, radii, roll.t, roll.max_speed, robot.radius,
                            max(mover_range, margin) + growth_cap)
-    dyn_gap = dynamic_gaps(roll.z, movers[keep], radii[keep], robot.radius)
-    fastest = float(np.abs(vel[keep]).max(initial=0.0))
-    growth = np.minimum(mover_growth * fastest * roll.t, growth_cap) if mover_growth > 0 else 0.0
     now_static, now_moving = current_gaps(ctx, robot)
     s_margin = margin if static_margin is None else static_margin
     first = first_hit(static_gap < min(s_margin, now_static))  # 0 = the point after one step
+    z = roll.z
+    if movers_meet_stop and (first < z.shape[1]).any():
+        held = np.minimum(np.arange(z.shape[1])[None, :], first[:, None] - 1)       # -1: still at z0
+        z = np.where(held >= 0, np.take_along_axis(z, np.maximum(held, 0), axis=1), roll.z0)
+    dyn_gap = dynamic_gaps(z, movers[keep], radii[keep], robot.radius)
+    fastest = float(np.abs(vel[keep]).max(initial=0.0))
+    growth = np.minimum(mover_growth * fastest * roll.t, growth_cap) if mover_growth > 0 else 0.0
     free, stopping = _stopping_test(roll, first, robot.a_max, reaction)
     admissible = stopping <= free + 1e-12
     contact = first_hit(dyn_gap < min(margin, now_moving))
