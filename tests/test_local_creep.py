@@ -30,6 +30,14 @@ def diagonal_gap_world() -> GridMap:
     return GridMap(occ[::-1], RES)  # rows top first, as a map file
 
 
+def lane_beside_a_wall() -> GridMap:
+    """Open ground with a wall whose top edge is at y = 1.2 m: a robot on the lane y = 1.5 m
+    stands 0.1 m (edge to edge) from it, near enough for the creep to start."""
+    occ = np.zeros((20, 40), dtype=bool)
+    occ[7, :] = True                 # rows bottom first here: the wall spans y 1.05-1.2 m
+    return GridMap(occ[::-1], RES)
+
+
 def gap_scenario() -> Scenario:
     return Scenario(diagonal_gap_world(), BARN_ROBOT, np.array([0.6, 2.4, 0.0]), np.array([3.9, 0.6]),
                     sensor_range=2.5, dt=0.1, time_limit=60.0, goal_tolerance=0.2, name="diagonal-gap")
@@ -56,7 +64,7 @@ def test_the_gap_world_is_passable_only_by_the_diagonal_gap():
 
 
 def test_qp_dwa_creeps_through_a_gap_a_centimetre_wider_than_the_robot_without_touching_it():
-    res, modes = modes_of(gap_scenario())
+    res, modes = modes_of(gap_scenario(), planner_params={"path_creep": {}})
     assert res.reached and res.collisions == 0, res.message
     assert res.min_clearance > 0.0
     crept = [(x, y) for m, x, y in modes if m == "creep-drive"]
@@ -68,7 +76,8 @@ def test_qp_dwa_creeps_through_a_gap_a_centimetre_wider_than_the_robot_without_t
 
 
 def test_without_the_creep_the_sampled_window_stops_in_front_of_that_gap():
-    res, _ = modes_of(gap_scenario(), planner_params={"path_creep": False}, time_limit=30.0)
+    # qp-dwa's default: the creep is a clutter setting (worldgen.clutter.CLUTTER_LOCAL_PARAMS)
+    res, _ = modes_of(gap_scenario(), time_limit=30.0)
     assert not res.reached and res.collisions == 0
 
 
@@ -76,7 +85,8 @@ def test_on_the_distance_field_alone_the_creep_keeps_its_error_margin_and_never_
     # without the exact segment rule a leg must keep the field's error bound too; the field
     # underestimates the clearance at this gap, so the robot may not get through, but it must
     # never drive a leg closer than the robot radius
-    planner = make_local_planner("qp-dwa", BARN_ROBOT, 0.1)
+    planner = make_local_planner("qp-dwa", BARN_ROBOT, 0.1, path_creep=True)
+    assert not any(isinstance(m, PathCreep) for m in make_local_planner("qp-dwa", BARN_ROBOT, 0.1).mechanisms)
     creep = next(m for m in planner.mechanisms if isinstance(m, PathCreep))
     g = diagonal_gap_world()
     exact = g.clearance
@@ -97,7 +107,7 @@ def test_on_the_distance_field_alone_the_creep_keeps_its_error_margin_and_never_
 def test_the_creep_waits_for_a_stall_and_leaves_waiting_among_movers_to_the_sampler():
     creep = PathCreep(stall_time=0.3)
     view = PlannerView(BARN_ROBOT, 0.1, {})
-    g = GridMap(np.zeros((20, 40), dtype=bool), RES)
+    g = lane_beside_a_wall()
     state = RobotState(1.0, 1.5, 0.0)
     path = np.array([[1.0, 1.5], [5.0, 1.5]])
     creep.reset(view, state, path)
@@ -123,7 +133,7 @@ def test_a_robot_held_in_a_movers_way_creeps_out_of_it_at_once_but_not_towards_i
     when driving on along the path keeps the robot ahead of the mover, and stays out when
     the mover comes from ahead, where driving on would meet it sooner."""
     view = PlannerView(BARN_ROBOT, 0.1, {})
-    g = GridMap(np.zeros((20, 40), dtype=bool), RES)
+    g = lane_beside_a_wall()
     state = RobotState(1.0, 1.5, 0.0)
     path = np.array([[1.0, 1.5], [5.0, 1.5]])
     win = dynamic_window(BARN_ROBOT, state, 0.1)
@@ -150,4 +160,22 @@ def test_bad_creep_parameters_say_what_is_wrong():
     with pytest.raises(op.OptplanError, match="path_creep"):
         make_local_planner("qp-dwa", BARN_ROBOT, 0.1, path_creep={"speed": -1.0})
     with pytest.raises(op.OptplanError, match="path_creep"):
+        make_local_planner("qp-dwa", BARN_ROBOT, 0.1, path_creep=1.0)
+    with pytest.raises(op.OptplanError, match="path_creep"):
         make_local_planner("qp-dwa", BARN_ROBOT, 0.1, path_creep={"nope": 1.0})
+
+
+def test_the_creep_does_not_start_in_the_open():
+    """Standing far from every static obstacle the sampler waits for movers or turns; the
+    creep is for clutter and stays out however long the robot stands."""
+    creep = PathCreep(stall_time=0.3)
+    view = PlannerView(BARN_ROBOT, 0.1, {})
+    g = GridMap(np.zeros((20, 40), dtype=bool), RES)
+    state = RobotState(1.0, 1.5, 0.0)
+    path = np.array([[1.0, 1.5], [5.0, 1.5]])
+    creep.reset(view, state, path)
+    ctx = LocalContext(state=state, subgoal=path[-1], goal=path[-1], global_path=path,
+                       static_distance=g.clearance, dynamic=np.zeros((0, 5)), dt=0.1,
+                       segments_free=lambda a, b, c: g.segments_free(a, b, c))
+    win = dynamic_window(BARN_ROBOT, state, 0.1)
+    assert all(creep.override(view, ctx, win) is None for _ in range(20))

@@ -72,6 +72,10 @@ class PathCreep(Mechanism):
         mover_gap, mover_time, mover_gain: a leg on which a sensed mover comes within
             ``mover_gap`` m of the robot within ``mover_time`` s (constant velocity) is driven
             only if it keeps ``mover_gain`` m more from the movers than standing would.
+        static_near: the creep starts only where the robot stands within this many metres
+            (edge to edge) of a static obstacle: standing in the open, the sampler is waiting
+            for movers, and a creep turn there changed how it met a mover that came back
+            (hou2024_dynamic3 seed 0 of benchmarks/dynamic_qp_dwa.yaml).
     """
 
     name: ClassVar[str] = "path_creep"
@@ -86,6 +90,7 @@ class PathCreep(Mechanism):
     mover_gap: float = 0.5
     mover_time: float = 3.0
     mover_gain: float = 0.05
+    static_near: float = 0.25
     stalled_for: float = field(default=0.0, init=False)
     standing_for: float = field(default=0.0, init=False)
     stall_heading: float = field(default=0.0, init=False)
@@ -99,7 +104,7 @@ class PathCreep(Mechanism):
 
     def __post_init__(self) -> None:
         for key in ("stall_time", "stall_speed", "stall_turn", "speed", "look_ahead", "length", "clearance", "aim", "mover_gap",
-                    "mover_time", "mover_gain"):
+                    "mover_time", "mover_gain", "static_near"):
             value = getattr(self, key)
             if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value < 0 \
                     or (value == 0 and key in ("speed", "look_ahead", "length", "aim")):
@@ -206,7 +211,8 @@ class PathCreep(Mechanism):
             # standing while a mover is near is waiting for it, not a stall: the count restarts
             _, standing_gap = self.mover_gaps(view, ctx, here, 1.0, 0.0)
             threatened = standing_gap < self.mover_gap
-            if not standing:
+            in_open = float(ctx.static_distance(np.array([state.x, state.y]))) - robot.radius > self.static_near
+            if not standing or in_open:
                 self.stalled_for = self.standing_for = 0.0
                 self.stall_heading = float(state.theta)
             elif threatened:

@@ -150,15 +150,17 @@ class DWAPlanner(MoverSweepSource):
                     raise ParameterError(f"{key} must be a dict of the term's parameters, got {value!r}")
                 value = dict(value)
                 terms[key] = (value.pop("weight", terms[key][0]), {**terms[key][1], **value})
-            elif key in mechs:
+            elif key in mechs or key in MECHANISMS:
+                # a mechanism of the preset is configured or dropped; another registered one is
+                # added (e.g. qp-dwa's path creep in the clutter families)
                 if value is False or value is None:
-                    del mechs[key]
-                elif isinstance(value, Mapping):
-                    mechs[key].update(value)
+                    mechs.pop(key, None)
+                elif value is True or isinstance(value, Mapping):
+                    mechs.setdefault(key, {}).update({} if value is True else value)
                 else:
-                    raise ParameterError(f"{key} must be a dict of parameters or False, got {value!r}")
+                    raise ParameterError(f"{key} must be a dict of parameters, True or False, got {value!r}")
             else:
-                known = sorted(set(opts) | set(terms) | set(mechs) | {"weights"})
+                known = sorted(set(opts) | set(terms) | set(mechs) | set(MECHANISMS) | {"weights"})
                 raise ParameterError(f"unknown parameter {key!r} for local planner {preset.name!r}; "
                                      f"known: {', '.join(known)}")
         self.options = self._checked(opts)

@@ -5,8 +5,8 @@ adaptive velocity (:class:`~optplan.local.hooks.CapsWindow`), yang2023's velocit
 obstacles (:class:`~optplan.local.hooks.FiltersSamples`), li2023's brake-and-wait and
 initial heading (:class:`~optplan.local.hooks.TakesOver`). This
 project's sweep gate of ``qp-dwa`` lives in :mod:`optplan.local.sweep_gate`, its path creep
-in :mod:`optplan.local.creep`.
-:data:`MECHANISMS` names them all for the presets.
+(added by the clutter families' parameters) in :mod:`optplan.local.creep`.
+:data:`MECHANISMS` names them all for the presets and for ``planner_params``.
 """
 from __future__ import annotations
 

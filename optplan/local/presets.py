@@ -75,7 +75,7 @@ PRESETS: dict[str, Preset] = {p.name: p for p in (
                Term("clearance", 1.0, {"cap": 0.5})),
         options={"omni": True, "normalise": "none", "mover_growth": 1.0, "growth_cap": 1.0,
                  "lookahead": 1.0},
-        mechanisms=(("sweep_gate", {}), ("path_creep", {})),
+        mechanisms=(("sweep_gate", {}),),
         refine="qp",
     ),
 )}
