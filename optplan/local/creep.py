@@ -208,7 +208,8 @@ class PathCreep(Mechanism):
         speed = math.hypot(state.v, state.vy)
         standing = speed < self.stall_speed
         if not self.active:
-            # standing while a mover is near is waiting for it, not a stall: the count restarts
+            # moving, or standing in the open, is no stall; standing beside obstacles counts, and
+            # at once when a mover will reach the robot there
             _, standing_gap = self.mover_gaps(view, ctx, here, 1.0, 0.0)
             threatened = standing_gap < self.mover_gap
             in_open = float(ctx.static_distance(np.array([state.x, state.y]))) - robot.radius > self.static_near
