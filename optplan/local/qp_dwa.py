@@ -334,13 +334,9 @@ class QPDWAPlanner(DWAPlanner):
         H = max(1, min(roll.z.shape[1], int(round(o["qp_horizon"] / roll.dt))))
         H_static = min(H, self._committed(step, i)) if o["qp_committed"] else H
         z = roll.z[i, :H]
-        # dz/du by forward differences of the planner's own rollout (constant or ramped)
-        v, w, vy, h = roll.v[i], roll.w[i], roll.vy[i], 1e-4
-        r = self.rollout_of(ctx.state, [v, v + h, v], [vy, vy, vy + h], [w, w + h])
-        zz = r.z[:, :H]  # rows: (v,w) (v,w+h) (v+h,w) (v+h,w+h) (vy+h,w) (vy+h,w+h)
-        dz = [(zz[2] - zz[0]) / h, (zz[1] - zz[0]) / h, (zz[4] - zz[0]) / h][:self.n_u]
-        grads, gaps, margins = [], [], []
         R = self.robot.radius
+        # the rows first: the derivative rollout below is only needed when one is active
+        mover_rows: list[tuple[int, int, float]] = []     # (mover, rollout point, gap)
         if len(step.mover_r) and o["qp_rows_moving"]:
             d = np.abs(z[None, :] - step.movers[:, :H]) - step.mover_r[:, None] - R  # (K, H)
             k_t = np.argmin(d, axis=1)
@@ -348,27 +344,36 @@ class QPDWAPlanner(DWAPlanner):
             for k in np.argsort(g, kind="stable")[:o["qp_rows_moving"]]:
                 if g[k] >= o["qp_activate"]:
                     break
-                t = k_t[k]
-                nrm = z[t] - step.movers[k, t]
-                nrm = nrm / abs(nrm) if abs(nrm) > 0 else 1.0
-                grads.append([(np.conj(nrm) * dzc[t]).real for dzc in dz])
-                gaps.append(g[k])
-                margins.append(o["qp_margin"])
+                mover_rows.append((int(k), int(k_t[k]), float(g[k])))
+        picked: list[int] = []
         if o["qp_rows_static"]:
             sg = step.static_gap[i, :H_static]
-            picked: list[int] = []
             for t in np.argsort(sg, kind="stable"):
                 if sg[t] >= o["qp_activate"] or len(picked) == o["qp_rows_static"]:
                     break
                 if all(abs(t - q) >= 3 for q in picked):  # spread the rows along the trajectory
                     picked.append(int(t))
-            if picked:
-                grad_z = static_gradient(ctx, z[picked])
-                margins.extend(self._static_margins(ctx, z[picked]).tolist() if o["qp_committed"]
-                               else [o["qp_margin"]] * len(picked))
-                for q, t in enumerate(picked):
-                    grads.append([(np.conj(grad_z[q]) * dzc[t]).real for dzc in dz])
-                    gaps.append(sg[t])
+        if not mover_rows and not picked:
+            return np.zeros((0, self.n_u)), np.zeros(0), np.zeros(0)
+        # dz/du by forward differences of the planner's own rollout (constant or ramped)
+        v, w, vy, h = roll.v[i], roll.w[i], roll.vy[i], 1e-4
+        r = self.rollout_of(ctx.state, [v, v + h, v], [vy, vy, vy + h], [w, w + h])
+        zz = r.z[:, :H]  # rows: (v,w) (v,w+h) (v+h,w) (v+h,w+h) (vy+h,w) (vy+h,w+h)
+        dz = [(zz[2] - zz[0]) / h, (zz[1] - zz[0]) / h, (zz[4] - zz[0]) / h][:self.n_u]
+        grads, gaps, margins = [], [], []
+        for k, t, gap in mover_rows:
+            nrm = z[t] - step.movers[k, t]
+            nrm = nrm / abs(nrm) if abs(nrm) > 0 else 1.0
+            grads.append([(np.conj(nrm) * dzc[t]).real for dzc in dz])
+            gaps.append(gap)
+            margins.append(o["qp_margin"])
+        if picked:
+            grad_z = static_gradient(ctx, z[picked])
+            margins.extend(self._static_margins(ctx, z[picked]).tolist() if o["qp_committed"]
+                           else [o["qp_margin"]] * len(picked))
+            for q, t in enumerate(picked):
+                grads.append([(np.conj(grad_z[q]) * dzc[t]).real for dzc in dz])
+                gaps.append(sg[t])
         return (np.asarray(grads, dtype=float).reshape(-1, self.n_u), np.asarray(gaps, dtype=float),
                 np.asarray(margins, dtype=float))
 
