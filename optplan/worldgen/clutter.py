@@ -197,14 +197,10 @@ GLOBAL_CLEARANCE_EXTRA = 0.15
 # maps it turned the sampler's slow crawls past walls into legs that end 1 mm from the wall,
 # where the window is pinned when a mover comes (benchmarks/dynamic_qp_dwa.yaml: 24 of the
 # first 393 of 500 runs failed, li2023_exp2_2 seed 33 among them, which pass without it).
-# Among movers the same trajectories are judged against the robot held where it must stop
-# (movers_meet_stop): an arc into a pocket of clutter ends there, and a mover coming along its
-# track meets the stopped robot, not the arc's continuation through the obstacle (clutter-movers
-# development seeds 0-99: 95 -> 98 % together with the path creep's way out of a mover's way).
 CLUTTER_LOCAL_PARAMS = {
     "qp-dwa": {"path_samples": (0.5, 1.0), "path_progress": {"until_stop": True},
                "path_heading": {"until_stop": True}, "path_deviation": {"until_stop": True},
-               "movers_meet_stop": True, "path_creep": {}},
+               "path_creep": {}},
 }
 
 
