@@ -179,3 +179,30 @@ def test_the_creep_does_not_start_in_the_open():
                        segments_free=lambda a, b, c: g.segments_free(a, b, c))
     win = dynamic_window(BARN_ROBOT, state, 0.1)
     assert all(creep.override(view, ctx, win) is None for _ in range(20))
+
+
+def test_a_steady_turn_on_the_spot_is_not_a_stall_but_three_stall_times_of_standing_are():
+    """The window's escape turn (the robot turning steadily on the spot beside a wall) is a way
+    out, not a stall: the creep waits. Standing still for ``stall_time`` starts it, and so does
+    standing ``3 * stall_time`` in all, however the robot turns."""
+    view = PlannerView(BARN_ROBOT, 0.1, {})
+    g = lane_beside_a_wall()
+    path = np.array([[1.0, 1.5], [5.0, 1.5]])
+
+    def run(headings):
+        creep = PathCreep()
+        creep.reset(view, RobotState(1.0, 1.5, headings[0]), path)
+        for k, theta in enumerate(headings):
+            state = RobotState(1.0, 1.5, float(theta))
+            ctx = LocalContext(state=state, subgoal=path[-1], goal=path[-1], global_path=path,
+                               static_distance=g.clearance, dynamic=np.zeros((0, 5)), dt=0.1,
+                               segments_free=lambda a, b, c: g.segments_free(a, b, c))
+            if creep.override(view, ctx, dynamic_window(BARN_ROBOT, state, 0.1)) is not None:
+                return k
+        return None
+
+    turning = 0.5 - 0.05 * np.arange(25)            # 0.5 rad/s for 2.5 s, towards the path
+    assert run(turning) is None
+    assert run(np.zeros(15)) == 9                   # the tenth period: 1 s standing still
+    assert run(0.05 * np.sin(np.arange(40))) == 9   # a jitter is no steady turn
+    assert run(3.0 - 0.05 * np.arange(40)) == 29    # 3 s of turning in all
