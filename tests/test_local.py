@@ -399,3 +399,11 @@ def test_movers_meet_the_robot_where_a_rollout_stops_before_a_wall():
     assert through.mover_contact[0] == H                                 # the continuation misses the mover
     assert held.mover_contact[0] < H                                     # the stopped robot does not
     assert np.array_equal(held.static_gap, through.static_gap) and held.static_hit[0] == through.static_hit[0]
+
+
+def test_switch_options_must_be_booleans():
+    with pytest.raises(op.ParameterError, match="movers_meet_stop must be True or False"):
+        make_local_planner("qp-dwa", RobotSpec(), DT, movers_meet_stop="yes")
+    with pytest.raises(op.ParameterError, match="omni must be True or False"):
+        make_local_planner("dwa", RobotSpec(), DT, omni=1)
+    assert make_local_planner("dwa", RobotSpec(), DT, movers_meet_stop=True).options["movers_meet_stop"] is True
