@@ -8,7 +8,7 @@ of them graze an obstacle, the few that do not make no progress, and the planner
 to a stop in front of the gap (issue 27). A disc robot can always pass where its path is
 valid: turning on the spot does not move the disc, and driving straight sweeps a capsule
 that the clearance check of the leg covers. So this mechanism takes over from the sampler
-once the robot has stood still for ``stall_time`` seconds with no mover near:
+once the robot has stood still beside obstacles for ``stall_time`` seconds:
 
 1. **carrot** - the farthest point of the global path, at most ``look_ahead`` metres of
    path beyond the robot's projection onto it, that the robot sees along a straight leg
@@ -73,9 +73,8 @@ class PathCreep(Mechanism):
             ``mover_gap`` m of the robot within ``mover_time`` s (constant velocity) is driven
             only if it keeps ``mover_gain`` m more from the movers than standing would.
         static_near: the creep starts only where the robot stands within this many metres
-            (edge to edge) of a static obstacle: standing in the open, the sampler is waiting
-            for movers, and a creep turn there changed how it met a mover that came back
-            (hou2024_dynamic3 seed 0 of benchmarks/dynamic_qp_dwa.yaml).
+            (edge to edge) of a static obstacle: standing in the open, nothing static holds
+            the robot, and the sampler is waiting for movers.
     """
 
     name: ClassVar[str] = "path_creep"
@@ -210,13 +209,12 @@ class PathCreep(Mechanism):
         if not self.active:
             # moving, or standing in the open, is no stall; standing beside obstacles counts, and
             # at once when a mover will reach the robot there
-            _, standing_gap = self.mover_gaps(view, ctx, here, 1.0, 0.0)
-            threatened = standing_gap < self.mover_gap
-            in_open = float(ctx.static_distance(np.array([state.x, state.y]))) - robot.radius > self.static_near
+            in_open = standing and \
+                float(ctx.static_distance(np.array([state.x, state.y]))) - robot.radius > self.static_near
             if not standing or in_open:
                 self.stalled_for = self.standing_for = 0.0
                 self.stall_heading = float(state.theta)
-            elif threatened:
+            elif self.mover_gaps(view, ctx, here, 1.0, 0.0)[1] < self.mover_gap:
                 # held still in a mover's way: creep at once if a leg is safer than standing
                 # (checked below); a mover that keeps its distance is waited for by the sampler
                 self.stalled_for = self.stall_time

@@ -74,8 +74,7 @@ PRESETS: dict[str, Preset] = {p.name: p for p in (
         terms=(Term("path_progress", 1.0), Term("path_deviation", 0.5, {"paired": False}), Term("path_heading", 0.3),
                Term("clearance", 1.0, {"cap": 0.5})),
         # movers_meet_stop: a trajectory that ends at a static obstacle leaves the robot standing
-        # there, which is where a mover meets it (dynamic_qp_dwa.yaml, 500 runs: 95.6 -> 97.6 %;
-        # clutter-movers development seeds 0-99 with the path creep: 95 -> 98 %)
+        # there, which is where a mover meets it (measured in docs/measurements.md, "path creep")
         options={"omni": True, "normalise": "none", "mover_growth": 1.0, "growth_cap": 1.0,
                  "lookahead": 1.0, "movers_meet_stop": True},
         mechanisms=(("sweep_gate", {}),),

@@ -192,11 +192,10 @@ GLOBAL_CLEARANCE_EXTRA = 0.15
 # open shipped maps with crossing movers they perturbed li2023 Experiment II runs into 3 mover
 # collisions in the 40 of benchmarks/dynamic_qp_dwa.yaml --runs 4 (see docs/measurements.md).
 # The path creep (local/creep.py) takes over after the window has held the robot still beside
-# obstacles, through gaps where the distance field's error closes every sampled arc (development
-# seeds 0-99: 91 -> 100 %). It is a clutter setting, not a qp-dwa default: on the shipped open
-# maps it turned the sampler's slow crawls past walls into legs that end 1 mm from the wall,
-# where the window is pinned when a mover comes (benchmarks/dynamic_qp_dwa.yaml: 24 of the
-# first 393 of 500 runs failed, li2023_exp2_2 seed 33 among them, which pass without it).
+# obstacles, through gaps where the distance field's error closes every sampled arc. It is a
+# clutter setting, not a qp-dwa default: on the shipped open maps it turned the sampler's slow
+# crawls past walls into legs that end 1 mm from the wall, where the window is pinned when a
+# mover comes (docs/measurements.md, "path creep").
 CLUTTER_LOCAL_PARAMS = {
     "qp-dwa": {"path_samples": (0.5, 1.0), "path_progress": {"until_stop": True},
                "path_heading": {"until_stop": True}, "path_deviation": {"until_stop": True},
