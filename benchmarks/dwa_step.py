@@ -5,14 +5,16 @@
 One realistic step: the robot in the middle of the shipped 50x50 map
 ``hou2024_base50`` (distance field ``grid_distance_field``, 4 points per cell), its A*
 path, 10 moving obstacles within 1-4 m, 800 samples (20 v x 40 w) x 30 rollout steps
-(3 s at 0.1 s). Prints the median ``command()`` time of every preset, the median OSQP
+(3 s at 0.1 s). Prints the median ``command()`` time of every preset (and of qp-dwa at the
+presets' own 11x21 samples) with the lowest median of five consecutive blocks of steps, the median OSQP
 time inside ``qp-dwa`` (Python ``update`` + ``solve`` wall time and OSQP's own solve
 time), over steps in 300 seeded contexts along the path, where it is active), the same
 calls repeated on warm caches and inside a closed-loop run (20x40 and the presets' default
 11x21 samples), the loop-based reference DWA on the same inputs, the speed-up of the vectorised
 core over it, and the per-obstacle loop vs one broadcast array for mover clearance.
 
-Goals: DWA core <= 2 ms, QP solve <= 60 us median, speed-up >= 10x. Timings are wall
+Goals: DWA core <= 2 ms, QP solve <= 60 us median, speed-up >= 10x, the whole qp-dwa step
+<= 5 ms median with the 10 movers (issue 30). Timings are wall
 clock on whatever else the machine is doing; run it on a quiet machine.
 """
 from __future__ import annotations
@@ -72,13 +74,26 @@ def context(seed: int = 0, node: int | None = None) -> tuple[RobotSpec, LocalCon
     return robot, ctx
 
 
-def median_time(fn, repeats: int) -> float:
+def step_times(fn, repeats: int) -> np.ndarray:
     times = []
     for _ in range(repeats):
         t = time.perf_counter()
         fn()
         times.append(time.perf_counter() - t)
-    return float(np.median(times))
+    return np.asarray(times)
+
+
+def median_time(fn, repeats: int) -> float:
+    return float(np.median(step_times(fn, repeats)))
+
+
+def block_medians(fn, repeats: int, blocks: int = 5) -> tuple[float, float]:
+    """``(median of all steps, lowest median of ``blocks`` consecutive blocks)``. On a shared
+    machine the load comes in bursts that move a whole block; the lowest block median is
+    the code's own cost, the overall median what a run under that load sees."""
+    times = step_times(fn, repeats)
+    per_block = [float(np.median(b)) for b in np.array_split(times, blocks) if len(b)]
+    return float(np.median(times)), min(per_block)
 
 
 def main() -> None:
@@ -90,12 +105,14 @@ def main() -> None:
     print(f"hou2024_base50, robot at ({ctx.state.x:.1f}, {ctx.state.y:.1f}), 10 movers, "
           f"{N_V}x{N_W} = {N_V * N_W} samples x 30 steps; median of {args.repeats} steps\n")
 
-    print("| planner | median step [ms] | mode of the step |")
-    print("|---|---|---|")
+    print("| planner | samples | median step [ms] | lowest median of 5 blocks [ms] | mode of the step |")
+    print("|---|---|---|---|---|")
     results = {}
     qp_info = []
-    for name in algorithm_names():
-        params = {"n_v": N_V, "n_w": N_W}
+    rows = [(name, N_V, N_W) for name in algorithm_names()]
+    rows.append(("qp-dwa", 11, 21))  # the presets' own sampling (OPTIONS n_v x n_w)
+    for name, n_v, n_w in rows:
+        params = {"n_v": n_v, "n_w": n_w}
         if name == "iga-dwa":  # time the sampled step, not the brake / turn-on-the-spot overrides
             params.update(initial_heading=False, brake_and_wait=False)
         planner = make_local_planner(name, robot, DT, **params)
@@ -106,8 +123,11 @@ def main() -> None:
             last["info"] = planner.command(ctx).info
 
         step()
-        results[name] = median_time(step, args.repeats)
-        print(f"| {name} | {results[name] * 1e3:.2f} | {last['info']['mode']} |")
+        median, lowest = block_medians(step, args.repeats)
+        if (n_v, n_w) == (N_V, N_W):
+            results[name] = median
+        print(f"| {name} | {n_v}x{n_w} | {median * 1e3:.2f} | {lowest * 1e3:.2f} | {last['info']['mode']} |")
+    print("(goal, issue 30: the whole qp-dwa step <= 5 ms median with 10 movers)")
 
     # the QP only runs when an obstacle comes within qp_activate of the chosen trajectory:
     # time it over one step in each of many seeded contexts along the path

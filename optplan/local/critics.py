@@ -34,27 +34,7 @@ def polyline_distance(z: np.ndarray, path: np.ndarray, near: complex | None = No
     Only segments within ``reach`` of ``near`` are considered (the part of the path a local
     trajectory can approach); when none is, the nearest segment is used.
     """
-    p = np.asarray(path, dtype=float).reshape(-1, 2)
-    pc = p[:, 0] + 1j * p[:, 1]
-    if len(pc) == 1:
-        return np.abs(z - pc[0])
-    a, b = pc[:-1], pc[1:]
-    if near is not None and np.isfinite(reach):
-        ab = b - a
-        L2 = np.maximum(np.abs(ab) ** 2, 1e-18)
-        s = np.clip(((near - a) * np.conj(ab)).real / L2, 0.0, 1.0)
-        d_near = np.abs(near - (a + s * ab))
-        sel = d_near <= reach
-        if not sel.any():
-            sel = d_near == d_near.min()
-        a, b = a[sel], b[sel]
-    out = np.full(np.shape(z), np.inf)
-    for a_i, b_i in zip(a, b):  # a handful of nearby segments, each over all points at once
-        ab = b_i - a_i
-        L2 = max(abs(ab) ** 2, 1e-18)
-        s = np.clip(((z - a_i) * np.conj(ab)).real / L2, 0.0, 1.0)
-        np.minimum(out, np.abs(z - (a_i + s * ab)), out=out)
-    return out
+    return project_on_path(path, z, near, reach, arc=False)[1]
 
 
 class Critic:
@@ -99,15 +79,18 @@ class Heading(Critic):
 
 
 def project_on_path(path: np.ndarray, z: np.ndarray, near: complex | None = None,
-                    reach: float = np.inf) -> tuple[np.ndarray, np.ndarray]:
+                    reach: float = np.inf, arc: bool = True) -> tuple[np.ndarray | None, np.ndarray]:
     """Arc length (m) along the polyline ``path`` of the path point nearest to each complex
     point ``z`` (any shape), and the distance (m) to it. With ``near`` and ``reach`` only the
-    segments within ``reach`` of ``near`` are searched (the nearest one if none is)."""
+    segments within ``reach`` of ``near`` are searched (the nearest ones if none is)."""
     p = np.asarray(path, dtype=float).reshape(-1, 2)
     pc = p[:, 0] + 1j * p[:, 1]
     z = np.asarray(z, dtype=complex)
+    if z.ndim == 0:  # one point: the loop below writes in place
+        s, d = project_on_path(path, z[None], near, reach, arc)
+        return (None if s is None else s[0]), d[0]
     if len(pc) == 1:
-        return np.zeros(z.shape), np.abs(z - pc[0])
+        return (np.zeros(z.shape) if arc else None), np.abs(z - pc[0])
     a, ab = pc[:-1], np.diff(pc)
     L = np.abs(ab)
     along = np.r_[0.0, np.cumsum(L)]
@@ -115,15 +98,22 @@ def project_on_path(path: np.ndarray, z: np.ndarray, near: complex | None = None
     if near is not None and np.isfinite(reach):
         t = np.clip(((near - a) * np.conj(ab)).real / np.maximum(L * L, 1e-18), 0.0, 1.0)
         d_near = np.abs(near - (a + t * ab))
-        segments = np.flatnonzero(d_near <= reach) if (d_near <= reach).any() else [int(np.argmin(d_near))]
+        within = d_near <= reach
+        segments = np.flatnonzero(within if within.any() else d_near == d_near.min())
     best_d = np.full(z.shape, np.inf)
-    best_s = np.zeros(z.shape)
+    best_s = np.zeros(z.shape) if arc else None
     for i in segments:  # nearby segments of the global path, each over all points at once
-        t = np.clip(((z - a[i]) * np.conj(ab[i])).real / max(L[i] ** 2, 1e-18), 0.0, 1.0)
+        t = ((z - a[i]) * np.conj(ab[i])).real / max(L[i] ** 2, 1e-18)
+        np.clip(t, 0.0, 1.0, out=t)
         d = np.abs(z - (a[i] + t * ab[i]))
+        if not arc:
+            np.minimum(best_d, d, out=best_d)
+            continue
         closer = d < best_d
-        best_d = np.where(closer, d, best_d)
-        best_s = np.where(closer, along[i] + t * L[i], best_s)
+        np.copyto(best_d, d, where=closer)
+        t *= L[i]
+        t += along[i]
+        np.copyto(best_s, t, where=closer)
     return best_s, best_d
 
 
@@ -141,15 +131,6 @@ def point_at_arc(path: np.ndarray, s: np.ndarray) -> np.ndarray:
     return pc[j] + (s - along[j]) / np.maximum(L[j], 1e-18) * ab[j]
 
 
-def path_carrot(path: np.ndarray, z: np.ndarray, look_ahead: float, near: complex | None = None,
-                reach: float = np.inf) -> np.ndarray:
-    """For each complex point ``z``, the path point ``look_ahead`` metres beyond the path point
-    nearest to it (the path's end if that is closer); ``near``, ``reach`` as in
-    :func:`project_on_path`."""
-    s, _ = project_on_path(path, z, near, reach)
-    return point_at_arc(path, s + look_ahead)
-
-
 def _trajectory_end(step: Step, until_stop: bool) -> tuple[np.ndarray, np.ndarray]:
     """``(position (S,) complex, heading (S,))`` a path critic judges each trajectory by: its
     end, or with ``until_stop`` its last point before the first static collision, where
@@ -160,6 +141,18 @@ def _trajectory_end(step: Step, until_stop: bool) -> tuple[np.ndarray, np.ndarra
     if until_stop:
         return step.pose_at_stop()
     return step.roll.position(), step.roll.heading()
+
+
+def _projected_ends(step: Step, until_stop: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(end, heading, s)``: :func:`_trajectory_end` and the arc lengths ``s`` ``(S + 1,)`` of
+    the path points nearest to the robot (first) and to each end. Kept in ``step.aux`` for
+    the step, so the path critics that judge the same ends project them once."""
+    key = ("projected_ends", until_stop)
+    if key not in step.aux:
+        end, heading = _trajectory_end(step, until_stop)
+        s, _ = project_on_path(step.ctx.global_path, np.r_[step.roll.z0, end], step.roll.z0, _reach(step))
+        step.aux[key] = (end, heading, s)
+    return step.aux[key]
 
 
 def _reach(step: Step) -> float:
@@ -181,9 +174,8 @@ class PathHeading(Heading):
     until_stop: bool = False
 
     def score(self, step: Step) -> np.ndarray:
-        roll = step.roll
-        end, heading = _trajectory_end(step, self.until_stop)
-        bearing = np.angle(path_carrot(step.ctx.global_path, end, self.look_ahead, roll.z0, _reach(step)) - end)
+        end, heading, s = _projected_ends(step, self.until_stop)
+        bearing = np.angle(point_at_arc(step.ctx.global_path, s[1:] + self.look_ahead) - end)
         return np.pi - np.abs(wrap_angle(bearing - heading))
 
 
@@ -205,8 +197,7 @@ class PathProgress(Critic):
 
     def score(self, step: Step) -> np.ndarray:
         roll = step.roll
-        end, _ = _trajectory_end(step, self.until_stop)
-        s, _ = project_on_path(step.ctx.global_path, np.r_[roll.z0, end], roll.z0, _reach(step))
+        _, _, s = _projected_ends(step, self.until_stop)
         gain = s[1:] - s[0]
         if not self.within_travel:
             return gain

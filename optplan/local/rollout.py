@@ -131,7 +131,8 @@ def rollout_ramped(state: RobotState, lin_v: np.ndarray, lin_vy: np.ndarray, w: 
     theta = np.tile(theta_w, (n_lin, 1))
     # (n_lin, 1, H) x (1, n_w, H) broadcast: the same products as repeating and tiling both
     z = ((v + 1j * vy)[:, None, :] * np.exp(1j * start_heading)[None]).reshape(-1, steps)
-    z = np.cumsum(z, axis=1) * dt
+    np.cumsum(z, axis=1, out=z)  # in place: the same sums, one array fewer
+    z *= dt
     z0 = complex(state.x, state.y)
     z += z0
     return Rollouts(v=np.repeat(lin_v, n_w), vy=np.repeat(lin_vy, n_w), w=np.tile(w, n_lin), z=z, t=t1, z0=z0,
@@ -431,7 +432,8 @@ def _stopping_test(roll: Rollouts, first: np.ndarray, decel: float, reaction: fl
         speed = roll.speed
         free = np.where(first < H, first * speed * roll.dt, np.inf)
         return free, stopping_distance(speed, decel, reaction)
-    travelled = np.cumsum(roll.profile, axis=1) * roll.dt  # path length after each step
+    travelled = np.cumsum(roll.profile, axis=1)  # path length after each step
+    travelled *= roll.dt
     before = np.take_along_axis(travelled, np.clip(first - 1, 0, H - 1)[:, None], axis=1)[:, 0]
     free = np.where(first >= H, np.inf, np.where(first > 0, before, 0.0))
     # a command is held for at least one step, so the ramp is followed for one step or more

@@ -264,7 +264,7 @@ class SweepGate(Mechanism, MoverSweepSource):
         state = step.ctx.state
         # every rollout point at time t lies within (fastest speed) t of the start
         reach = max(roll.max_speed, math.hypot(state.v, state.vy)) * roll.t
-        x = None
+        q_buf = None
         for k in self._now:
             lo, hi = self.swept(k, roll.t)
             s0, off0 = k.along(roll.z0)
@@ -273,30 +273,21 @@ class SweepGate(Mechanism, MoverSweepSource):
             near = np.flatnonzero(nearest - reach <= self.margin)  # the other times keep farther (exact bound)
             if len(near) == 0:
                 continue
-            if x is None:  # contiguous coordinates shared by the tracks, and scratch arrays written in place
-                x, y = np.ascontiguousarray(z.real), np.ascontiguousarray(z.imag)
-                along, off, tmp = np.empty(x.shape), np.empty(x.shape), np.empty(x.shape)
+            if q_buf is None:  # scratch arrays shared by the tracks, written in place
+                q_buf, d_buf, e_buf = np.empty(z.shape, complex), np.empty(z.shape), np.empty(z.shape)
             c = slice(near[0], near[-1] + 1)  # every near time (and any far one between)
-            a, o = k.axis, k.origin
             size, shape = len(z) * (c.stop - c.start), (len(z), c.stop - c.start)
-            al, of, tm = (buf.ravel()[:size].reshape(shape) for buf in (along, off, tmp))  # contiguous views
-            # position along the track's line and distance off it, in the line's frame
-            np.multiply(x[:, c], a.real, out=al)
-            np.multiply(y[:, c], a.imag, out=tm)
-            al += tm
-            al -= o.real * a.real + o.imag * a.imag
-            np.multiply(y[:, c], a.real, out=of)
-            np.multiply(x[:, c], a.imag, out=tm)
-            of -= tm
-            of -= o.imag * a.real - o.real * a.imag
-            np.subtract(lo[c], al, out=tm)  # beyond the interval's ends, 0 inside
-            al -= hi[c]
-            np.maximum(al, tm, out=al)
-            np.maximum(al, 0.0, out=al)
-            np.square(al, out=al)
-            np.square(of, out=of)
-            of += al
-            np.minimum(out, np.sqrt(of.min(axis=1)) - k.radius - R, out=out)
+            q, d, e = (buf.ravel()[:size].reshape(shape) for buf in (q_buf, d_buf, e_buf))  # contiguous views
+            # in the line's frame: position along the line (real part) and off it (imaginary part)
+            np.subtract(z[:, c], k.origin, out=q)
+            q *= np.conj(k.axis)
+            np.maximum(q.real, lo[c], out=d)  # the interval's nearest point along the line
+            np.minimum(d, hi[c], out=d)
+            np.subtract(q.real, d, out=d)
+            np.square(d, out=d)
+            np.square(q.imag, out=e)
+            e += d
+            np.minimum(out, np.sqrt(e.min(axis=1)) - k.radius - R, out=out)
         if rows is not None:
             full = np.full(roll.n, np.inf)
             full[rows] = out
