@@ -12,7 +12,8 @@ more small roles in the control step, each a protocol of its own:
 * :class:`FiltersSamples`: judges the current sample set (a :class:`~optplan.local.rollout.Step`)
   and reports findings to the cost terms through ``step.aux`` (yang2023's
   velocity-obstacle test, eq 12-14; the sweep gate of ``qp-dwa``); ``strict_filter`` is
-  the same test without any fallback (``qp-dwa`` checks its refined command with it);
+  the same test without any fallback, ``passes_like`` judges one trajectory as the filter
+  judged a chosen sample (``qp-dwa`` checks its refined command with it);
   ``report`` copies what the filter found into ``Command.info``.
 
 A mechanism class subclasses :class:`Mechanism` (its registry ``name``) and implements
@@ -102,6 +103,11 @@ class FiltersSamples(Protocol):
     def strict_filter(self, view: PlannerView, step: Step) -> np.ndarray | None:
         """``filter`` without any relaxation it applies when nothing passes: judges a single
         trajectory on its own (``qp-dwa`` checks its refined command with it)."""
+
+    def passes_like(self, view: PlannerView, check: Step, step: Step, i: int) -> bool:
+        """Whether the single trajectory of ``check`` passes as sample ``i`` of ``step`` passed
+        this step's ``filter``: by the strict test, or by the same relaxation when the filter
+        relaxed it this step (``qp-dwa`` checks its refined command with it)."""
 
     def report(self, step: Step) -> dict:
         """What this step's ``filter`` found, for ``Command.info`` (may be empty)."""

@@ -154,6 +154,11 @@ class VelocityObstacle(Mechanism):
         """The same test: it has no fallback to leave out."""
         return self.filter(view, step)
 
+    def passes_like(self, view: PlannerView, check: Step, step: Step, i: int) -> bool:
+        """The same test (it never relaxes)."""
+        keep = self.strict_filter(view, check)
+        return keep is None or bool(keep[0])
+
     def report(self, step: Step) -> dict:
         threat = step.aux.get("vo_threat")
         return {} if threat is None else {"vo_threat": threat}

@@ -377,13 +377,10 @@ class QPDWAPlanner(DWAPlanner):
         return (np.asarray(grads, dtype=float).reshape(-1, self.n_u), np.asarray(gaps, dtype=float),
                 np.asarray(margins, dtype=float))
 
-    def _legal_after_filters(self, check: Step) -> bool:
-        """Whether the (single) trajectory of ``check`` passes the preset's filters."""
-        for m in self.roles.filters:
-            keep = m.strict_filter(self.view, check)
-            if keep is not None and not keep[0]:
-                return False
-        return True
+    def _legal_after_filters(self, check: Step, step: Step, i: int) -> bool:
+        """Whether the (single) trajectory of ``check`` passes the preset's filters as sample
+        ``i`` of ``step`` passed them."""
+        return all(m.passes_like(self.view, check, step, i) for m in self.roles.filters)
 
     def refine(self, ctx: LocalContext, window: Window, u0: tuple[float, float, float], step: Step,
                info: dict) -> tuple[float, float, float]:
@@ -436,7 +433,7 @@ class QPDWAPlanner(DWAPlanner):
         if failed:
             info["qp"] = f"fallback: refined command failed the rollout check ({failed})"
             return u0
-        if info.get("mode") == "sample" and not self._legal_after_filters(check):
+        if info.get("mode") == "sample" and not self._legal_after_filters(check, step, i):
             info["qp"] = "fallback: refined command failed a filter the sampled one passed"
             return u0
         info["qp"] = "solved"

@@ -319,6 +319,17 @@ class SweepGate(Mechanism, MoverSweepSource):
         step.aux["gate_rejected"] = int((~keep).sum())
         return keep
 
+    def passes_like(self, view, check, step, i: int) -> bool:
+        """The single trajectory of ``check`` keeps off the swept intervals (the strict test),
+        or, when no sample kept off this step and the filter kept those that come least
+        close, it comes no closer to them than sample ``i``: judged by the strict test alone,
+        a refined command could never pass in such a step, however little it moved."""
+        keep = self.strict_filter(view, check)
+        if keep is None or keep[0]:
+            return True
+        gap = step.aux.get("gate_gap")
+        return gap is not None and bool(check.aux["gate_gap"][0] >= gap[i] - 1e-9)
+
     def report(self, step) -> dict:
         return {"gate_rejected": step.aux["gate_rejected"]} if "gate_rejected" in step.aux else {}
 
