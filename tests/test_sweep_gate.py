@@ -198,6 +198,34 @@ def test_strict_filter_judges_one_trajectory_without_the_fallback():
     assert gate.filter(planner.view, straight)[0]
 
 
+def test_a_refined_command_is_judged_as_the_gate_judged_the_sample():
+    """When no sample keeps off the swept intervals the gate keeps those that come least
+    close; a refined command is then accepted if it comes no closer than the chosen sample
+    (the strict test alone would reject every one), and rejected if it comes closer."""
+    planner = make_local_planner("qp-dwa", ROBOT, 0.1)
+    state = RobotState(x=4.8, y=3.0, theta=0.0, v=0.6)  # too fast to keep off the line
+    planner.reset(state, np.array([[0.5, 3.0], [11.0, 3.0]]))
+    ctx = context(4.5, state)
+    (gate,) = [m for m in planner.mechanisms if isinstance(m, SweepGate)]
+    step = planner.evaluate(ctx, planner.window(ctx))
+    keep = gate.filter(planner.view, step)
+    safe = step.admissible & step.mover_free
+    gap = step.aux["gate_gap"]
+    assert keep is not None and keep.any() and (gap[safe] < gate.margin).all()  # the relaxed rule was used
+    i = int(np.flatnonzero(keep)[0])
+    closer = np.flatnonzero(safe & (gap < gap[i] - 0.05))
+    assert len(closer)
+
+    def alone(j):  # sample j's command as a refined command: one trajectory, assessed afresh
+        r = step.roll
+        return planner._assess(ctx, planner.rollout_of(state, [r.v[j]], [r.vy[j]], [r.w[j]]))
+
+    same = alone(i)
+    assert not gate.strict_filter(planner.view, same)[0]
+    assert gate.passes_like(planner.view, same, step, i)
+    assert not gate.passes_like(planner.view, alone(int(closer[0])), step, i)
+
+
 def test_line_reach_stops_at_known_obstacles_and_the_border():
     wall = lambda p: 8.0 - np.asarray(p)[..., 0]  # a wall at x = 8 (signed distance from it)
     ctx = LocalContext(state=RobotState(1.0, 1.0, 0.0), subgoal=np.zeros(2), goal=np.zeros(2),
