@@ -19,7 +19,7 @@
    half-width so a step across the window costs the same in ``v`` and ``w``. The position
    derivatives ``dz/du`` come from the rollout formula of ``rollout.py`` in closed form.
    The result is checked on the exact rollout (admissible and no closer to obstacles than
-   ``u0``); on any non-solved OSQP status or a failed check the sampled ``u0`` is used and
+   ``u0``) and by the filters, as they judged ``u0`` (``passes_like``); on any non-solved OSQP status or a failed check the sampled ``u0`` is used and
    ``info["qp"]`` says why.
 3. **Ruckig** (``limiter.RuckigLimiter``): the refined velocity becomes the target of a
    jerk-limited profile; the command is the profile one period ahead.
