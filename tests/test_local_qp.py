@@ -10,6 +10,7 @@ import optplan as op
 from optplan.local import make_local_planner
 from optplan.local.base import LocalContext
 from optplan.local.limiter import RuckigLimiter
+from optplan.local.qp_dwa import qp_outcome
 from optplan.world.fields import grid_distance_field
 from optplan.world.robot import RobotSpec, RobotState
 
@@ -60,7 +61,9 @@ def drive(field, robot, steps=70, **params):
 @pytest.mark.parametrize("jerk", [None, 1.0])
 def test_accelerations_and_jerk_within_limits(field, jerk):
     robot = RobotSpec(jerk_max=jerk)
-    vel, end, planner = drive(field, robot)
+    # a margin wider than the 0.25 m the robot keeps from the block: the QP has rows to meet
+    # (with the default 0.15 m every row holds at the sample and the QP is not run)
+    vel, end, planner = drive(field, robot, qp_margin=0.3)
     acc = np.diff(vel, axis=0) / DT  # as the simulator measures them
     assert np.abs(acc[:, 0]).max() <= robot.a_max + 1e-9
     assert np.abs(acc[:, 1]).max() <= robot.alpha_max + 1e-9
@@ -83,12 +86,13 @@ def test_qp_solves_and_falls_back_at_max_iter(field):
     robot = RobotSpec()
     st = RobotState(2.5, 8.45, 0.0, 0.4, 0.0)  # 0.25 m (edge to edge) above a block, driving along it
     ctx = ctx_at(field, st, (9.0, 8.45))
-    # arcs only: the path-following sample straight along the path would win, and it is not refined
-    solved = make_local_planner("qp-dwa", robot, DT, path_samples=())
+    # arcs only: the path-following sample straight along the path would win, and it is not
+    # refined; a 0.3 m margin, more than the robot keeps from the block, gives the QP work
+    solved = make_local_planner("qp-dwa", robot, DT, path_samples=(), qp_margin=0.3)
     solved.reset(st, ctx.global_path)
     info = solved.command(ctx).info
-    assert info["qp"] == "solved" and info["qp_rows"] > 0
-    capped = make_local_planner("qp-dwa", robot, DT, qp_max_iter=1, path_samples=())
+    assert info["qp"] == "solved" and info["qp_rows"] > 0 and info["qp_change"] > 1e-3
+    capped = make_local_planner("qp-dwa", robot, DT, qp_max_iter=1, path_samples=(), qp_margin=0.3)
     capped.reset(st, ctx.global_path)
     step = capped.evaluate(ctx, capped.window(ctx))
     best, _ = capped.choose(step)
@@ -96,6 +100,24 @@ def test_qp_solves_and_falls_back_at_max_iter(field):
     assert cmd.info["qp"].startswith("fallback: OSQP status")
     sampled = [step.roll.v[best], step.roll.w[best], step.roll.vy[best]]
     assert cmd.info["target"] == pytest.approx(sampled)  # the best sampled command is used
+
+
+def test_qp_is_not_run_when_the_sample_meets_every_row(field):
+    """A row within qp_activate that the sample already meets by qp_margin leaves the sample
+    the QP's optimum: the QP is not run and the sampled command is the target, exactly."""
+    robot = RobotSpec()
+    st = RobotState(2.5, 8.45, 0.0, 0.4, 0.0)  # 0.25 m above the block: within 0.6 m, beyond 0.15 m
+    ctx = ctx_at(field, st, (9.0, 8.45))
+    planner = make_local_planner("qp-dwa", robot, DT, path_samples=())
+    planner.reset(st, ctx.global_path)
+    step = planner.evaluate(ctx, planner.window(ctx))
+    best, _ = planner.choose(step)
+    grads, gaps, margins = planner._rows(ctx, step, best)
+    assert len(gaps) > 0 and np.all(gaps >= margins)
+    cmd = planner.command(ctx)
+    assert cmd.info["qp"] == "rows hold at the sample" and qp_outcome(cmd.info) == "not run"
+    assert cmd.info["target"] == [step.roll.v[best], step.roll.w[best], step.roll.vy[best]]
+    assert planner.qp_times_us == []
 
 
 def test_ruckig_limiter_respects_acceleration_and_jerk():

@@ -59,7 +59,7 @@ _SLACK_LINEAR, _SLACK_QUADRATIC = 1e2, 1e4
 
 # info["qp"] of the steps whose QP stage solves nothing: no row is active, or the chosen sample
 # follows the path with a command that changes along the horizon (the QP linearises a constant one)
-QP_NOT_RUN = ("inactive", "path sample")
+QP_NOT_RUN = ("inactive", "path sample", "rows hold at the sample")
 
 
 def qp_outcome(info: Mapping[str, Any]) -> str | None:
@@ -390,6 +390,11 @@ class QPDWAPlanner(DWAPlanner):
         if len(gaps) == 0:
             info["qp"] = "inactive"
             return u0
+        if np.all(gaps >= margins):
+            # the sample meets every row with zero slack, so it is the QP's optimum (the
+            # objective is 0 there and nowhere lower): solving would only hand it back
+            info["qp"] = "rows hold at the sample"
+            return u0
         o = self.options
         n_u, n = self.n_u, self._n_x
         x0 = np.array([u0[0], u0[1], u0[2]][:n_u])
@@ -432,6 +437,8 @@ class QPDWAPlanner(DWAPlanner):
                   "closer to an obstacle" if worse else "")
         if failed:
             info["qp"] = f"fallback: refined command failed the rollout check ({failed})"
+            if worse:
+                info["qp_closer_by"] = float(min(gap_old, float(margins.min())) - gap_new)
             return u0
         if info.get("mode") == "sample" and not self._legal_after_filters(check, step, i):
             info["qp"] = "fallback: refined command failed a filter the sampled one passed"
