@@ -18,9 +18,11 @@
    margin cannot be met within the window. ``W`` scales each component by its window
    half-width so a step across the window costs the same in ``v`` and ``w``. The position
    derivatives ``dz/du`` come from the rollout formula of ``rollout.py`` in closed form.
-   The result is checked on the exact rollout (admissible and no closer to obstacles than
-   ``u0``) and by the filters, as they judged ``u0`` (``passes_like``); on any non-solved OSQP status or a failed check the sampled ``u0`` is used and
-   ``info["qp"]`` says why.
+   The QP is not run when ``u0`` meets every row by its margin (``u0`` is then its
+   optimum). The result is checked on the exact rollout (admissible and no closer to
+   obstacles than ``u0``) and by the filters, as they judged ``u0`` (``passes_like``); on any
+   non-solved OSQP status or a failed check the sampled ``u0`` is used and ``info["qp"]``
+   says why.
 3. **Ruckig** (``limiter.RuckigLimiter``): the refined velocity becomes the target of a
    jerk-limited profile; the command is the profile one period ahead.
 4. **Recursive feasibility** (``safe_continuation``): the command is sent only if, after it,
