@@ -441,8 +441,10 @@ def test_missa_dwa_dynamic_distance_at_the_sensed_position():
     ctx.dynamic = movers[1:]
     far = assess(ctx, robot, roll, margin=0.02, mover_range=3.0)
     assert np.isinf(DynamicInverseDistance(at_sensed_position=True).d_d(far)).all()
-    # the planner passes the option to the term, and rejects a non-boolean
-    planner = make_local_planner("missa-dwa", RobotSpec(), DT, dynamic_inverse={"at_sensed_position": True})
-    assert [c.at_sensed_position for c, _ in planner.terms if c.name == "dynamic_inverse"] == [True]
+    # missa-dwa reads eq 28 as printed by default; the prediction stays an option; a
+    # non-boolean is rejected
+    for params, want in (({}, True), ({"dynamic_inverse": {"at_sensed_position": False}}, False)):
+        planner = make_local_planner("missa-dwa", RobotSpec(), DT, **params)
+        assert [c.at_sensed_position for c, _ in planner.terms if c.name == "dynamic_inverse"] == [want]
     with pytest.raises(op.ParameterError, match="at_sensed_position"):
         make_local_planner("missa-dwa", RobotSpec(), DT, dynamic_inverse={"at_sensed_position": "yes"})
