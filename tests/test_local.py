@@ -431,6 +431,11 @@ def test_missa_dwa_dynamic_distance_at_the_sensed_position():
     assert sensed.d_d(step) == pytest.approx([0.0, 1.9 - 0.6 - 0.4])       # ends x = 1.5 and x = 0.6
     assert np.allclose(step.sensed_dyn_gap()[1], 1.9 - 0.2 * roll.t - 0.4)  # every point, the near mover
     assert sensed.score(step) == pytest.approx([1e3, 1 / 0.9])
+    # also_predicted (not the paper's): the nearer of the two at every point
+    both = DynamicInverseDistance(at_sensed_position=True, also_predicted=True)
+    assert both.d_d(step) == pytest.approx(np.minimum(sensed.d_d(step), predicted.d_d(step)))
+    step.dyn_gap[1, 5] = 0.3                                                   # a predicted mover nearer
+    assert both.d_d(step)[1] == pytest.approx(0.3) and sensed.d_d(step)[1] == pytest.approx(0.9)
     # eq 29's discard rule on the sensed D_d: 0.0 < 1.15 * 0.05 m; 0.9 >= 1.15 * 0.02 m
     assert list(predicted.legal(step)) == [True, True] and list(sensed.legal(step)) == [False, True]
     # li2023 eq 10's o at the trajectory's end, to the sensed mover (capped at 2 m)

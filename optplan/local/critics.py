@@ -306,20 +306,29 @@ class DynamicInverseDistance(Critic):
     where it is sensed now (``Step.sensed_dyn_gap``), used by both the score (eq 28-29) and
     the discard rule (eq 29). The planner's contact test with the predicted movers is the
     same either way. (We keep distances, not the squared distances eq 28 prints: eq 29
-    compares ``D_d`` with a length.)"""
+    compares ``D_d`` with a length.)
+
+    ``also_predicted`` (not the paper's; with ``at_sensed_position``): each point's distance
+    is the smaller of the two, to the sensed and to the predicted mover."""
 
     name: ClassVar[str] = "dynamic_inverse"
     cost: ClassVar[bool] = True
     factor: float = 1.15
     at_sensed_position: bool = False
+    also_predicted: bool = False
 
     def __post_init__(self) -> None:
-        if not isinstance(self.at_sensed_position, (bool, np.bool_)):
-            raise TypeError(f"at_sensed_position must be True or False, got {self.at_sensed_position!r}")
+        for k in ("at_sensed_position", "also_predicted"):
+            if not isinstance(getattr(self, k), (bool, np.bool_)):
+                raise TypeError(f"{k} must be True or False, got {getattr(self, k)!r}")
 
     def d_d(self, step: Step) -> np.ndarray:
         """``(S,)`` eq 28's ``D_d`` of every sample, m (edge to edge)."""
-        gap = step.sensed_dyn_gap() if self.at_sensed_position else step.dyn_gap
+        if not self.at_sensed_position:
+            return step.dyn_gap.min(axis=1)
+        gap = step.sensed_dyn_gap()
+        if self.also_predicted:
+            gap = np.minimum(gap, step.dyn_gap)
         return gap.min(axis=1)
 
     def score(self, step: Step) -> np.ndarray:
