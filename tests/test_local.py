@@ -407,3 +407,49 @@ def test_switch_options_must_be_booleans():
     with pytest.raises(op.ParameterError, match="omni must be True or False"):
         make_local_planner("dwa", RobotSpec(), DT, omni=1)
     assert make_local_planner("dwa", RobotSpec(), DT, movers_meet_stop=True).options["movers_meet_stop"] is True
+
+
+def test_missa_dwa_dynamic_distance_at_the_sensed_position():
+    """hou2024 eq 28 as printed: ``D_d`` measured to the mover where it is sensed now. A robot
+    drives at 0.5 m/s behind a mover 1.9 m ahead that moves away at the same speed:
+    predicted at constant velocity the gap stays 1.9 - 0.2 - 0.2 = 1.5 m; to the sensed disc
+    the trajectory's end (x = 1.5) comes within 1.9 - 1.5 - 0.4 = 0.0 m. A second sample at
+    0.2 m/s ends at x = 0.6, 0.9 m from the sensed disc."""
+    from optplan.local.critics import DynamicInverseDistance
+
+    robot = RobotSpec(radius=0.2, v_max=0.5, a_max=1.0)
+    state = RobotState(0.0, 0.0, 0.0, 0.5, 0.0)
+    roll = rollout(state, np.array([0.5, 0.2]), np.array([0.0]), np.array([0.0]), 0.1, 30)
+    movers = np.array([[1.9, 0.0, 0.5, 0.0, 0.2],      # ahead, moving away
+                       [10.0, 0.0, -0.5, 0.0, 0.2]])   # far: beyond the 3 m mover range
+    ctx = LocalContext(state=state, subgoal=np.array([5.0, 0.0]), goal=np.array([5.0, 0.0]),
+                       global_path=np.array([[0.0, 0.0], [5.0, 0.0]]), static_distance=lambda p: np.full(
+                           np.shape(p)[:-1], 50.0), dynamic=movers, dt=0.1)
+    step = assess(ctx, robot, roll, margin=0.02, mover_range=3.0)
+    predicted, sensed = DynamicInverseDistance(), DynamicInverseDistance(at_sensed_position=True)
+    assert predicted.d_d(step) == pytest.approx([1.5, 1.9 + 0.05 - 0.02 - 0.4])  # closest after one step
+    assert sensed.d_d(step) == pytest.approx([0.0, 1.9 - 0.6 - 0.4])       # ends x = 1.5 and x = 0.6
+    assert np.allclose(step.sensed_dyn_gap()[1], 1.9 - 0.2 * roll.t - 0.4)  # every point, the near mover
+    assert sensed.score(step) == pytest.approx([1e3, 1 / 0.9])
+    # also_predicted (not the paper's): the nearer of the two at every point
+    both = DynamicInverseDistance(at_sensed_position=True, also_predicted=True)
+    assert both.d_d(step) == pytest.approx(np.minimum(sensed.d_d(step), predicted.d_d(step)))
+    step.dyn_gap[1, 5] = 0.3                                                   # a predicted mover nearer
+    assert both.d_d(step)[1] == pytest.approx(0.3) and sensed.d_d(step)[1] == pytest.approx(0.9)
+    # eq 29's discard rule on the sensed D_d: 0.0 < 1.15 * 0.05 m; 0.9 >= 1.15 * 0.02 m
+    assert list(predicted.legal(step)) == [True, True] and list(sensed.legal(step)) == [False, True]
+    # li2023 eq 10's o at the trajectory's end, to the sensed mover (capped at 2 m)
+    from optplan.local.critics import EndClearance
+    assert EndClearance().score(step) == pytest.approx([1.5, 2.0])             # mover at x = 3.4 at t = 3 s
+    assert EndClearance(at_sensed_position=True).score(step) == pytest.approx([0.0, 0.9])
+    # the far mover alone is out of range: no dynamic distance at all
+    ctx.dynamic = movers[1:]
+    far = assess(ctx, robot, roll, margin=0.02, mover_range=3.0)
+    assert np.isinf(DynamicInverseDistance(at_sensed_position=True).d_d(far)).all()
+    # missa-dwa reads eq 28 as printed by default; the prediction stays an option; a
+    # non-boolean is rejected
+    for params, want in (({}, True), ({"dynamic_inverse": {"at_sensed_position": False}}, False)):
+        planner = make_local_planner("missa-dwa", RobotSpec(), DT, **params)
+        assert [c.at_sensed_position for c, _ in planner.terms if c.name == "dynamic_inverse"] == [want]
+    with pytest.raises(op.ParameterError, match="at_sensed_position"):
+        make_local_planner("missa-dwa", RobotSpec(), DT, dynamic_inverse={"at_sensed_position": "yes"})

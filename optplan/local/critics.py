@@ -294,20 +294,49 @@ class StaticInverseDistance(Critic):
 @dataclass
 class DynamicInverseDistance(Critic):
     """hou2024 eq 28-30 ``Dist_D``: ``1 / D_d`` with ``D_d`` the smallest edge-to-edge
-    distance (m) to a moving obstacle at the same predicted time; trajectories with
+    distance (m) from the trajectory to a moving obstacle; trajectories with
     ``D_d < factor S`` are discarded, ``S = v dt`` the distance the robot covers in one
-    control period (eq 30) and ``factor`` = 1.15. (Eq 29 repeats ``D_s``; ``D_d`` is meant.)"""
+    control period (eq 30) and ``factor`` = 1.15. (Eq 29 repeats ``D_s``; ``D_d`` is meant.)
+
+    ``at_sensed_position``: which obstacle position eq 28 measures to. Eq 28,
+    ``D_d = min((x_t - x_i)^2 + (y_t - y_i)^2)``, gives the trajectory points a time index
+    and the obstacle's coordinates ``(x_i, y_i)`` none. ``False`` (default) compares each
+    trajectory point with the mover predicted at constant velocity to the same time
+    (``Step.dyn_gap``); ``True`` reads eq 28 as printed: the distance to the mover's disc
+    where it is sensed now (``Step.sensed_dyn_gap``), used by both the score (eq 28-29) and
+    the discard rule (eq 29). The planner's contact test with the predicted movers is the
+    same either way. (We keep distances, not the squared distances eq 28 prints: eq 29
+    compares ``D_d`` with a length.)
+
+    ``also_predicted`` (not the paper's; with ``at_sensed_position``): each point's distance
+    is the smaller of the two, to the sensed and to the predicted mover."""
 
     name: ClassVar[str] = "dynamic_inverse"
     cost: ClassVar[bool] = True
     factor: float = 1.15
+    at_sensed_position: bool = False
+    also_predicted: bool = False
+
+    def __post_init__(self) -> None:
+        for k in ("at_sensed_position", "also_predicted"):
+            if not isinstance(getattr(self, k), (bool, np.bool_)):
+                raise TypeError(f"{k} must be True or False, got {getattr(self, k)!r}")
+
+    def d_d(self, step: Step) -> np.ndarray:
+        """``(S,)`` eq 28's ``D_d`` of every sample, m (edge to edge)."""
+        if not self.at_sensed_position:
+            return step.dyn_gap.min(axis=1)
+        gap = step.sensed_dyn_gap()
+        if self.also_predicted:
+            gap = np.minimum(gap, step.dyn_gap)
+        return gap.min(axis=1)
 
     def score(self, step: Step) -> np.ndarray:
-        return 1.0 / np.maximum(step.dyn_gap.min(axis=1), 1e-3)
+        return 1.0 / np.maximum(self.d_d(step), 1e-3)
 
     def legal(self, step: Step) -> np.ndarray:
         S = step.roll.speed * step.ctx.dt
-        return step.dyn_gap.min(axis=1) >= self.factor * S
+        return self.d_d(step) >= self.factor * S
 
 
 # ---------------------------------------------------------------- yang2023 §5 (idwa)
@@ -384,13 +413,26 @@ class GoalDistance(Critic):
 @dataclass
 class EndClearance(Critic):
     """li2023 eq 10 ``o``: edge-to-edge distance (m) from the trajectory's end to the
-    nearest obstacle, capped at ``cap``."""
+    nearest obstacle, capped at ``cap``.
+
+    ``at_sensed_position``: where a moving obstacle is taken. §5.2 defines ``o`` as "the
+    minimum distance from the end of the simulated trajectory to the obstacle" and says
+    nothing of predicting obstacles (§6.4 sums up that the fused planner plans "based on the
+    real-time obstacle position").
+    ``False`` (default): the mover predicted at constant velocity to the end's time
+    (``Step.dyn_gap``); ``True``: the mover where it is sensed now (``Step.sensed_dyn_gap``)."""
 
     name: ClassVar[str] = "end_clearance"
     cap: float = 2.0
+    at_sensed_position: bool = False
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.at_sensed_position, (bool, np.bool_)):
+            raise TypeError(f"at_sensed_position must be True or False, got {self.at_sensed_position!r}")
 
     def score(self, step: Step) -> np.ndarray:
-        return np.clip(np.minimum(step.static_gap[:, -1], step.dyn_gap[:, -1]), 0.0, self.cap)
+        dyn = step.sensed_dyn_gap() if self.at_sensed_position else step.dyn_gap
+        return np.clip(np.minimum(step.static_gap[:, -1], dyn[:, -1]), 0.0, self.cap)
 
 
 CRITICS: dict[str, type[Critic]] = {c.name: c for c in (

@@ -256,6 +256,11 @@ class Step:
             obstacle (``H`` = none; see :func:`first_hit`): the robot following the sample
             has to stop before it, so cost terms judge the trajectory up to there.
         aux: scratch space mechanisms use to pass findings to cost terms (e.g. the VO threat).
+        mover_range: movers that provably stay farther than this (m, edge to edge) from every
+            rollout were left out of ``dyn_gap`` (``assess``'s ``mover_range`` plus margins).
+        mover_points: ``(S, H)`` complex positions ``dyn_gap`` was measured from (the rollout,
+            or with ``movers_meet_stop`` the rollout held where it meets a static obstacle);
+            ``None``: ``roll.z``.
     """
 
     ctx: LocalContext
@@ -274,6 +279,8 @@ class Step:
     growth: np.ndarray | float = 0.0
     static_hit: np.ndarray | None = None
     aux: dict = field(default_factory=dict)
+    mover_range: float = np.inf
+    mover_points: np.ndarray | None = None
 
     @property
     def mover_free(self) -> np.ndarray:
@@ -306,6 +313,22 @@ class Step:
         else:
             heading = roll.theta0 + roll.w * (k * roll.dt)
         return z, heading
+
+    def sensed_dyn_gap(self) -> np.ndarray:
+        """``(S, H)`` edge-to-edge distance (m) from each rollout point to the nearest mover
+        disc where the mover is sensed now (``ctx.dynamic``), not where the constant-velocity
+        prediction puts it at that point's time: hou2024 eq 28 as printed, whose obstacle
+        coordinates ``(x_i, y_i)`` carry no time index. Measured from the same points as
+        ``dyn_gap`` (``mover_points``) and over the movers that can come within
+        ``mover_range`` of a rollout (``inf`` without one). Kept in ``aux`` for the step."""
+        if "sensed_dyn_gap" not in self.aux:
+            d = np.asarray(self.ctx.dynamic, dtype=float).reshape(-1, 5)
+            z = self.roll.z if self.mover_points is None else self.mover_points
+            still = np.broadcast_to((d[:, 0] + 1j * d[:, 1])[:, None], (len(d), len(self.roll.t)))
+            keep = relevant_movers(self.roll.z0, still, d[:, 4], self.roll.t, self.roll.max_speed,
+                                   self.robot.radius, self.mover_range)
+            self.aux["sensed_dyn_gap"] = dynamic_gaps(z, still[keep, :1], d[keep, 4], self.robot.radius)
+        return self.aux["sensed_dyn_gap"]
 
     @property
     def gap(self) -> np.ndarray:
@@ -396,8 +419,8 @@ def assess(ctx: LocalContext, robot: RobotSpec, roll: Rollouts, *, margin: float
     movers, vel, radii = predict_movers(ctx.dynamic, roll.t)
     if predict is not None:
         movers = predict(movers, roll.t)
-    keep = relevant_movers(roll.z0, movers, radii, roll.t, roll.max_speed, robot.radius,
-                           max(mover_range, margin) + growth_cap)
+    beyond = max(mover_range, margin) + growth_cap
+    keep = relevant_movers(roll.z0, movers, radii, roll.t, roll.max_speed, robot.radius, beyond)
     now_static, now_moving = current_gaps(ctx, robot)
     s_margin = margin if static_margin is None else static_margin
     first = first_hit(static_gap < min(s_margin, now_static))  # 0 = the point after one step
@@ -413,7 +436,7 @@ def assess(ctx: LocalContext, robot: RobotSpec, roll: Rollouts, *, margin: float
     contact = first_hit(dyn_gap < min(margin, now_moving))
     target = complex(*np.asarray(ctx.subgoal, dtype=float)[:2])
     return Step(ctx, robot, roll, static_gap, dyn_gap, movers, vel, radii, free, stopping, admissible, contact, target,
-                growth, first)
+                growth, first, mover_range=beyond, mover_points=z)
 
 
 def _stopping_test(roll: Rollouts, first: np.ndarray, decel: float, reaction: float) -> tuple[np.ndarray, np.ndarray]:
