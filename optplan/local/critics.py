@@ -17,6 +17,7 @@ from typing import ClassVar
 
 import numpy as np
 
+from ..checks import boolean
 from ..world.geometry import wrap_angle
 from .rollout import Step
 
@@ -319,8 +320,7 @@ class DynamicInverseDistance(Critic):
 
     def __post_init__(self) -> None:
         for k in ("at_sensed_position", "also_predicted"):
-            if not isinstance(getattr(self, k), (bool, np.bool_)):
-                raise TypeError(f"{k} must be True or False, got {getattr(self, k)!r}")
+            setattr(self, k, boolean(k, getattr(self, k)))
 
     def d_d(self, step: Step) -> np.ndarray:
         """``(S,)`` eq 28's ``D_d`` of every sample, m (edge to edge)."""
@@ -427,8 +427,7 @@ class EndClearance(Critic):
     at_sensed_position: bool = False
 
     def __post_init__(self) -> None:
-        if not isinstance(self.at_sensed_position, (bool, np.bool_)):
-            raise TypeError(f"at_sensed_position must be True or False, got {self.at_sensed_position!r}")
+        self.at_sensed_position = boolean("at_sensed_position", self.at_sensed_position)
 
     def score(self, step: Step) -> np.ndarray:
         dyn = step.sensed_dyn_gap() if self.at_sensed_position else step.dyn_gap

@@ -29,6 +29,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
+from ..checks import boolean
 from ..errors import ParameterError
 from ..world.robot import Command, RobotSpec, RobotState
 from .base import LocalContext, MoverSweepSource
@@ -211,9 +212,7 @@ class DWAPlanner(MoverSweepSource):
         if o["path_samples"] and not (o["path_look_aheads"] and o["path_turn_first"]):
             raise ParameterError("path_samples need at least one of path_look_aheads (m) and of path_turn_first (rad)")
         for k in ("omni", "movers_meet_stop"):
-            if not isinstance(o[k], (bool, np.bool_)):
-                raise ParameterError(f"{k} must be True or False, got {o[k]!r}")
-            o[k] = bool(o[k])
+            o[k] = boolean(k, o[k])
         if o["normalise"] not in ("sum", "minmax", "none"):
             raise ParameterError(f"normalise must be 'sum', 'minmax' or 'none', got {o['normalise']!r}")
         return o
