@@ -33,7 +33,8 @@ def polyline_distance(z: np.ndarray, path: np.ndarray, near: complex | None = No
     """Distance (m) from complex points ``z`` (any shape) to the polyline ``path`` ``(N, 2)``.
 
     Only segments within ``reach`` of ``near`` are considered (the part of the path a local
-    trajectory can approach); when none is, the nearest segment is used.
+    trajectory can approach); when none is, the nearest ones. The distance half of
+    :func:`project_on_path`.
     """
     return project_on_path(path, z, near, reach, arc=False)[1]
 
