@@ -129,6 +129,7 @@ class QPDWAPlanner(DWAPlanner):
         "qp_rows_moving": 4,     # at most this many mover rows ...
         "qp_rows_static": 4,     # ... and static rows
         "qp_max_iter": 1000,     # OSQP iteration budget (a non-solved status falls back)
+        "qp_passes": 2,          # linearisations: a pass adds rows where the last result came close
         "ang_jerk_max": None,    # rad/s^3; None = jerk_max * alpha_max / a_max (same ramp time)
         # issue 27 (clutter), off by default: each gave 1-2 collisions in the 40 runs of
         # benchmarks/dynamic_qp_dwa.yaml in some combination (see docs/measurements.md)
@@ -141,8 +142,8 @@ class QPDWAPlanner(DWAPlanner):
         o = self.options
         for k in ("qp_horizon", "qp_margin", "qp_activate"):
             o[k] = self._number(k, o[k], allow_zero=k == "qp_margin")
-        for k in ("qp_rows_moving", "qp_rows_static", "qp_max_iter"):
-            if isinstance(o[k], bool) or not isinstance(o[k], (int, np.integer)) or o[k] < (1 if k == "qp_max_iter" else 0):
+        for k in ("qp_rows_moving", "qp_rows_static", "qp_max_iter", "qp_passes"):
+            if isinstance(o[k], bool) or not isinstance(o[k], (int, np.integer)) or o[k] < (1 if k in ("qp_max_iter", "qp_passes") else 0):
                 raise ParameterError(f"{k} must be a non-negative int, got {o[k]!r}")
             o[k] = int(o[k])
         if robot.jerk_max is None:
@@ -166,7 +167,7 @@ class QPDWAPlanner(DWAPlanner):
     # ------------------------------------------------------------------ QP set-up (once)
     def _setup_qp(self, acc) -> None:
         n = self.n_u + 1  # + slack
-        m_rows = self.options["qp_rows_moving"] + self.options["qp_rows_static"]
+        m_rows = (self.options["qp_rows_moving"] + self.options["qp_rows_static"]) * self.options["qp_passes"]
         half_width = np.asarray(acc, dtype=float) * (self.options["lookahead"] or self.dt)  # of the window
         self._W = 1.0 / half_width ** 2
         P = sp.diags(np.r_[self._W, _SLACK_QUADRATIC]).tocsc()
@@ -384,6 +385,34 @@ class QPDWAPlanner(DWAPlanner):
         ``i`` of ``step`` passed them."""
         return all(m.passes_like(self.view, check, step, i) for m in self.roles.filters)
 
+    def _solve(self, x0: np.ndarray, lo: np.ndarray, hi: np.ndarray, grads: np.ndarray, lb_rows: np.ndarray,
+               x_start: np.ndarray, info: dict) -> np.ndarray | None:
+        """One OSQP solve: closest to ``x0`` in the window ``[lo, hi]`` under the clearance rows
+        ``grads . u + s >= lb_rows``; ``None`` (with ``info["qp"]`` saying why) unless solved."""
+        n_u, n = self.n_u, self._n_x
+        rows = np.zeros((self._m_rows, n))
+        lb = np.full(self._m_rows, -np.inf)
+        k = len(lb_rows)
+        rows[:k, :n_u] = grads
+        rows[:k, n_u] = 1.0
+        lb[:k] = lb_rows
+        dense = np.vstack([np.eye(n), rows])
+        q = np.r_[-self._W * x0, _SLACK_LINEAR]
+        lower = np.r_[lo, 0.0, lb]
+        upper = np.r_[hi, np.inf, np.full(self._m_rows, np.inf)]
+        Ax = dense[self._A_rows, self._A_cols]
+        t0 = time.perf_counter()  # the OSQP calls only: update (refactorises), warm start, solve
+        status_val, status, x_opt, solve_s = self._lean.step(q, lower, upper, Ax, np.r_[x_start, 0.0])
+        elapsed = (time.perf_counter() - t0) * 1e6
+        self.qp_times_us.append(elapsed)
+        info["qp_us"] += elapsed
+        info["qp_solve_us"] += solve_s * 1e6
+        info["qp_rows"] = k
+        if status_val != self._solved or x_opt is None or not np.all(np.isfinite(x_opt)):
+            info["qp"] = f"fallback: OSQP status {status!r}"
+            return None
+        return x_opt
+
     def refine(self, ctx: LocalContext, window: Window, u0: tuple[float, float, float], step: Step,
                info: dict) -> tuple[float, float, float]:
         """The QP refinement of the sampled command ``u0`` (falls back to ``u0``)."""
@@ -402,46 +431,40 @@ class QPDWAPlanner(DWAPlanner):
         x0 = np.array([u0[0], u0[1], u0[2]][:n_u])
         lo = np.array([window.v[0], window.w[0], window.vy[0]][:n_u])
         hi = np.array([window.v[1], window.w[1], window.vy[1]][:n_u])
-        rows = np.zeros((self._m_rows, n))
-        lb = np.full(self._m_rows, -np.inf)
-        k = len(gaps)
-        rows[:k, :n_u] = grads
-        rows[:k, n_u] = 1.0
-        lb[:k] = margins - gaps + grads @ x0
-        dense = np.vstack([np.eye(n), rows])
-        q = np.r_[-self._W * x0, _SLACK_LINEAR]
-        lower = np.r_[lo, 0.0, lb]
-        upper = np.r_[hi, np.inf, np.full(self._m_rows, np.inf)]
-        Ax = dense[self._A_rows, self._A_cols]
-        x_start = np.r_[x0, 0.0]
-        t0 = time.perf_counter()  # the OSQP calls only: update (refactorises), warm start, solve
-        status_val, status, x_opt, solve_s = self._lean.step(q, lower, upper, Ax, x_start)
-        elapsed = (time.perf_counter() - t0) * 1e6
-        self.qp_times_us.append(elapsed)
-        info["qp_us"] = elapsed
-        info["qp_solve_us"] = solve_s * 1e6
-        info["qp_rows"] = k
-        if status_val != self._solved or x_opt is None or not np.all(np.isfinite(x_opt)):
-            info["qp"] = f"fallback: OSQP status {status!r}"
-            return u0
-        x = np.clip(x_opt[:n_u], lo, hi)
-        u = (float(x[0]), float(x[1]), float(x[2]) if n_u == 3 else 0.0)
-        check = self._assess(ctx, self.rollout_of(ctx.state, [u[0]], [u[2]], [u[1]]))
         H = max(1, min(step.roll.z.shape[1], int(round(o["qp_horizon"] / step.roll.dt))))
-        Hs = min(H, max(self._committed(step, i), self._committed(check, 0))) if o["qp_committed"] else H
-        # the rows constrain the plain predicted gaps (static ones over the committed part),
-        # so judge the result on those
-        gap_new = min(check.static_gap[0, :Hs].min(), check.dyn_gap[0, :H].min())
-        gap_old = min(step.static_gap[i, :Hs].min(), step.dyn_gap[i, :H].min())
-        worse = gap_new < min(gap_old, float(margins.min())) - 1e-9
-        failed = ("not admissible" if not check.admissible[0] else
-                  "earlier mover contact" if check.mover_contact[0] < step.mover_contact[i] else
-                  "closer to an obstacle" if worse else "")
-        if failed:
-            info["qp"] = f"fallback: refined command failed the rollout check ({failed})"
-            if worse:
-                info["qp_closer_by"] = float(min(gap_old, float(margins.min())) - gap_new)
-            return u0
+        row_grads, row_lb = grads, margins - gaps + grads @ x0
+        margin_min = float(margins.min())
+        info["qp_us"] = info["qp_solve_us"] = 0.0
+        for p in range(1, o["qp_passes"] + 1):
+            x_opt = self._solve(x0, lo, hi, row_grads, row_lb, x0 if p == 1 else x, info)
+            if x_opt is None:
+                return u0
+            x = np.clip(x_opt[:n_u], lo, hi)
+            u = (float(x[0]), float(x[1]), float(x[2]) if n_u == 3 else 0.0)
+            check = self._assess(ctx, self.rollout_of(ctx.state, [u[0]], [u[2]], [u[1]]))
+            Hs = min(H, max(self._committed(step, i), self._committed(check, 0))) if o["qp_committed"] else H
+            # the rows constrain the plain predicted gaps (static ones over the committed part),
+            # so judge the result on those
+            gap_new = min(check.static_gap[0, :Hs].min(), check.dyn_gap[0, :H].min())
+            gap_old = min(step.static_gap[i, :Hs].min(), step.dyn_gap[i, :H].min())
+            worse = gap_new < min(gap_old, margin_min) - 1e-9
+            failed = ("not admissible" if not check.admissible[0] else
+                      "earlier mover contact" if check.mover_contact[0] < step.mover_contact[i] else
+                      "closer to an obstacle" if worse else "")
+            info["qp_passes"] = p
+            if not failed:
+                break
+            more = self._rows(ctx, check, 0) if failed == "closer to an obstacle" and p < o["qp_passes"] else None
+            if more is None or len(row_lb) + len(more[1]) > self._m_rows:
+                info["qp"] = f"fallback: refined command failed the rollout check ({failed})"
+                if worse:
+                    info["qp_closer_by"] = float(min(gap_old, margin_min) - gap_new)
+                return u0
+            # sequential linearisation: the refined trajectory met an obstacle no row was
+            # linearised at, so add its rows, linearised at the refined command, and solve again
+            g2, gap2, m2 = more
+            row_grads = np.vstack([row_grads, g2])
+            row_lb = np.r_[row_lb, m2 - gap2 + g2 @ x]
         if info.get("mode") == "sample" and not self._legal_after_filters(check, step, i):
             info["qp"] = "fallback: refined command failed a filter the sampled one passed"
             return u0
