@@ -5,10 +5,13 @@ scenarios, with the share used / active (active = the QP ran: neither "inactive"
 ``CHANGED`` (a solved QP whose optimum is the sample itself is "used" but changes nothing).
 
     python benchmarks/qp_reasons.py --clutter-seeds 0:10 --dynamic-seed 0
+    python benchmarks/qp_reasons.py --family clutter-movers --clutter-seeds 0:10 --dynamic-seed -1 \
+        --params '{"qp_passes": 3}'
 """
 from __future__ import annotations
 
 import argparse
+import json
 from collections import Counter
 
 from optplan.local.qp_dwa import qp_outcome
@@ -56,25 +59,30 @@ def table(title: str, statuses: Counter, outcomes: Counter) -> str:
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--clutter-seeds", default="0:10", help="A:B, or empty for none")
+    ap.add_argument("--family", default="clutter", choices=("clutter", "clutter-movers"),
+                    help="the generated worlds of --clutter-seeds")
+    ap.add_argument("--params", default="", help="JSON planner_params for qp-dwa on top of the family's")
     ap.add_argument("--dynamic-seed", type=int, default=0, help="-1 for none")
     a = ap.parse_args(argv)
+    extra = json.loads(a.params) if a.params else {}
     if a.clutter_seeds:
         lo, hi = (int(x) for x in a.clutter_seeds.split(":"))
         statuses: Counter = Counter()
         outcomes: Counter = Counter()
-        fam = family_options("clutter")
+        fam = family_options(a.family)
+        params = {**fam.get("local_params", {}).get("qp-dwa", {}), **extra}
         for seed in range(lo, hi):
-            sc = scenario_for("clutter", seed)
+            sc = scenario_for(a.family, seed)
             gp = plan_global(sc, "astar", None, seed, fam.get("global_options"))
-            st, oc, status = reasons(sc, seed, gp, fam.get("local_params", {}).get("qp-dwa"))
+            st, oc, status = reasons(sc, seed, gp, params)
             statuses += st
             outcomes += oc
-            print(f"clutter {seed}: {status}", flush=True)
-        print(table(f"clutter seeds {lo}..{hi - 1}", statuses, outcomes))
+            print(f"{a.family} {seed}: {status}", flush=True)
+        print(table(f"{a.family} seeds {lo}..{hi - 1}", statuses, outcomes))
     if a.dynamic_seed >= 0:
         statuses, outcomes = Counter(), Counter()
         for name in DYNAMIC:
-            st, oc, status = reasons(name, a.dynamic_seed)
+            st, oc, status = reasons(name, a.dynamic_seed, params=extra or None)
             statuses += st
             outcomes += oc
             print(f"{name} {a.dynamic_seed}: {status}", flush=True)

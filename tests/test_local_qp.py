@@ -175,3 +175,45 @@ def test_qp_outcome_classifies_the_planners_statuses():
     assert qp_outcome({"qp": "inactive"}) == qp_outcome({"qp": "path sample"}) == "not run"
     assert qp_outcome({"qp": "fallback: OSQP status 'maximum iterations reached'"}) == "fallback"
     assert qp_outcome({"qp": "fallback: refined command failed the rollout check (not admissible)"}) == "fallback"
+
+
+TWO_BLOCKS = ["0000000000",
+              "0000000000",
+              "0001100000",
+              "0001100000",
+              "0000000110",
+              "0000000000",
+              "0010000000",
+              "0000000000",
+              "0000010000",
+              "0000000000"]
+
+
+def test_a_refinement_that_meets_an_unrowed_obstacle_is_relinearised_or_shortened():
+    """Heading down past the block at (7-9, 5-6), 0.3 m asked: the first QP's command swings the
+    trajectory into a wall no row was linearised at. With one pass the planner takes a quarter
+    of that step (the half still comes too close); with two, the second pass adds rows where
+    the first command came close and its whole answer keeps its distance. Both commands are
+    checked here on the planner's own rollout."""
+    field = grid_distance_field(op.GridMap.from_rows([[int(c) for c in r] for r in TWO_BLOCKS]))
+    robot = RobotSpec()
+    st = RobotState(9.379, 6.642, -1.363, 0.182, 0.0)
+    goal = np.array([9.0, 1.0])
+    ctx = LocalContext(state=st, subgoal=goal, goal=goal, global_path=np.array([[st.x, st.y], goal]),
+                       static_distance=field, dynamic=np.zeros((0, 5)), dt=DT, t=0.0)
+    infos = {}
+    for passes in (1, 2):
+        planner = make_local_planner("qp-dwa", robot, DT, path_samples=(), qp_margin=0.3, qp_passes=passes)
+        planner.reset(st, ctx.global_path)
+        step = planner.evaluate(ctx, planner.window(ctx))
+        best, _ = planner.choose(step)
+        info = infos[passes] = planner.command(ctx).info
+        assert qp_outcome(info) == "used" and info["qp_change"] > 0.05
+        v, w, vy = info["target"]
+        check = planner._assess(ctx, planner.rollout_of(st, [v], [vy], [w]))
+        H = int(round(planner.options["qp_horizon"] / DT))
+        allowed = min(step.static_gap[best, :H].min(), 0.3)
+        assert check.admissible[0] and check.static_gap[0, :H].min() >= allowed - 1e-5
+    assert infos[1]["qp"] == "solved: 0.25 of the step" and infos[1]["qp_passes"] == 1
+    assert infos[2]["qp"] == "solved" and infos[2]["qp_passes"] == 2 and "qp_fraction" not in infos[2]
+    assert infos[2]["qp_change"] > infos[1]["qp_change"]

@@ -59,9 +59,13 @@ from .window import Window, dynamic_window
 
 _SLACK_LINEAR, _SLACK_QUADRATIC = 1e2, 1e4
 
-# info["qp"] of the steps whose QP stage solves nothing: no row is active, or the chosen sample
-# follows the path with a command that changes along the horizon (the QP linearises a constant one)
-QP_NOT_RUN = ("inactive", "path sample", "rows hold at the sample")
+# info["qp"] of the steps whose QP stage solves nothing: no row is active, the chosen sample
+# follows the path with a command that changes along the horizon (the QP linearises a constant one),
+# the sample meets every row, or no command of the window moves the rows' points
+_REACH = 1e-6  # m: a row no command of the window moves by this much is out of the QP's reach
+_BACKTRACK = (0.5, 0.25)  # shorter steps towards the QP's optimum tried when the full one fails a check
+_GAP_TOL = 1e-5  # m: OSQP's tolerance (1e-5 in the command) moves the gaps by micrometres
+QP_NOT_RUN = ("inactive", "path sample", "rows hold at the sample", "rows out of the command's reach")
 
 
 def qp_outcome(info: Mapping[str, Any]) -> str | None:
@@ -128,7 +132,7 @@ class QPDWAPlanner(DWAPlanner):
         "qp_activate": 0.6,      # obstacles closer than this to the chosen trajectory become rows, m
         "qp_rows_moving": 4,     # at most this many mover rows ...
         "qp_rows_static": 4,     # ... and static rows
-        "qp_max_iter": 1000,     # OSQP iteration budget (a non-solved status falls back)
+        "qp_max_iter": 10000,    # OSQP iteration budget (a non-solved status falls back)
         "qp_passes": 2,          # linearisations: a pass adds rows where the last result came close
         "ang_jerk_max": None,    # rad/s^3; None = jerk_max * alpha_max / a_max (same ramp time)
         # issue 27 (clutter), off by default: each gave 1-2 collisions in the 40 runs of
@@ -169,6 +173,7 @@ class QPDWAPlanner(DWAPlanner):
         n = self.n_u + 1  # + slack
         m_rows = (self.options["qp_rows_moving"] + self.options["qp_rows_static"]) * self.options["qp_passes"]
         half_width = np.asarray(acc, dtype=float) * (self.options["lookahead"] or self.dt)  # of the window
+        self._half_width = half_width
         self._W = 1.0 / half_width ** 2
         P = sp.diags(np.r_[self._W, _SLACK_QUADRATIC]).tocsc()
         # box rows (identity) then clearance rows, dense in every column: the pattern is fixed
@@ -413,6 +418,30 @@ class QPDWAPlanner(DWAPlanner):
             return None
         return x_opt
 
+    def _verdict(self, ctx: LocalContext, step: Step, i: int, x: np.ndarray, margin_min: float,
+                 info: dict) -> tuple[str, Step, float | None]:
+        """Whether the refined command ``x`` may replace sample ``i``: ``("", check, None)``, or
+        what it fails (``"not admissible"``, ``"earlier mover contact"``, ``"closer to an
+        obstacle"`` with how much closer, or ``"filter"``), with its one-trajectory ``check``."""
+        o = self.options
+        u = (float(x[0]), float(x[1]), float(x[2]) if self.n_u == 3 else 0.0)
+        check = self._assess(ctx, self.rollout_of(ctx.state, [u[0]], [u[2]], [u[1]]))
+        H = max(1, min(step.roll.z.shape[1], int(round(o["qp_horizon"] / step.roll.dt))))
+        Hs = min(H, max(self._committed(step, i), self._committed(check, 0))) if o["qp_committed"] else H
+        # the rows constrain the plain predicted gaps (static ones over the committed part),
+        # so judge the result on those
+        gap_new = min(check.static_gap[0, :Hs].min(), check.dyn_gap[0, :H].min())
+        allowed = min(min(step.static_gap[i, :Hs].min(), step.dyn_gap[i, :H].min()), margin_min)
+        if not check.admissible[0]:
+            return "not admissible", check, None
+        if check.mover_contact[0] < step.mover_contact[i]:
+            return "earlier mover contact", check, None
+        if gap_new < allowed - _GAP_TOL:
+            return "closer to an obstacle", check, float(allowed - gap_new)
+        if info.get("mode") == "sample" and not self._legal_after_filters(check, step, i):
+            return "filter", check, None
+        return "", check, None
+
     def refine(self, ctx: LocalContext, window: Window, u0: tuple[float, float, float], step: Step,
                info: dict) -> tuple[float, float, float]:
         """The QP refinement of the sampled command ``u0`` (falls back to ``u0``)."""
@@ -426,12 +455,18 @@ class QPDWAPlanner(DWAPlanner):
             # objective is 0 there and nowhere lower): solving would only hand it back
             info["qp"] = "rows hold at the sample"
             return u0
+        # a row at a point no command moves (the robot's own position, turning on the spot)
+        # only adds slack; OSQP's answer is then the sample up to its tolerance
+        movable = np.abs(grads) @ self._half_width >= _REACH
+        if not np.any(movable & (gaps < margins)):
+            info["qp"] = "rows out of the command's reach"
+            return u0
+        grads, gaps, margins = grads[movable], gaps[movable], margins[movable]
         o = self.options
         n_u, n = self.n_u, self._n_x
         x0 = np.array([u0[0], u0[1], u0[2]][:n_u])
         lo = np.array([window.v[0], window.w[0], window.vy[0]][:n_u])
         hi = np.array([window.v[1], window.w[1], window.vy[1]][:n_u])
-        H = max(1, min(step.roll.z.shape[1], int(round(o["qp_horizon"] / step.roll.dt))))
         row_grads, row_lb = grads, margins - gaps + grads @ x0
         margin_min = float(margins.min())
         info["qp_us"] = info["qp_solve_us"] = 0.0
@@ -440,35 +475,34 @@ class QPDWAPlanner(DWAPlanner):
             if x_opt is None:
                 return u0
             x = np.clip(x_opt[:n_u], lo, hi)
-            u = (float(x[0]), float(x[1]), float(x[2]) if n_u == 3 else 0.0)
-            check = self._assess(ctx, self.rollout_of(ctx.state, [u[0]], [u[2]], [u[1]]))
-            Hs = min(H, max(self._committed(step, i), self._committed(check, 0))) if o["qp_committed"] else H
-            # the rows constrain the plain predicted gaps (static ones over the committed part),
-            # so judge the result on those
-            gap_new = min(check.static_gap[0, :Hs].min(), check.dyn_gap[0, :H].min())
-            gap_old = min(step.static_gap[i, :Hs].min(), step.dyn_gap[i, :H].min())
-            worse = gap_new < min(gap_old, margin_min) - 1e-9
-            failed = ("not admissible" if not check.admissible[0] else
-                      "earlier mover contact" if check.mover_contact[0] < step.mover_contact[i] else
-                      "closer to an obstacle" if worse else "")
+            failed, check, closer_by = self._verdict(ctx, step, i, x, margin_min, info)
             info["qp_passes"] = p
             if not failed:
                 break
             more = self._rows(ctx, check, 0) if failed == "closer to an obstacle" and p < o["qp_passes"] else None
-            if more is None or len(row_lb) + len(more[1]) > self._m_rows:
-                info["qp"] = f"fallback: refined command failed the rollout check ({failed})"
-                if worse:
-                    info["qp_closer_by"] = float(min(gap_old, margin_min) - gap_new)
+            if more is not None and len(row_lb) + len(more[1]) <= self._m_rows:
+                # sequential linearisation: the refined trajectory met an obstacle no row was
+                # linearised at, so add its rows, linearised at the refined command, and solve again
+                g2, gap2, m2 = more
+                row_grads = np.vstack([row_grads, g2])
+                row_lb = np.r_[row_lb, m2 - gap2 + g2 @ x]
+                continue
+            # a shorter step towards the QP's optimum: the QP's objective (convex) falls all the
+            # way from the sample to it, and the checks are relative to the sample, which passes them
+            for fraction in _BACKTRACK:
+                if not self._verdict(ctx, step, i, x0 + fraction * (x - x0), margin_min, info)[0]:
+                    x = x0 + fraction * (x - x0)
+                    info["qp_fraction"] = fraction
+                    break
+            else:
+                info["qp"] = (f"fallback: refined command failed the rollout check ({failed})" if failed != "filter" else
+                              "fallback: refined command failed a filter the sampled one passed")
+                if closer_by is not None:
+                    info["qp_closer_by"] = closer_by
                 return u0
-            # sequential linearisation: the refined trajectory met an obstacle no row was
-            # linearised at, so add its rows, linearised at the refined command, and solve again
-            g2, gap2, m2 = more
-            row_grads = np.vstack([row_grads, g2])
-            row_lb = np.r_[row_lb, m2 - gap2 + g2 @ x]
-        if info.get("mode") == "sample" and not self._legal_after_filters(check, step, i):
-            info["qp"] = "fallback: refined command failed a filter the sampled one passed"
-            return u0
-        info["qp"] = "solved"
+            break
+        u = (float(x[0]), float(x[1]), float(x[2]) if n_u == 3 else 0.0)
+        info["qp"] = "solved" if "qp_fraction" not in info else f"solved: {info['qp_fraction']:g} of the step"
         info["qp_slack"] = float(x_opt[n_u])
         # a solved QP may hand back the sample itself (its optimum); benchmarks count real changes
         info["qp_change"] = float(max(abs(a - b) for a, b in zip(u, u0)))
