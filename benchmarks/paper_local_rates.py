@@ -3,6 +3,7 @@ successes (issue 28): goal reached with no collision, per scenario, over a seed 
 
     python benchmarks/paper_local_rates.py li2023 [--seeds 0-9] [--cache DIR] [--workers 2]
     python benchmarks/paper_local_rates.py yang2023 --seeds 100-109
+    python benchmarks/paper_local_rates.py li2023 --seeds 300-309 --movers once
     python benchmarks/paper_local_rates.py hou2024 [--params '{"horizon": 3.0}']
         [--options '{"subgoal_options": {"lookahead_time": 3.0}}']
 
@@ -11,7 +12,9 @@ li2023_local_exp2, yang2023_local_fusion, hou2024_local_dynamic) and its paper's
 the global plan of a seed is shared by every run of that seed and, with ``--cache``, kept on
 disk between invocations (it is the slow part). ``--params`` go to the local planner,
 ``--options`` to ``op.simulate``. Seeds 0-9 are the development seeds of the issue 28 audit,
-100-109 the held-out ones. One line per run, then ``preset scenario: successes/runs``.
+100-109 the held-out ones. ``--movers once`` has each random mover cross the path once, from
+an origin, as the papers' figures draw them (hou2024 §4.5, li2023 §6.2), instead of shuttling
+across it for the whole run. One line per run, then ``preset scenario: successes/runs``.
 """
 from __future__ import annotations
 
@@ -19,6 +22,7 @@ import argparse
 import json
 import os
 import pickle
+from dataclasses import replace
 from concurrent.futures import ProcessPoolExecutor
 
 EXPERIMENTS = {
@@ -45,11 +49,14 @@ def global_plan(scenario: str, planner: str, options: dict, seed: int, cache: st
 
 
 def one_run(job) -> tuple:
-    from optplan.sim.closed_loop import simulate
+    from optplan.sim.closed_loop import scenario_for, simulate
 
-    preset, scenario, planner, gopts, seed, params, options, cache = job
+    preset, scenario, planner, gopts, seed, params, options, cache, motion = job
     plan = global_plan(scenario, planner, gopts, seed, cache)
-    r = simulate(scenario, global_planner=planner, local_planner=preset, seed=seed, global_plan=plan,
+    sc = scenario_for(scenario)
+    if motion:
+        sc = replace(sc, random_dynamic={**sc.random_dynamic, "motion": motion})
+    r = simulate(sc, global_planner=planner, local_planner=preset, seed=seed, global_plan=plan,
                  planner_params=params, **options)
     return scenario, seed, r.reached and r.collisions == 0, r.status, r.collisions, r.time_s, r.path_length
 
@@ -63,11 +70,14 @@ def main(argv=None) -> int:
     ap.add_argument("--cache", default=None, help="directory for the global plans")
     ap.add_argument("--workers", type=int, default=1)
     ap.add_argument("--only", default=None, help="run only the scenarios whose name ends with this")
+    ap.add_argument("--movers", default=None, choices=("shuttle", "once"),
+                    help="the random movers' motion (random_dynamic.motion; default: the scenario's, shuttle)")
     a = ap.parse_args(argv)
     preset, scenarios, planner, gopts = EXPERIMENTS[a.paper]
     scenarios = [sc for sc in scenarios if a.only is None or sc.endswith(a.only)]
     lo, hi = (int(x) for x in a.seeds.split("-"))
-    jobs = [(preset, sc, planner, gopts, s, json.loads(a.params), json.loads(a.options), a.cache)
+    jobs = [(preset, sc, planner, gopts, s, json.loads(a.params), json.loads(a.options), a.cache,
+             a.movers)
             for sc in scenarios for s in range(lo, hi + 1)]
     ok: dict[str, list[bool]] = {}
     with ProcessPoolExecutor(a.workers) as ex:

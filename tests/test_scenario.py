@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import math
 import warnings
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -271,3 +272,56 @@ def test_a_bouncing_mover_that_starts_over_the_border_is_not_moved():
     assert np.allclose(parked.state(1.0, bounds)[0], (9.8, 3.5))
     exact = DynamicObstacle(3.0, start=np.array([5.0, 3.0]), velocity=np.array([0.5, 0.5]))  # just fits in y
     assert np.allclose(exact.state(1.7, bounds), [(5.85, 3.0), (0.5, 0.0)])
+
+
+def test_a_delayed_mover_waits_where_it_stands_then_drives():
+    bounds = (0.0, 0.0, 10.0, 6.0)
+    late = DynamicObstacle(0.3, waypoints=np.array([[1.0, 1.0], [3.0, 1.0]]), speed=0.5, loop=False, delay=4.0)
+    pos, vel = late.states([0.0, 3.9, 5.0, 100.0], bounds)
+    assert np.allclose(pos, [(1, 1), (1, 1), (1.5, 1), (3, 1)])
+    assert np.allclose(vel, [(0, 0), (0, 0), (0.5, 0), (0, 0)])
+    sc = _room(dynamic_obstacles=[{"radius": 0.4, "waypoints": [[5, 1], [5, 5]], "speed": 1.0, "delay": 2.5}])
+    assert sc.dynamic[0].delay == 2.5 and np.allclose(sc.dynamic[0].state(3.5, sc.bounds)[0], (5, 2))
+    with pytest.raises(ScenarioError, match="delay"):
+        _room(dynamic_obstacles=[{"radius": 0.4, "waypoints": [[5, 1], [5, 5]], "speed": 1.0, "delay": -1}])
+    with pytest.raises(ScenarioError, match="delay"):
+        _room(dynamic_obstacles=[{"radius": 0.4, "start": [5, 1], "velocity": [0, 1], "delay": 1}])
+
+
+def test_timing_jitter_spends_a_movers_wait_before_its_route():
+    sc = _room(dynamic_obstacles=[{"radius": 0.3, "waypoints": [[5, 1], [5, 5]], "speed": 1.0, "loop": False,
+                                   "delay": 100.0}], timing_jitter=3.0)
+    ob = realize(sc, 0).dynamic[0]
+    assert 97.0 <= ob.delay < 100.0 and ob.phase == 0.0  # still waiting: not moved along
+
+
+def test_movers_drawn_to_cross_once_meet_a_robot_driving_the_path():
+    """``motion: once``: each mover drives its track once, from one end to the other, and is on
+    the reference path when a robot driving that path at 30-100 % of v_max would be there."""
+    from optplan.worldgen.scenarios import reference_path
+
+    sc = load_scenario("li2023_exp2_5")
+    once = replace(sc, random_dynamic={**sc.random_dynamic, "motion": "once"})
+    path = reference_path(once)
+    arc = np.r_[0.0, np.cumsum(np.hypot(*np.diff(path, axis=0).T))]
+    timed = 0
+    for seed in range(4):
+        movers = realize(once, seed).dynamic
+        assert len(movers) == 5 and all(not m.loop for m in movers)
+        for m in movers:
+            a, b = m.waypoints
+            t = np.linspace(0.0, 200.0, 20001)
+            pos, _ = m.states(t, once.bounds)
+            assert np.allclose(pos[-1], b) and np.allclose(pos[0], a + (b - a) * m.phase / np.hypot(*(b - a)))
+            # when the mover's centre is nearest the path, a robot on the path would be there
+            d = np.hypot(*(pos[:, None, :] - path[None]).transpose(2, 0, 1))
+            k = int(np.argmin(d.min(axis=1)))
+            at = arc[int(np.argmin(d[k]))]
+            if m.phase == 0.0:  # (a mover that would have had to start before t = 0 is late)
+                assert at / once.robot.v_max - 0.5 <= t[k] <= at / (0.3 * once.robot.v_max) + 0.5
+                timed += 1
+    assert timed >= 10  # of the 20 movers    assert _room(random_dynamic={"count": 1, "motion": "once"}).random_dynamic["motion"] == "once"
+    assert _room(random_dynamic={"count": 1}).random_dynamic["motion"] == "shuttle"
+    with pytest.raises(ScenarioError, match="motion"):
+        _room(random_dynamic={"count": 1, "motion": "twice"})
+

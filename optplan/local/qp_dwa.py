@@ -19,10 +19,14 @@
    half-width so a step across the window costs the same in ``v`` and ``w``. The position
    derivatives ``dz/du`` come from the rollout formula of ``rollout.py`` in closed form.
    The QP is not run when ``u0`` meets every row by its margin (``u0`` is then its
-   optimum). The result is checked on the exact rollout (admissible and no closer to
-   obstacles than ``u0``) and by the filters, as they judged ``u0`` (``passes_like``); on any
-   non-solved OSQP status or a failed check the sampled ``u0`` is used and ``info["qp"]``
-   says why.
+   optimum) or no command of the window moves a row's point. The result is checked on the
+   exact rollout (admissible, no earlier mover contact, no closer to obstacles than ``u0``)
+   and by the filters, as they judged ``u0`` (``passes_like``). A result that comes closer to
+   an obstacle no row was linearised at gets a second pass (``qp_passes``): rows linearised
+   at the result are added and the QP is solved again. A result that still fails a check is
+   shortened towards ``u0`` (half, then a quarter of the step; the QP's convex objective
+   falls all the way). On a non-solved OSQP status, or when no step passes, the sampled
+   ``u0`` is used; ``info["qp"]`` says which case happened.
 3. **Ruckig** (``limiter.RuckigLimiter``): the refined velocity becomes the target of a
    jerk-limited profile; the command is the profile one period ahead.
 4. **Recursive feasibility** (``safe_continuation``): the command is sent only if, after it,

@@ -22,6 +22,7 @@ class DynamicObstacle:
         speed: m/s along the polygon.
         loop: drive the polygon closed and repeat (``False``: stop at the last waypoint).
         phase: metres along the polygon already driven at ``t = 0``.
+        delay: seconds a waypoint mover waits where it stands at ``t = 0`` before it drives.
         start: ``(2,)`` position at ``t = 0`` of a constant-velocity mover, else ``None``.
         velocity: ``(2,)`` m/s of a constant-velocity mover.
         at_border: ``bounce``, ``stop`` or ``pass`` (constant-velocity movers).
@@ -35,6 +36,7 @@ class DynamicObstacle:
     start: np.ndarray | None = None
     velocity: np.ndarray | None = None
     at_border: str = "bounce"
+    delay: float = 0.0
 
     def state(self, t: float, bounds: tuple[float, float, float, float]) -> tuple[np.ndarray, np.ndarray]:
         """Position ``(2,)`` (m) and velocity ``(2,)`` (m/s) at time ``t`` (s), in closed form."""
@@ -67,7 +69,8 @@ class DynamicObstacle:
         total = cum[-1]
         if total <= 0:
             return still
-        s = self.phase + self.speed * t
+        driving = t - self.delay
+        s = self.phase + self.speed * np.maximum(driving, 0.0)
         if self.loop:
             s = s % total
         i = np.clip(np.searchsorted(cum, s, side="right") - 1, 0, len(seg) - 1)
@@ -84,6 +87,7 @@ class DynamicObstacle:
             done = s >= total
             pos[done] = P[-1]
             vel[done] = 0.0
+        vel[driving < 0] = 0.0
         return pos, vel
 
     def _constant_velocity(self, t: float, bounds) -> tuple[np.ndarray, np.ndarray]:
@@ -131,6 +135,7 @@ def check_mover(ob: DynamicObstacle, i: int, bounds=None) -> None:
     if ob.waypoints is not None:
         file_number(ob.speed, f"{key}.speed", non_negative=True)
         file_number(ob.phase, f"{key}.phase", non_negative=True)
+        file_number(ob.delay, f"{key}.delay", non_negative=True)
     else:
         if ob.velocity is None or np.shape(ob.velocity) != (2,) or not np.all(np.isfinite(ob.velocity)):
             raise ScenarioError(f"{key}.velocity must be [vx, vy] in m/s")

@@ -32,8 +32,9 @@ Optional keys added by optplan (all validated like the rest):
 * ``dynamic_obstacles[i].loop``: ``true`` (default) drives the waypoint polygon closed,
   back to the first waypoint and round again (two waypoints: back and forth);
   ``false`` stops at the last waypoint. ``phase`` (m, default 0) is the distance along
-  the polygon already driven at ``t = 0``. Waypoints that are all one point make a mover
-  that stands there.
+  the polygon already driven at ``t = 0``; ``delay`` (s, default 0) is how long the mover
+  waits where it stands at ``t = 0`` before it drives. Waypoints that are all one point make
+  a mover that stands there.
 * ``dynamic_obstacles[i].at_border`` for constant-velocity obstacles: ``bounce``
   (default; reflect off the map border shrunk by the obstacle radius), ``stop`` (halt
   where the disc first touches the border) or ``pass`` (leave the map). A bouncing disc
@@ -45,8 +46,8 @@ Optional keys added by optplan (all validated like the rest):
   robot is given, or the known map's shortest path when none is) at least ``keep_away`` m
   (default 2) from start and goal; draws that would leave the goal unreachable for
   the robot's footprint are redrawn. This is hou2024 §4.4 "random obstacles".
-* ``random_dynamic: {count, radius, speed: [lo, hi], length: [lo, hi], keep_away}``:
-  ``count`` obstacles drawn from the seed, each driving back and forth along a straight
+* ``random_dynamic: {count, radius, speed: [lo, hi], length: [lo, hi], keep_away, motion}``:
+  ``count`` obstacles drawn from the seed, each driving along a straight
   segment of the given length range that crosses the reference path (at
   least ``keep_away`` m, default 3, from start and goal) at a random angle of 60-120
   degrees, with a random phase; segments are kept free of known obstacles and the border
@@ -57,7 +58,13 @@ Optional keys added by optplan (all validated like the rest):
   movers never touch (both radii + 0.1 m), and must cross the reference path once
   (not run along it), so a robot that cannot reverse can always wait outside one
   mover's sweep. Sweeps of different movers may overlap along the path; the robot
-  then has to cross them together.
+  then has to cross them together. ``motion: shuttle`` (default) drives each segment back
+  and forth for the whole run, from a random phase; ``motion: once`` drives it once, from one
+  end (drawn) to the other, where the mover then stands, timed to cross the reference path
+  when a robot driving that path from the start at a speed drawn between 30 % and 100 % of
+  its ``v_max`` would get there (it waits at its first end until it must set off; a mover
+  that would have had to start before ``t = 0`` starts part-way). This is how hou2024 §4.5 and
+  li2023 §6.2 draw their movers: an origin and a path.
 
 * Draws no map can hold are refused when the file is read: more random obstacles than
   the map has cells (at most 10,000) or blocks wider than the map, and more random
@@ -171,7 +178,8 @@ def _read_movers(items) -> list[DynamicObstacle]:
     out = []
     for i, item in enumerate(items):
         key = f"dynamic_obstacles[{i}]"
-        item = file_mapping(item, key, ("radius", "waypoints", "speed", "loop", "phase", "start", "velocity", "at_border"))
+        item = file_mapping(item, key, ("radius", "waypoints", "speed", "loop", "phase", "delay", "start", "velocity",
+                                            "at_border"))
         if "radius" not in item:
             raise ScenarioError(f"{key} is missing 'radius' (metres)")
         radius = file_number(item["radius"], f"{key}.radius", positive=True)
@@ -186,9 +194,10 @@ def _read_movers(items) -> list[DynamicObstacle]:
                 raise ScenarioError(f"{key}.loop must be true or false, got {loop!r}")
             out.append(DynamicObstacle(radius, waypoints=file_points(item["waypoints"], f"{key}.waypoints"),
                                        speed=file_number(item["speed"], f"{key}.speed", non_negative=True), loop=loop,
-                                       phase=file_number(item.get("phase", 0.0), f"{key}.phase", non_negative=True)))
+                                       phase=file_number(item.get("phase", 0.0), f"{key}.phase", non_negative=True),
+                                       delay=file_number(item.get("delay", 0.0), f"{key}.delay", non_negative=True)))
         elif "start" in item:
-            extra = {"speed", "loop", "phase"} & set(item)
+            extra = {"speed", "loop", "phase", "delay"} & set(item)
             if extra:
                 raise ScenarioError(f"{key} mixes start/velocity with {sorted(extra)}")
             if "velocity" not in item:
@@ -201,6 +210,9 @@ def _read_movers(items) -> list[DynamicObstacle]:
         else:
             raise ScenarioError(f"{key} needs 'waypoints' + 'speed' or 'start' + 'velocity'")
     return out
+
+
+MOVER_MOTIONS = ("shuttle", "once")  # random_dynamic.motion
 
 
 def _read_random(spec, key: str, allowed: dict[str, Any]) -> dict | None:
@@ -216,6 +228,10 @@ def _read_random(spec, key: str, allowed: dict[str, Any]) -> dict | None:
         raise ScenarioError(f"{key}.count must be a non-negative integer, got {c!r}")
     for k, v in out.items():
         if k == "count":
+            continue
+        if k == "motion":
+            if v not in MOVER_MOTIONS:
+                raise ScenarioError(f"{key}.motion must be one of {', '.join(MOVER_MOTIONS)}, got {v!r}")
             continue
         if isinstance(allowed[k], tuple):
             out[k] = file_range(v, f"{key}.{k}")
@@ -272,7 +288,7 @@ def scenario_from_dict(data: dict, base_dir: str | os.PathLike | None = None, so
                                     {"count": 0, "size": 1.0, "keep_away": 2.0})
     random_dynamic = _read_random(data.get("random_dynamic"), "random_dynamic",
                                   {"count": 0, "radius": 0.3, "speed": (0.3, 0.6), "length": (3.0, 8.0),
-                                   "keep_away": 3.0})
+                                   "keep_away": 3.0, "motion": "shuttle"})
     return Scenario(world, robot, start, goal, unknown_cells=cells, unknown_circles=circles,
                     dynamic=_read_movers(data.get("dynamic_obstacles")), random_obstacles=random_obstacles,
                     random_dynamic=random_dynamic, source=source, **kwargs)

@@ -140,7 +140,9 @@ def _jitter_movers(sc: Scenario, rng) -> list[DynamicObstacle]:
         for _ in range(20):
             shift = float(rng.uniform(0.0, sc.timing_jitter))
             if ob.waypoints is not None:
-                moved = replace(ob, phase=ob.phase + ob.speed * shift)
+                # the wait at the start first, then along the route
+                moved = replace(ob, delay=max(ob.delay - shift, 0.0),
+                                phase=ob.phase + ob.speed * max(shift - ob.delay, 0.0))
             else:
                 pos, vel = ob.state(shift, sc.bounds)
                 moved = replace(ob, start=pos, velocity=vel if ob.at_border != "stop" else ob.velocity)
@@ -219,7 +221,27 @@ def _draw_random_movers(sc: Scenario, spec: dict, rng, path: np.ndarray) -> list
                for other in out):
             continue
         speed = rng.uniform(*spec["speed"])
+        phase = rng.uniform(0, 2 * np.hypot(*(b - a)))
+        if spec.get("motion", "shuttle") == "once":
+            out.append(_once_across(sc, path, i, a, b, radius, speed, rng))
+            continue
         ob = DynamicObstacle(radius, waypoints=np.round(np.array([a, b]), 3), speed=round(float(speed), 3), loop=True,
-                             phase=round(float(rng.uniform(0, 2 * np.hypot(*(b - a)))), 3))
+                             phase=round(float(phase), 3))
         out.append(ob)
     return out
+
+
+def _once_across(sc: Scenario, path: np.ndarray, i: int, a: np.ndarray, b: np.ndarray, radius: float,
+                 speed: float, rng) -> DynamicObstacle:
+    """A mover that drives the segment once, from an end drawn from ``rng`` to the other, timed
+    to cross the reference path (at ``path[i]``, on the segment) when a robot driving the path
+    from the start at 30-100 % of its ``v_max`` (drawn) would get there."""
+    if rng.random() < 0.5:
+        a, b = b, a
+    arc = float(np.hypot(*np.diff(path[:i + 1], axis=0).T).sum())
+    meet = arc / (sc.robot.v_max * rng.uniform(0.3, 1.0))
+    wait = meet - float(np.hypot(*(path[i] - a))) / speed
+    length = float(np.hypot(*(b - a)))
+    delay, phase = (wait, 0.0) if wait >= 0 else (0.0, min(-wait * speed, length))
+    return DynamicObstacle(radius, waypoints=np.round(np.array([a, b]), 3), speed=round(float(speed), 3), loop=False,
+                           phase=round(phase, 3), delay=round(delay, 3))
