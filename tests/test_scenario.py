@@ -297,7 +297,8 @@ def test_timing_jitter_spends_a_movers_wait_before_its_route():
 
 def test_movers_drawn_to_cross_once_meet_a_robot_driving_the_path():
     """``motion: once``: each mover drives its track once, from one end to the other, and is on
-    the reference path when a robot driving that path at 30-100 % of v_max would be there."""
+    the reference path when a robot driving that path at 30-100 % of v_max would be there; it
+    then stands clear of the path (parked on it, it blocked a corridor for good)."""
     from optplan.worldgen.scenarios import reference_path
 
     sc = load_scenario("li2023_exp2_5")
@@ -313,6 +314,8 @@ def test_movers_drawn_to_cross_once_meet_a_robot_driving_the_path():
             t = np.linspace(0.0, 200.0, 20001)
             pos, _ = m.states(t, once.bounds)
             assert np.allclose(pos[-1], b) and np.allclose(pos[0], a + (b - a) * m.phase / np.hypot(*(b - a)))
+            # where it stands at the end leaves the path free, as start and goal must
+            assert np.hypot(*(path - b).T).min() >= m.radius + once.robot.radius + 0.5 - 1e-3
             # when the mover's centre is nearest the path, a robot on the path would be there
             d = np.hypot(*(pos[:, None, :] - path[None]).transpose(2, 0, 1))
             k = int(np.argmin(d.min(axis=1)))

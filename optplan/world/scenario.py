@@ -60,7 +60,8 @@ Optional keys added by optplan (all validated like the rest):
   mover's sweep. Sweeps of different movers may overlap along the path; the robot
   then has to cross them together. ``motion: shuttle`` (default) drives each segment back
   and forth for the whole run, from a random phase; ``motion: once`` drives it once, from one
-  end (drawn) to the other, where the mover then stands, timed to cross the reference path
+  end to the other, where the mover then stands (an end as far from the path as start and goal
+  must be; drawn when both are), timed to cross the reference path
   when a robot driving that path from the start at a speed drawn between 30 % and 100 % of
   its ``v_max`` would get there (it waits at its first end until it must set off; a mover
   that would have had to start before ``t = 0`` starts part-way). This is how hou2024 §4.5 and

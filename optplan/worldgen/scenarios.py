@@ -223,6 +223,13 @@ def _draw_random_movers(sc: Scenario, spec: dict, rng, path: np.ndarray) -> list
         speed = rng.uniform(*spec["speed"])
         phase = rng.uniform(0, 2 * np.hypot(*(b - a)))
         if spec.get("motion", "shuttle") == "once":
+            # it stands where it ends, so it must end where it leaves the path free (as start
+            # and goal are left free): a mover parked on the path blocks a corridor for good
+            clear = [float(np.hypot(*(path - e).T).min()) >= near for e in (a, b)]
+            if not any(clear):
+                continue
+            if not clear[1] or (clear[0] and rng.random() < 0.5):
+                a, b = b, a
             out.append(_once_across(sc, path, i, a, b, radius, speed, rng))
             continue
         ob = DynamicObstacle(radius, waypoints=np.round(np.array([a, b]), 3), speed=round(float(speed), 3), loop=True,
@@ -233,11 +240,9 @@ def _draw_random_movers(sc: Scenario, spec: dict, rng, path: np.ndarray) -> list
 
 def _once_across(sc: Scenario, path: np.ndarray, i: int, a: np.ndarray, b: np.ndarray, radius: float,
                  speed: float, rng) -> DynamicObstacle:
-    """A mover that drives the segment once, from an end drawn from ``rng`` to the other, timed
-    to cross the reference path (at ``path[i]``, on the segment) when a robot driving the path
-    from the start at 30-100 % of its ``v_max`` (drawn) would get there."""
-    if rng.random() < 0.5:
-        a, b = b, a
+    """A mover that drives the segment once, from ``a`` to ``b``, timed to cross the reference
+    path (at ``path[i]``, on the segment) when a robot driving the path from the start at
+    30-100 % of its ``v_max`` (drawn from ``rng``) would get there."""
     arc = float(np.hypot(*np.diff(path[:i + 1], axis=0).T).sum())
     meet = arc / (sc.robot.v_max * rng.uniform(0.3, 1.0))
     wait = meet - float(np.hypot(*(path[i] - a))) / speed
