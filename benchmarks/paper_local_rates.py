@@ -22,7 +22,6 @@ import argparse
 import json
 import os
 import pickle
-from dataclasses import replace
 from concurrent.futures import ProcessPoolExecutor
 
 EXPERIMENTS = {
@@ -49,16 +48,26 @@ def global_plan(scenario: str, planner: str, options: dict, seed: int, cache: st
 
 
 def one_run(job) -> tuple:
-    from optplan.sim.closed_loop import scenario_for, simulate
+    import numpy as np
+
+    from optplan.sim.closed_loop import realized_scenario, simulate
+    from optplan.sim.environment import SimEnvironment
 
     preset, scenario, planner, gopts, seed, params, options, cache, motion = job
     plan = global_plan(scenario, planner, gopts, seed, cache)
-    sc = scenario_for(scenario)
     if motion:
-        sc = replace(sc, random_dynamic={**sc.random_dynamic, "motion": motion})
-    r = simulate(sc, global_planner=planner, local_planner=preset, seed=seed, global_plan=plan,
+        options = {**options, "mover_motion": motion}
+    r = simulate(scenario, global_planner=planner, local_planner=preset, seed=seed, global_plan=plan,
                  planner_params=params, **options)
-    return scenario, seed, r.reached and r.collisions == 0, r.status, r.collisions, r.time_s, r.path_length
+    # how close the run came to a mover (edge to edge): a run that never met one tells little
+    world = realized_scenario(scenario, seed, plan, options.get("mover_motion"))
+    env = SimEnvironment(world)
+    closest = np.inf
+    for t, x, y in r.trajectory[:, :3]:
+        m = env.movers(t)
+        if len(m):
+            closest = min(closest, float((np.hypot(m[:, 0] - x, m[:, 1] - y) - m[:, 4]).min()) - world.robot.radius)
+    return scenario, seed, r.reached and r.collisions == 0, r.status, r.collisions, r.time_s, r.path_length, closest
 
 
 def main(argv=None) -> int:
@@ -81,11 +90,14 @@ def main(argv=None) -> int:
             for sc in scenarios for s in range(lo, hi + 1)]
     ok: dict[str, list[bool]] = {}
     with ProcessPoolExecutor(a.workers) as ex:
-        for sc, seed, good, status, coll, t, length in ex.map(one_run, jobs):
-            ok.setdefault(sc, []).append(good)
-            print(f"{sc} seed {seed}: {status}, {coll} collision periods, {t:.1f} s, {length:.2f} m", flush=True)
+        for sc, seed, good, status, coll, t, length, closest in ex.map(one_run, jobs):
+            ok.setdefault(sc, []).append((good, closest))
+            print(f"{sc} seed {seed}: {status}, {coll} collision periods, {t:.1f} s, {length:.2f} m, "
+                  f"closest to a mover {closest:.2f} m", flush=True)
     for sc, v in ok.items():
-        print(f"{preset} {sc}: {sum(v)}/{len(v)}")
+        near = [c for _, c in v]
+        print(f"{preset} {sc}: {sum(g for g, _ in v)}/{len(v)}; came within 0.5 m of a mover in "
+              f"{sum(c < 0.5 for c in near)}, within 1 m in {sum(c < 1.0 for c in near)}")
     return 0
 
 

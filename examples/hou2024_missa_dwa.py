@@ -34,6 +34,9 @@ def main(argv=None) -> int:
     ap.add_argument("--runs", type=int, default=50)
     ap.add_argument("--quick", action="store_true", help="one map, 3 runs, 60 iterations")
     ap.add_argument("--iters", type=int, default=None, help="iterations of the global planner")
+    ap.add_argument("--movers", choices=["once", "shuttle"], default="once",
+                    help="--part local: random movers cross the path once, from an origin, as the paper draws "
+                         "them (default), or shuttle across it for the whole run (harder)")
     ap.add_argument("--gif", metavar="FILE.gif", help="--part local: also write an animation of one run")
     args = ap.parse_args(argv)
     if args.part == "local":
@@ -53,8 +56,9 @@ def part_local(args) -> int:
         gopts = {"pop": 60, "iters": args.iters or 300}
         paper_local("hou2024 Table 4 analog: random unknown obstacles (MISSA global path)",
                     [f"hou2024_table4_{k}" for k in range(4)], runs, global_planner="missa", global_options=gopts)
-        paper_local("hou2024 §4.5 analog: dynamic environments 1-4 (MISSA global path)",
-                    [f"hou2024_dynamic{k}" for k in range(1, 5)], runs, global_planner="missa", global_options=gopts)
+        paper_local(f"hou2024 §4.5 analog: dynamic environments 1-4 (MISSA global path; movers {args.movers})",
+                    [f"hou2024_dynamic{k}" for k in range(1, 5)], runs, global_planner="missa", global_options=gopts,
+                    mover_motion=args.movers)
     if args.gif:
         print(write_run_gif("hou2024_dynamic1", "missa-dwa", args.gif, global_planner="astar" if args.quick else "missa",
                         global_options=None if args.quick else {"pop": 60, "iters": args.iters or 300}))

@@ -41,6 +41,9 @@ def main(argv=None) -> int:
     ap.add_argument("--runs", type=int, default=20, help="runs per algorithm and map (default 20)")
     ap.add_argument("--quick", action="store_true", help="one map, 3 runs, short budgets (for tests)")
     ap.add_argument("--iters", type=int, default=None, help="--part local: iterations of the global planner")
+    ap.add_argument("--movers", choices=["once", "shuttle"], default="once",
+                    help="--part local: random movers cross the path once, from an origin, as the paper draws "
+                         "them (default), or shuttle across it for the whole run (harder)")
     ap.add_argument("--gif", metavar="FILE.gif", help="--part local: also write an animation of one run")
     ap.add_argument("--encoding", choices=["cells", "columns"], default="cells",
                     help="--part convergence: the paper's cell-sequence chromosome (default) or one cell per column")
@@ -127,8 +130,9 @@ def part_local(args) -> int:
         paper_local("li2023 Experiment I analog: static 11x11 map (IGA global path)", ["li2023_exp1"], args.runs,
                     global_planner="iga", global_options=gopts)
         movers = (2, 3, 4, 5)
-        sets = paper_local("li2023 Experiment II analog: 2-5 moving obstacles (IGA global path)",
-                           [f"li2023_exp2_{m}" for m in movers], args.runs, global_planner="iga", global_options=gopts)
+        sets = paper_local(f"li2023 Experiment II analog: 2-5 moving obstacles (IGA global path; movers {args.movers})",
+                           [f"li2023_exp2_{m}" for m in movers], args.runs, global_planner="iga", global_options=gopts,
+                           mover_motion=args.movers)
         print("## li2023 Figure 17 analog: mean path length [m] of successful runs by number of moving obstacles\n")
         planners = list(dict.fromkeys(s.planner for s in sets))
         print("| local planner | " + " | ".join(f"{m} movers" for m in movers) + " |")

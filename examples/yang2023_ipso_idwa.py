@@ -32,6 +32,9 @@ def main(argv=None) -> int:
     ap.add_argument("--runs", type=int, default=20)
     ap.add_argument("--quick", action="store_true", help="one environment, 3 runs, 40 iterations")
     ap.add_argument("--iters", type=int, default=None, help="--part local: iterations of the global planner")
+    ap.add_argument("--movers", choices=["once", "shuttle"], default="once",
+                    help="--part local: the fusion map's random movers cross the path once, from an origin, as "
+                         "the paper draws them (default), or shuttle across it for the whole run (harder)")
     ap.add_argument("--gif", metavar="FILE.gif", help="--part local: also write an animation of one run")
     args = ap.parse_args(argv)
     if args.part == "local":
@@ -50,8 +53,9 @@ def part_local(args) -> int:
     else:
         paper_local("yang2023 §7.2 analog: DWA vs IDWA, two crossing movers (radius 0.6 m, 0.6 m/s)",
                     ["yang2023_idwa_crossing"], args.runs)
-        paper_local("yang2023 §7.3 analog: fusion on the 25x25 dynamic map (IPSO global path)", ["yang2023_fusion"],
-                    args.runs, global_planner="ipso", global_options={"pop": 50, "iters": args.iters or 300})
+        paper_local(f"yang2023 §7.3 analog: fusion on the 25x25 dynamic map (IPSO global path; movers {args.movers})",
+                    ["yang2023_fusion"], args.runs, global_planner="ipso",
+                    global_options={"pop": 50, "iters": args.iters or 300}, mover_motion=args.movers)
     if args.gif:
         print(write_run_gif("yang2023_idwa_crossing", "idwa", args.gif))
     return 0

@@ -161,6 +161,9 @@ def _add_simulate_arguments(parser) -> None:
     parser.add_argument("--subgoals", default=None,
                         help="subgoal strategy: goal, key_points, turning_points, navigation_points "
                              "(default: the local planner's paper default)")
+    parser.add_argument("--movers", default=None, choices=("shuttle", "once"),
+                        help="motion of the scenario's random movers: back and forth for the whole run, or "
+                             "once across the path, as the papers draw them (default: the scenario's)")
     parser.add_argument("--json", action="store_true", help="print exactly one JSON object")
     parser.add_argument("--gif", metavar="FILE.gif", help="write an animation of the run")
     parser.add_argument("--progress", action="store_true", help="print a status line every 10 simulated seconds")
@@ -173,11 +176,11 @@ def _cmd_simulate(args) -> int:
     """Run ``optplan simulate``; returns the exit status: 0 when the robot reached the goal
     with no collision, :data:`EXIT_GOAL_MISSED` (1) when it did not (stuck, timed out or
     collided; the outcome is printed all the same)."""
-    from .sim.closed_loop import realized_scenario, scenario_for, simulate
+    from .sim.closed_loop import realized_scenario, scenario_for, simulate, with_mover_motion
     from .sim.experiments import plan_global
 
     _check_seed(args.seed)
-    scenario = scenario_for(args.scenario, args.seed)
+    scenario = with_mover_motion(scenario_for(args.scenario, args.seed), args.movers)
     options = {}
     if args.subgoals:
         options["subgoals"] = args.subgoals

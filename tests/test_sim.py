@@ -354,3 +354,19 @@ def test_the_movers_table_equals_each_movers_closed_form_at_every_control_instan
         off_grid = 0.05
         assert np.array_equal(env.movers(off_grid)[:, :2],
                               np.array([ob.state(off_grid, env.bounds)[0] for ob in sc.dynamic]))
+
+
+def test_mover_motion_option_sets_the_random_movers_motion_or_says_why_not():
+    from optplan.sim.closed_loop import realized_scenario
+
+    plan = op.plan(load_scenario("li2023_exp2_2").world, (0.5, 0.5), (9.5, 9.5), algorithm="astar", clearance=0.2)
+    shuttle = realized_scenario("li2023_exp2_2", 3, plan).dynamic
+    once = realized_scenario("li2023_exp2_2", 3, plan, mover_motion="once").dynamic
+    assert all(m.loop for m in shuttle) and not any(m.loop for m in once)
+    res = op.simulate("li2023_exp2_2", global_planner="astar", local_planner="dwa", seed=3, global_plan=plan,
+                      mover_motion="once", time_limit=1.0)
+    assert res.status == "timeout"
+    with pytest.raises(ParameterError, match="mover_motion must be one of"):
+        op.simulate("li2023_exp2_2", local_planner="dwa", mover_motion="twice", time_limit=1.0)
+    with pytest.raises(ParameterError, match="no random movers"):
+        op.simulate("li2023_exp1", local_planner="dwa", mover_motion="once", time_limit=1.0)

@@ -36,14 +36,15 @@ from ..local.base import LocalContext, MoverSweepSource
 from ..nav.navigator import Navigator, preset_defaults
 from ..results import SimResult
 from ..world.robot import Command, RobotState
-from ..world.scenario import Scenario, load_scenario
+from ..world.scenario import MOVER_MOTIONS, Scenario, load_scenario
 from ..worldgen.clutter import family_options, family_scenario
 from ..worldgen.scenarios import realize
 from .environment import SimEnvironment
 from .kinematics import step_pose
 
 OPTIONS = ("subgoals", "on_blocked", "stuck_time", "stuck_distance", "max_replans", "sweep_detour", "stop_on_collision",
-           "actuator_limits", "planner_params", "global_options", "subgoal_options", "progress", "time_limit", "global_plan")
+           "actuator_limits", "planner_params", "global_options", "subgoal_options", "progress", "time_limit", "global_plan",
+           "mover_motion")
 
 
 def make_planner(local_planner, robot, dt: float, params: dict):
@@ -124,6 +125,9 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
             progress: ``True`` prints a status line to stderr every 10 simulated seconds;
                 a number sets the interval; a callable gets ``(t, state, info)`` every period.
             time_limit: override the scenario's, seconds.
+            mover_motion: override the motion of the scenario's random movers
+                (``random_dynamic.motion``: ``"shuttle"`` or ``"once"``); a scenario without
+                random movers is a ``ParameterError``.
             global_plan: a PlanResult to follow instead of planning (e.g. one global plan
                 shared by several local planners; it must be for the same map, start and goal).
 
@@ -138,7 +142,7 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
     family = family_options(scenario)
     local_params = family.pop("local_params", {})
     options = {**family, **options}
-    sc = scenario_for(scenario, seed)
+    sc = with_mover_motion(scenario_for(scenario, seed), options.get("mover_motion"))
     if "time_limit" in options:
         sc = replace(sc, time_limit=options["time_limit"])
     robot, dt = sc.robot, sc.dt
@@ -253,10 +257,22 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
                    local_name, refine, seed)
 
 
-def realized_scenario(scenario, seed, global_plan) -> Scenario:
-    """The world a run of ``op.simulate(scenario, seed=seed, global_plan=global_plan)`` meets:
-    random obstacles drawn from ``seed`` on the global path (with the exact start and goal)."""
-    sc = scenario_for(scenario, seed)
+def with_mover_motion(sc: Scenario, motion: str | None) -> Scenario:
+    """``sc`` with its random movers' motion set to ``motion`` (``None``: unchanged)."""
+    if motion is None:
+        return sc
+    if motion not in MOVER_MOTIONS:
+        raise ParameterError(f"mover_motion must be one of {', '.join(MOVER_MOTIONS)}, got {motion!r}")
+    if not sc.random_dynamic:
+        raise ParameterError(f"mover_motion: scenario {sc.name or '(unnamed)'} has no random movers (random_dynamic)")
+    return replace(sc, random_dynamic={**sc.random_dynamic, "motion": motion})
+
+
+def realized_scenario(scenario, seed, global_plan, mover_motion: str | None = None) -> Scenario:
+    """The world a run of ``op.simulate(scenario, seed=seed, global_plan=global_plan,
+    mover_motion=mover_motion)`` meets: random obstacles drawn from ``seed`` on the global path
+    (with the exact start and goal)."""
+    sc = with_mover_motion(scenario_for(scenario, seed), mover_motion)
     nav = Navigator(sc.world, sc.robot, sc.start[:2], sc.goal)
     nav.plan_initial(global_plan)
     return realize(sc, seed, path=nav.path)
