@@ -159,6 +159,10 @@ class VelocityObstacle(Mechanism):
         keep = self.strict_filter(view, check)
         return keep is None or bool(keep[0])
 
+    def clearance_rows(self, view: PlannerView, step: Step, i: int) -> list:
+        """None: the cone test is on velocities, not a clearance."""
+        return []
+
     def report(self, step: Step) -> dict:
         threat = step.aux.get("vo_threat")
         return {} if threat is None else {"vo_threat": threat}

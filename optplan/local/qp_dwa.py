@@ -52,6 +52,7 @@ import numpy as np
 import osqp
 import scipy.sparse as sp
 
+from ..checks import boolean
 from ..errors import ParameterError
 from ..world.robot import RobotSpec, RobotState
 from .base import LocalContext
@@ -136,6 +137,7 @@ class QPDWAPlanner(DWAPlanner):
         "qp_activate": 0.6,      # obstacles closer than this to the chosen trajectory become rows, m
         "qp_rows_moving": 4,     # at most this many mover rows ...
         "qp_rows_static": 4,     # ... and static rows
+        "qp_rows_filters": 4,    # ... and rows for the filters' clearances (the sweep gate's intervals)
         "qp_max_iter": 10000,    # OSQP iteration budget (a non-solved status falls back)
         "qp_passes": 2,          # linearisations: a pass adds rows where the last result came close
         "ang_jerk_max": None,    # rad/s^3; None = jerk_max * alpha_max / a_max (same ramp time)
@@ -150,10 +152,12 @@ class QPDWAPlanner(DWAPlanner):
         o = self.options
         for k in ("qp_horizon", "qp_margin", "qp_activate"):
             o[k] = self._number(k, o[k], allow_zero=k == "qp_margin")
-        for k in ("qp_rows_moving", "qp_rows_static", "qp_max_iter", "qp_passes"):
+        for k in ("qp_rows_moving", "qp_rows_static", "qp_rows_filters", "qp_max_iter", "qp_passes"):
             if isinstance(o[k], bool) or not isinstance(o[k], (int, np.integer)) or o[k] < (1 if k in ("qp_max_iter", "qp_passes") else 0):
                 raise ParameterError(f"{k} must be a non-negative int, got {o[k]!r}")
             o[k] = int(o[k])
+        for k in ("qp_committed", "continuation_check"):
+            o[k] = boolean(k, o[k])
         if robot.jerk_max is None:
             self.jerk = (None, None)
         else:
@@ -175,7 +179,8 @@ class QPDWAPlanner(DWAPlanner):
     # ------------------------------------------------------------------ QP set-up (once)
     def _setup_qp(self, acc) -> None:
         n = self.n_u + 1  # + slack
-        m_rows = (self.options["qp_rows_moving"] + self.options["qp_rows_static"]) * self.options["qp_passes"]
+        o = self.options
+        m_rows = (o["qp_rows_moving"] + o["qp_rows_static"] + o["qp_rows_filters"]) * o["qp_passes"]
         half_width = np.asarray(acc, dtype=float) * (self.options["lookahead"] or self.dt)  # of the window
         self._half_width = half_width
         self._W = 1.0 / half_width ** 2
@@ -337,10 +342,12 @@ class QPDWAPlanner(DWAPlanner):
         offered = np.asarray(ctx.static_distance(np.column_stack([near.real, near.imag])), float).ravel()
         return np.clip(offered - self.robot.radius, 0.0, self.options["qp_margin"])
 
-    def _rows(self, ctx: LocalContext, step: Step, i: int):
+    def _rows(self, ctx: LocalContext, step: Step, i: int, filters: bool = False):
         """Linearised clearance rows ``(grad (k, n_u), gap0 (k,), margin (k,))`` at sample ``i``:
         mover rows over ``qp_horizon`` (movers come at the robot whatever it does), static
-        rows over the committed part only (:meth:`_committed`)."""
+        rows over the committed part only (:meth:`_committed`), and with ``filters`` the
+        filters' tests that are clearances (``clearance_rows``: the sweep gate's intervals),
+        as the filters judged sample ``i`` of ``step``."""
         o = self.options
         roll = step.roll
         H = max(1, min(roll.z.shape[1], int(round(o["qp_horizon"] / roll.dt))))
@@ -348,7 +355,7 @@ class QPDWAPlanner(DWAPlanner):
         z = roll.z[i, :H]
         R = self.robot.radius
         # the rows first: the derivative rollout below is only needed when one is active
-        mover_rows: list[tuple[int, int, float]] = []     # (mover, rollout point, gap)
+        mover_rows: list[tuple[int, int, float, float]] = []     # (mover, rollout point, gap, margin)
         if len(step.mover_r) and o["qp_rows_moving"]:
             d = np.abs(z[None, :] - step.movers[:, :H]) - step.mover_r[:, None] - R  # (K, H)
             k_t = np.argmin(d, axis=1)
@@ -356,7 +363,7 @@ class QPDWAPlanner(DWAPlanner):
             for k in np.argsort(g, kind="stable")[:o["qp_rows_moving"]]:
                 if g[k] >= o["qp_activate"]:
                     break
-                mover_rows.append((int(k), int(k_t[k]), float(g[k])))
+                mover_rows.append((int(k), int(k_t[k]), float(g[k]), o["qp_margin"]))
         picked: list[int] = []
         if o["qp_rows_static"]:
             sg = step.static_gap[i, :H_static]
@@ -365,20 +372,24 @@ class QPDWAPlanner(DWAPlanner):
                     break
                 if all(abs(t - q) >= 3 for q in picked):  # spread the rows along the trajectory
                     picked.append(int(t))
-        if not mover_rows and not picked:
+        gate = []
+        if filters and o["qp_rows_filters"]:
+            gate = sorted((row for m in self.roles.filters for row in m.clearance_rows(self.view, step, i)
+                           if row[2] < o["qp_activate"]), key=lambda row: row[2])[:o["qp_rows_filters"]]
+        if not mover_rows and not picked and not gate:
             return np.zeros((0, self.n_u)), np.zeros(0), np.zeros(0)
         # dz/du by forward differences of the planner's own rollout (constant or ramped)
         v, w, vy, h = roll.v[i], roll.w[i], roll.vy[i], 1e-4
         r = self.rollout_of(ctx.state, [v, v + h, v], [vy, vy, vy + h], [w, w + h])
-        zz = r.z[:, :H]  # rows: (v,w) (v,w+h) (v+h,w) (v+h,w+h) (vy+h,w) (vy+h,w+h)
+        zz = r.z  # rows: (v,w) (v,w+h) (v+h,w) (v+h,w+h) (vy+h,w) (vy+h,w+h)
         dz = [(zz[2] - zz[0]) / h, (zz[1] - zz[0]) / h, (zz[4] - zz[0]) / h][:self.n_u]
         grads, gaps, margins = [], [], []
-        for k, t, gap in mover_rows:
+        for k, t, gap, asked in mover_rows:
             nrm = z[t] - step.movers[k, t]
             nrm = nrm / abs(nrm) if abs(nrm) > 0 else 1.0
             grads.append([(np.conj(nrm) * dzc[t]).real for dzc in dz])
             gaps.append(gap)
-            margins.append(o["qp_margin"])
+            margins.append(asked)
         if picked:
             grad_z = static_gradient(ctx, z[picked])
             margins.extend(self._static_margins(ctx, z[picked]).tolist() if o["qp_committed"]
@@ -386,6 +397,10 @@ class QPDWAPlanner(DWAPlanner):
             for q, t in enumerate(picked):
                 grads.append([(np.conj(grad_z[q]) * dzc[t]).real for dzc in dz])
                 gaps.append(sg[t])
+        for t, normal, gap, asked in gate:
+            grads.append([(np.conj(normal) * dzc[t]).real for dzc in dz])
+            gaps.append(gap)
+            margins.append(asked)
         return (np.asarray(grads, dtype=float).reshape(-1, self.n_u), np.asarray(gaps, dtype=float),
                 np.asarray(margins, dtype=float))
 
@@ -450,7 +465,7 @@ class QPDWAPlanner(DWAPlanner):
                info: dict) -> tuple[float, float, float]:
         """The QP refinement of the sampled command ``u0`` (falls back to ``u0``)."""
         i = info["index"]
-        grads, gaps, margins = self._rows(ctx, step, i)
+        grads, gaps, margins = self._rows(ctx, step, i, filters=info.get("mode") == "sample")
         if len(gaps) == 0:
             info["qp"] = "inactive"
             return u0

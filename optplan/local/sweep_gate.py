@@ -330,6 +330,33 @@ class SweepGate(Mechanism, MoverSweepSource):
         gap = step.aux.get("gate_gap")
         return gap is not None and bool(check.aux["gate_gap"][0] >= gap[i] - 1e-9)
 
+    def clearance_rows(self, view, step, i: int) -> list[tuple[int, complex, float, float]]:
+        """Per track, the rollout point of sample ``i`` nearest to the interval the mover may
+        occupy then, the unit normal from the interval to it, its edge gap, and the gap the
+        filter asks: its margin (or the gap now, if smaller) when the sample kept off, or the
+        sample's own gap when the filter kept it as one that comes least close."""
+        gap = step.aux.get("gate_gap")
+        if not self._now or gap is None:
+            return []
+        roll, R = step.roll, view.robot.radius
+        z = roll.z[i]
+        rows, now = [], math.inf
+        for k in self._now:
+            s0, off0 = k.along(roll.z0)
+            now = min(now, math.hypot(off0, s0 - k.s) - k.radius - R)
+        asked = min(self.margin, now)
+        asked = asked if gap[i] >= asked else float(gap[i])
+        for k in self._now:
+            lo, hi = self.swept(k, roll.t)
+            q = (z - k.origin) * np.conj(k.axis)
+            nearest = np.clip(q.real, lo, hi)
+            d = np.hypot(q.real - nearest, q.imag) - k.radius - R
+            j = int(np.argmin(d))
+            off = z[j] - (k.origin + k.axis * nearest[j])
+            if abs(off) > 0:
+                rows.append((j, off / abs(off), float(d[j]), asked))
+        return rows
+
     def report(self, step) -> dict:
         return {"gate_rejected": step.aux["gate_rejected"]} if "gate_rejected" in step.aux else {}
 
