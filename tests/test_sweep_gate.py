@@ -226,6 +226,32 @@ def test_a_refined_command_is_judged_as_the_gate_judged_the_sample():
     assert not gate.passes_like(planner.view, alone(int(closer[0])), step, i)
 
 
+def test_the_gates_clearance_rows_are_its_gap_and_linearise_it():
+    """The gate's test as QP rows: the smallest row gap is the gate's gap of the sample, asked
+    as the gate judged it (here relaxed: no closer than the sample), and a small change of the
+    command moves the gate's gap as the row's normal and the rollout's derivative predict."""
+    planner = make_local_planner("qp-dwa", ROBOT, 0.1)
+    state = RobotState(x=4.8, y=3.0, theta=0.0, v=0.6)
+    planner.reset(state, np.array([[0.5, 3.0], [11.0, 3.0]]))
+    ctx = context(4.5, state)
+    (gate,) = [m for m in planner.mechanisms if isinstance(m, SweepGate)]
+    step = planner.evaluate(ctx, planner.window(ctx))
+    keep = gate.filter(planner.view, step)
+    i = int(np.flatnonzero(keep)[0])
+    rows = gate.clearance_rows(planner.view, step, i)
+    assert rows and min(r[2] for r in rows) == pytest.approx(step.aux["gate_gap"][i], abs=1e-9)
+    assert all(r[3] == pytest.approx(step.aux["gate_gap"][i]) for r in rows)  # relaxed: the sample's gap
+    t, normal, gap, _ = min(rows, key=lambda r: r[2])
+    r, h = step.roll, 1e-3
+    for dv, dw in ((h, 0.0), (0.0, h)):
+        moved = planner._assess(ctx, planner.rollout_of(state, [r.v[i] + dv], [r.vy[i]], [r.w[i] + dw]))
+        gate.strict_filter(planner.view, moved)
+        base = planner.rollout_of(state, [r.v[i]], [r.vy[i]], [r.w[i]])
+        predicted = gap + (np.conj(normal) * (moved.roll.z[0, t] - base.z[0, t])).real
+        change = moved.aux["gate_gap"][0] - gap
+        assert abs(change) > 1e-4 and abs(moved.aux["gate_gap"][0] - predicted) <= 0.15 * abs(change)
+
+
 def test_line_reach_stops_at_known_obstacles_and_the_border():
     wall = lambda p: 8.0 - np.asarray(p)[..., 0]  # a wall at x = 8 (signed distance from it)
     ctx = LocalContext(state=RobotState(1.0, 1.0, 0.0), subgoal=np.zeros(2), goal=np.zeros(2),
