@@ -180,7 +180,8 @@ class QPDWAPlanner(DWAPlanner):
     def _setup_qp(self, acc) -> None:
         n = self.n_u + 1  # + slack
         o = self.options
-        m_rows = (o["qp_rows_moving"] + o["qp_rows_static"] + o["qp_rows_filters"]) * o["qp_passes"]
+        # the first pass has every kind of row, each later one adds mover and static rows
+        m_rows = (o["qp_rows_moving"] + o["qp_rows_static"]) * o["qp_passes"] + o["qp_rows_filters"]
         half_width = np.asarray(acc, dtype=float) * (self.options["lookahead"] or self.dt)  # of the window
         self._half_width = half_width
         self._W = 1.0 / half_width ** 2
