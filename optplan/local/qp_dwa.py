@@ -483,7 +483,7 @@ class QPDWAPlanner(DWAPlanner):
             return u0
         grads, gaps, margins = grads[movable], gaps[movable], margins[movable]
         o = self.options
-        n_u, n = self.n_u, self._n_x
+        n_u = self.n_u
         x0 = np.array([u0[0], u0[1], u0[2]][:n_u])
         lo = np.array([window.v[0], window.w[0], window.vy[0]][:n_u])
         hi = np.array([window.v[1], window.w[1], window.vy[1]][:n_u])
