@@ -453,3 +453,13 @@ def test_missa_dwa_dynamic_distance_at_the_sensed_position():
         assert [c.at_sensed_position for c, _ in planner.terms if c.name == "dynamic_inverse"] == [want]
     with pytest.raises(op.ParameterError, match="at_sensed_position"):
         make_local_planner("missa-dwa", RobotSpec(), DT, dynamic_inverse={"at_sensed_position": "yes"})
+
+
+def test_a_robot_pinned_with_open_space_behind_keeps_turning_the_way_it_turns():
+    """li2023_exp2_3, seed 2, movers once: qp-dwa brakes for a mover into a pocket where open
+    space is behind it. The sampled step turned it left towards the goal, the escape turn
+    right (the short way to open space), one after the other, and it dithered there until
+    stuck. Keeping the turn it has begun gets it out."""
+    res = op.simulate("li2023_exp2_3", global_planner="astar", local_planner="qp-dwa", seed=2, mover_motion="once",
+                      time_limit=45.0)
+    assert res.reached and res.collisions == 0

@@ -42,6 +42,7 @@ from .window import Window, dynamic_window, sample_grid
 
 
 _PINNED = 0.05  # m: a robot whose admissible forward samples all stop within this is pinned
+_TURNING = 1e-3  # rad/s: an angular velocity that says which way the robot is turning
 
 
 @dataclass(frozen=True)
@@ -375,6 +376,12 @@ class DWAPlanner(MoverSweepSource):
         grad = static_gradient(ctx, [complex(ctx.state.x, ctx.state.y)])[0]
         away = math.atan2(grad.imag, grad.real)
         need = math.remainder(away - ctx.state.theta, 2 * math.pi)
+        w_now = ctx.state.w
+        if abs(need) > math.pi / 2 and need * w_now < 0 and abs(w_now) > _TURNING:
+            # open space is behind the robot, so either way round is a long turn: keep turning
+            # the way it turns. Turning the short way against the turn the sampled step had
+            # begun made the two alternate, and the robot dithered in a corner for good
+            need += math.copysign(2 * math.pi, w_now)
         miss = np.abs(need - roll.w * ctx.dt)
         miss[~pool] = np.inf
         return int(np.argmin(miss))
