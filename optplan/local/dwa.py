@@ -18,7 +18,8 @@ comes latest and that stays farthest from the movers is taken ("evade"); when no
 admissible the sample that misses its stopping distance by the least is taken. A robot
 pinned by static obstacles (every admissible forward sample stops within a few
 centimetres) turns in place to face away from them ("escape-turn"), instead of towards
-the goal, which would keep it pinned. The case is reported in ``Command.info["mode"]``.
+the goal, which would keep it pinned; when open space is behind it, it keeps turning the
+way it already turns. The case is reported in ``Command.info["mode"]``.
 """
 from __future__ import annotations
 
