@@ -245,7 +245,7 @@ def _once_across(sc: Scenario, path: np.ndarray, i: int, a: np.ndarray, b: np.nd
     30-100 % of its ``v_max`` (drawn from ``rng``) would get there."""
     arc = float(np.hypot(*np.diff(path[:i + 1], axis=0).T).sum())
     meet = arc / (sc.robot.v_max * rng.uniform(0.3, 1.0))
-    wait = meet - float(np.hypot(*(path[i] - a))) / speed
+    wait = meet - float(np.hypot(*(path[i] - a))) / speed if speed > 0 else 0.0  # a still mover stands
     length = float(np.hypot(*(b - a)))
     delay, phase = (wait, 0.0) if wait >= 0 else (0.0, min(-wait * speed, length))
     return DynamicObstacle(radius, waypoints=np.round(np.array([a, b]), 3), speed=round(float(speed), 3), loop=False,
