@@ -339,23 +339,24 @@ class SweepGate(Mechanism, MoverSweepSource):
         if not self._now or gap is None:
             return []
         roll, R = step.roll, view.robot.radius
-        z = roll.z[i]
-        rows, now = [], math.inf
-        for k in self._now:
-            s0, off0 = k.along(roll.z0)
-            now = min(now, math.hypot(off0, s0 - k.s) - k.radius - R)
+        tracks = self._now
+        origin = np.array([k.origin for k in tracks])
+        axis = np.array([k.axis for k in tracks])
+        radius = np.array([k.radius for k in tracks])
+        swept = [self.swept(k, roll.t) for k in tracks]
+        lo, hi = np.array([w[0] for w in swept]), np.array([w[1] for w in swept])
+        here = (roll.z0 - origin) * np.conj(axis)  # along (real) and off (imaginary) each line, now
+        now = float(np.min(np.hypot(np.abs(here.imag), here.real - np.array([k.s for k in tracks])) - radius - R))
         asked = min(self.margin, now)
         asked = asked if gap[i] >= asked else float(gap[i])
-        for k in self._now:
-            lo, hi = self.swept(k, roll.t)
-            q = (z - k.origin) * np.conj(k.axis)
-            nearest = np.clip(q.real, lo, hi)
-            d = np.hypot(q.real - nearest, q.imag) - k.radius - R
-            j = int(np.argmin(d))
-            off = z[j] - (k.origin + k.axis * nearest[j])
-            if abs(off) > 0:
-                rows.append((j, off / abs(off), float(d[j]), asked))
-        return rows
+        z = roll.z[i]
+        q = (z[None, :] - origin[:, None]) * np.conj(axis)[:, None]  # (tracks, T) in each line's frame
+        nearest = np.clip(q.real, lo, hi)
+        d = np.hypot(q.real - nearest, q.imag) - radius[:, None] - R
+        j = np.argmin(d, axis=1)
+        k = np.arange(len(tracks))
+        off = z[j] - (origin + axis * nearest[k, j])
+        return [(int(j[n]), off[n] / abs(off[n]), float(d[n, j[n]]), asked) for n in k if abs(off[n]) > 0]
 
     def report(self, step) -> dict:
         return {"gate_rejected": step.aux["gate_rejected"]} if "gate_rejected" in step.aux else {}
