@@ -171,6 +171,25 @@ def test_rerun_skips_stored_runs_and_csv_has_parameter_and_metric_columns(tmp_pa
     assert sorted(int(r["seed"]) for r in table) == [0, 1, 2] and {r["param_iters"] for r in table} == {"25"}
 
 
+def test_a_rerun_says_when_stored_runs_were_made_by_other_code(tmp_path, monkeypatch):
+    """The database keys a run on its spec and inputs, not on the code: a rerun after an edit
+    reuses the old results, and says so."""
+    import optplan.bench.store as store_module
+
+    db = tmp_path / "r.sqlite"
+    recs = load_spec({**SMALL, "algorithms": ["gwo"], "reference": None}).expand()
+    with ResultStore(db) as store:
+        run_records(recs[:2], store, workers=1, progress=False)
+        assert set(r["code"] for r in store.rows().values()) == {store_module.code_fingerprint()}
+        same = run_records(recs, store, workers=1, progress=False)
+        assert (same.skipped, same.other_code) == (2, 0) and "other optplan code" not in same.describe()
+    monkeypatch.setattr(store_module, "code_fingerprint", lambda: "edited")
+    with ResultStore(db) as store:
+        rep = run_records(recs, store, workers=1, progress=False)
+    assert (rep.skipped, rep.other_code, rep.ran) == (3, 3, 0)
+    assert "3 of the runs already stored were made by other optplan code" in rep.describe()
+
+
 def test_execute_run_reports_exceptions_as_failed_runs():
     rec = load_spec({**SMALL, "algorithms": [{"name": "gwo", "params": {"postprocess": "no_such_param"}}],
                      "reference": None}).expand()[0]

@@ -176,6 +176,7 @@ class RunReport:
 
     total: int
     skipped: int
+    other_code: int = 0  # of the skipped runs, those stored by other optplan code
     ran: int = 0
     failed: int = 0
     wall_s: float = 0.0
@@ -184,6 +185,9 @@ class RunReport:
     def describe(self) -> str:
         s = (f"{self.total} runs: {self.skipped} already in the database, {self.ran} ran "
              f"({self.failed} failed) in {self.wall_s:.1f} s")
+        if self.other_code:
+            s += (f"; {self.other_code} of the runs already stored were made by other optplan code (its sources "
+                  "differ) and are reported as they are: pass a fresh --db to measure this code")
         return s + (" (interrupted; rerun to resume)" if self.interrupted else "")
 
 
@@ -230,7 +234,8 @@ def run_records(records: Iterable, store, executor: Any = "local", workers: int 
         unique.setdefault(r.key, r)
     done = store.done_keys(unique, include_failed=not retry_failed)
     todo = [r.to_dict() for k, r in unique.items() if k not in done]
-    report = RunReport(total=len(unique), skipped=len(unique) - len(todo))
+    report = RunReport(total=len(unique), skipped=len(unique) - len(todo),
+                       other_code=store.made_by_other_code(done) if done else 0)
     if workers is not None and (not isinstance(workers, int) or workers < 1):
         raise ParameterError(f"workers must be a positive integer, got {workers!r}")
     kind, target = parse_executor(executor)

@@ -17,6 +17,8 @@ transaction, so a killed process loses at most the runs that were in flight;
 from __future__ import annotations
 
 import csv
+import functools
+import hashlib
 import json
 import re
 import sqlite3
@@ -36,6 +38,19 @@ IDENTITY = tuple(c for c, _ in IDENTITY_COLUMNS)
 TRACE_COLUMNS = ("history", "history_nfev", "path", "global_path", "trajectory", "x")
 # result fields that repeat the identity columns under another name
 _SKIP_METRICS = {"algorithm", "seed", "global_planner", "local_planner", "refine"}
+
+
+@functools.lru_cache(maxsize=1)
+def code_fingerprint() -> str:
+    """16 hex digits of a SHA-256 over optplan's Python sources (paths and bytes), stored with
+    every run: the package version does not change when the code does, and a rerun skips
+    the runs already stored whatever code made them."""
+    root = Path(__file__).resolve().parent.parent
+    h = hashlib.sha256()
+    for f in sorted(root.rglob("*.py")):
+        h.update(f.relative_to(root).as_posix().encode())
+        h.update(f.read_bytes())
+    return h.hexdigest()[:16]
 
 
 def column_name(name: str, prefix: str = "") -> str:
@@ -119,6 +134,7 @@ class ResultStore:
             "optplan_version": __version__, "params": json.dumps(record["params"], sort_keys=True),
             "target_spec": json.dumps(record["target_spec"], sort_keys=True),
             "program": json.dumps(record["program"], sort_keys=True) if record.get("program") else None,
+            "code": code_fingerprint(),
         }
         for k, v in record["params"].items():
             row[column_name(k, "param_")] = _sql_value(v)
@@ -163,6 +179,15 @@ class ResultStore:
         cond = "" if include_failed else " WHERE status = 'ok'"
         have = {r[0] for r in self.conn.execute(f"SELECT key FROM runs{cond}")}
         return have if keys is None else have & set(keys)
+
+    def made_by_other_code(self, keys: Iterable[str]) -> int:
+        """How many of the stored runs ``keys`` were made by other optplan code than this
+        process's (:func:`code_fingerprint`; runs stored before it was recorded count too)."""
+        if "code" not in self._columns:
+            self._columns = {r["name"] for r in self.conn.execute("PRAGMA table_info(runs)")}
+        if "code" not in self._columns:
+            return len(list(keys))
+        return sum(r["code"] != code_fingerprint() for r in self._select("runs", keys))
 
     def rows(self, keys: Iterable[str] | None = None) -> dict[str, dict[str, Any]]:
         """``{key: row dict}`` for ``keys`` (all rows when ``None``)."""
