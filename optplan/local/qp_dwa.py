@@ -356,7 +356,7 @@ class QPDWAPlanner(DWAPlanner):
         z = roll.z[i, :H]
         R = self.robot.radius
         # the rows first: the derivative rollout below is only needed when one is active
-        mover_rows: list[tuple[int, int, float, float]] = []     # (mover, rollout point, gap, margin)
+        rows: list[tuple[int, complex, float, float]] = []  # (rollout point, outward normal, gap, margin)
         if len(step.mover_r) and o["qp_rows_moving"]:
             d = np.abs(z[None, :] - step.movers[:, :H]) - step.mover_r[:, None] - R  # (K, H)
             k_t = np.argmin(d, axis=1)
@@ -364,7 +364,9 @@ class QPDWAPlanner(DWAPlanner):
             for k in np.argsort(g, kind="stable")[:o["qp_rows_moving"]]:
                 if g[k] >= o["qp_activate"]:
                     break
-                mover_rows.append((int(k), int(k_t[k]), float(g[k]), o["qp_margin"]))
+                t = int(k_t[k])
+                nrm = z[t] - step.movers[k, t]
+                rows.append((t, nrm / abs(nrm) if abs(nrm) > 0 else 1.0, float(g[k]), o["qp_margin"]))
         picked: list[int] = []
         if o["qp_rows_static"]:
             sg = step.static_gap[i, :H_static]
@@ -377,31 +379,22 @@ class QPDWAPlanner(DWAPlanner):
         if filters and o["qp_rows_filters"]:
             gate = sorted((row for m in self.roles.filters for row in m.clearance_rows(self.view, step, i)
                            if row[2] < o["qp_activate"]), key=lambda row: row[2])[:o["qp_rows_filters"]]
-        if not mover_rows and not picked and not gate:
+        if not rows and not picked and not gate:
             return np.zeros((0, self.n_u)), np.zeros(0), np.zeros(0)
+        if picked:
+            grad_z = static_gradient(ctx, z[picked])
+            asked = (self._static_margins(ctx, z[picked]).tolist() if o["qp_committed"]
+                     else [o["qp_margin"]] * len(picked))
+            rows += [(t, grad_z[q], sg[t], asked[q]) for q, t in enumerate(picked)]
+        rows += gate
         # dz/du by forward differences of the planner's own rollout (constant or ramped)
         v, w, vy, h = roll.v[i], roll.w[i], roll.vy[i], 1e-4
         r = self.rollout_of(ctx.state, [v, v + h, v], [vy, vy, vy + h], [w, w + h])
         zz = r.z  # rows: (v,w) (v,w+h) (v+h,w) (v+h,w+h) (vy+h,w) (vy+h,w+h)
         dz = [(zz[2] - zz[0]) / h, (zz[1] - zz[0]) / h, (zz[4] - zz[0]) / h][:self.n_u]
-        grads, gaps, margins = [], [], []
-        for k, t, gap, asked in mover_rows:
-            nrm = z[t] - step.movers[k, t]
-            nrm = nrm / abs(nrm) if abs(nrm) > 0 else 1.0
-            grads.append([(np.conj(nrm) * dzc[t]).real for dzc in dz])
-            gaps.append(gap)
-            margins.append(asked)
-        if picked:
-            grad_z = static_gradient(ctx, z[picked])
-            margins.extend(self._static_margins(ctx, z[picked]).tolist() if o["qp_committed"]
-                           else [o["qp_margin"]] * len(picked))
-            for q, t in enumerate(picked):
-                grads.append([(np.conj(grad_z[q]) * dzc[t]).real for dzc in dz])
-                gaps.append(sg[t])
-        for t, normal, gap, asked in gate:
-            grads.append([(np.conj(normal) * dzc[t]).real for dzc in dz])
-            gaps.append(gap)
-            margins.append(asked)
+        grads = [[(np.conj(normal) * dzc[t]).real for dzc in dz] for t, normal, _, _ in rows]
+        gaps = [gap for _, _, gap, _ in rows]
+        margins = [margin for _, _, _, margin in rows]
         return (np.asarray(grads, dtype=float).reshape(-1, self.n_u), np.asarray(gaps, dtype=float),
                 np.asarray(margins, dtype=float))
 

@@ -299,7 +299,7 @@ class SweepGate(Mechanism, MoverSweepSource):
         if not self._now:
             return None
         gap, now = self.gaps(view, step)
-        step.aux["gate_gap"] = gap
+        step.aux["gate_gap"], step.aux["gate_now"] = gap, now
         return gap >= min(self.margin, now)
 
     def filter(self, view, step) -> np.ndarray | None:
@@ -312,7 +312,7 @@ class SweepGate(Mechanism, MoverSweepSource):
         if not self._now or not safe.any():
             return None
         gap, now = self.gaps(view, step, np.flatnonzero(safe))
-        step.aux["gate_gap"] = gap
+        step.aux["gate_gap"], step.aux["gate_now"] = gap, now
         keep = (gap >= min(self.margin, now)) & safe
         if not keep.any():
             keep = (gap >= gap[safe].max() - 1e-9) & safe  # nothing safe keeps off: come least close
@@ -345,9 +345,7 @@ class SweepGate(Mechanism, MoverSweepSource):
         radius = np.array([k.radius for k in tracks])
         swept = [self.swept(k, roll.t) for k in tracks]
         lo, hi = np.array([w[0] for w in swept]), np.array([w[1] for w in swept])
-        here = (roll.z0 - origin) * np.conj(axis)  # along (real) and off (imaginary) each line, now
-        now = float(np.min(np.hypot(np.abs(here.imag), here.real - np.array([k.s for k in tracks])) - radius - R))
-        asked = min(self.margin, now)
+        asked = min(self.margin, step.aux["gate_now"])  # the threshold this step's filter used
         asked = asked if gap[i] >= asked else float(gap[i])
         z = roll.z[i]
         q = (z[None, :] - origin[:, None]) * np.conj(axis)[:, None]  # (tracks, T) in each line's frame

@@ -221,7 +221,7 @@ def _draw_random_movers(sc: Scenario, spec: dict, rng, path: np.ndarray) -> list
                for other in out):
             continue
         speed = rng.uniform(*spec["speed"])
-        phase = rng.uniform(0, 2 * np.hypot(*(b - a)))
+        phase = rng.uniform(0, 2 * np.hypot(*(b - a)))  # drawn in both motions: a seed's later draws line up
         if spec.get("motion", "shuttle") == "once":
             # it stands where it ends, so it must end where it leaves the path free (as start
             # and goal are left free): a mover parked on the path blocks a corridor for good
