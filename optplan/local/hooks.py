@@ -109,10 +109,12 @@ class FiltersSamples(Protocol):
         this step's ``filter``: by the strict test, or by the same relaxation when the filter
         relaxed it this step (``qp-dwa`` checks its refined command with it)."""
 
-    def clearance_rows(self, view: PlannerView, step: Step, i: int) -> list[tuple[int, complex, float, float]]:
+    def clearance_rows(self, view: PlannerView, step: Step, i: int,
+                       like: tuple[Step, int] | None = None) -> list[tuple[int, complex, float, float]]:
         """This step's test of sample ``i`` as clearances ``qp-dwa``'s QP can linearise:
         ``(rollout index, unit normal (complex), gap, gap asked)`` per row, or ``[]`` when the
-        test is not a clearance."""
+        test is not a clearance. With ``like = (judged, j)`` the gaps asked are those the test
+        asked of sample ``j`` of ``judged`` (``passes_like``'s standard for a refined command)."""
 
     def report(self, step: Step) -> dict:
         """What this step's ``filter`` found, for ``Command.info`` (may be empty)."""

@@ -159,7 +159,7 @@ class VelocityObstacle(Mechanism):
         keep = self.strict_filter(view, check)
         return keep is None or bool(keep[0])
 
-    def clearance_rows(self, view: PlannerView, step: Step, i: int) -> list:
+    def clearance_rows(self, view: PlannerView, step: Step, i: int, like=None) -> list:
         """None: the cone test is on velocities, not a clearance."""
         return []
 

@@ -59,10 +59,12 @@ from .base import LocalContext
 from .dwa import DWAPlanner, Preset
 from .limiter import RuckigLimiter
 from .critics import point_at_arc, project_on_path
-from .rollout import Rollouts, Step, static_gradient
+from .rollout import Rollouts, Step, current_gaps, static_gradient
 from .window import Window, dynamic_window
 
 _SLACK_LINEAR, _SLACK_QUADRATIC = 1e2, 1e4
+# slack cost of a row that asks only what the sample achieves (see QPDWAPlanner._repair_rows)
+_SLACK_REPAIR = 1e4
 
 # info["qp"] of the steps whose QP stage solves nothing: no row is active, the chosen sample
 # follows the path with a command that changes along the horizon (the QP linearises a constant one),
@@ -178,17 +180,19 @@ class QPDWAPlanner(DWAPlanner):
 
     # ------------------------------------------------------------------ QP set-up (once)
     def _setup_qp(self, acc) -> None:
-        n = self.n_u + 1  # + slack
         o = self.options
         # the first pass has every kind of row, each later one adds mover and static rows
         m_rows = (o["qp_rows_moving"] + o["qp_rows_static"]) * o["qp_passes"] + o["qp_rows_filters"]
+        n = self.n_u + m_rows  # + one slack per row
         half_width = np.asarray(acc, dtype=float) * (self.options["lookahead"] or self.dt)  # of the window
         self._half_width = half_width
         self._W = 1.0 / half_width ** 2
-        P = sp.diags(np.r_[self._W, _SLACK_QUADRATIC]).tocsc()
-        # box rows (identity) then clearance rows, dense in every column: the pattern is fixed
-        # once so each step only updates values (explicit zeros kept in the pattern)
-        dense = np.vstack([np.eye(n), np.ones((m_rows, n))])
+        P = sp.diags(np.r_[self._W, np.full(m_rows, _SLACK_QUADRATIC)]).tocsc()
+        # box rows (identity) then clearance rows, dense in the command's columns, each with
+        # its own slack: the pattern is fixed once so each step only updates values (explicit
+        # zeros kept in the pattern)
+        rows_pattern = np.hstack([np.ones((m_rows, self.n_u)), np.eye(m_rows)])
+        dense = np.vstack([np.eye(n), rows_pattern])
         rows, cols = np.nonzero(dense)
         order = np.lexsort((rows, cols))  # CSC order: by column, then row
         self._A_rows, self._A_cols = rows[order], cols[order]
@@ -379,14 +383,19 @@ class QPDWAPlanner(DWAPlanner):
         if filters and o["qp_rows_filters"]:
             gate = sorted((row for m in self.roles.filters for row in m.clearance_rows(self.view, step, i)
                            if row[2] < o["qp_activate"]), key=lambda row: row[2])[:o["qp_rows_filters"]]
-        if not rows and not picked and not gate:
-            return np.zeros((0, self.n_u)), np.zeros(0), np.zeros(0)
         if picked:
             grad_z = static_gradient(ctx, z[picked])
             asked = (self._static_margins(ctx, z[picked]).tolist() if o["qp_committed"]
                      else [o["qp_margin"]] * len(picked))
             rows += [(t, grad_z[q], sg[t], asked[q]) for q, t in enumerate(picked)]
-        rows += gate
+        return self._linearise(ctx, roll, i, rows + gate)
+
+    def _linearise(self, ctx: LocalContext, roll: Rollouts, i: int, rows: list[tuple[int, complex, float, float]]):
+        """``(grad (k, n_u), gap0 (k,), margin (k,))`` of clearance rows ``(rollout point, outward
+        normal, gap, margin)`` of sample ``i`` of ``roll``: a row's gradient is its normal
+        times the point's derivative in the command."""
+        if not rows:
+            return np.zeros((0, self.n_u)), np.zeros(0), np.zeros(0)
         # dz/du by forward differences of the planner's own rollout (constant or ramped)
         v, w, vy, h = roll.v[i], roll.w[i], roll.vy[i], 1e-4
         r = self.rollout_of(ctx.state, [v, v + h, v], [vy, vy, vy + h], [w, w + h])
@@ -398,29 +407,68 @@ class QPDWAPlanner(DWAPlanner):
         return (np.asarray(grads, dtype=float).reshape(-1, self.n_u), np.asarray(gaps, dtype=float),
                 np.asarray(margins, dtype=float))
 
+    def _repair_rows(self, ctx: LocalContext, failed: str, check: Step, step: Step, i: int
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool, float] | None:
+        """Rows for the test the refined command (``check``) failed, as ``(grads, gaps,
+        margins, at_sample, slack_cost)``; ``at_sample``: linearised at sample ``i`` rather
+        than at the refined command. Rows that ask only what the sample achieves (a filter's
+        standard, no earlier contact) must hold, and their slack costs ``_SLACK_REPAIR``;
+        clearance rows ask ``qp_margin``, which the sample itself may miss. ``None`` when
+        there are none.
+
+        - closer to an obstacle: the clearance rows of the refined trajectory;
+        - a filter: the filters' rows of the refined trajectory, asking what they asked of
+          sample ``i``;
+        - an earlier mover contact: a row per point from the refined trajectory's first
+          contact to the sample's (possibly past ``qp_horizon``), asking the contact test's
+          gap, linearised at the sample: at the refined command a ramping rollout's early
+          points need not move with the command at all."""
+        if failed == "closer to an obstacle":
+            rows = self._rows(ctx, check, 0)
+        elif failed == "filter":
+            found = [row for m in self.roles.filters for row in m.clearance_rows(self.view, check, 0, like=(step, i))
+                     if row[2] < row[3]]
+            rows = self._linearise(ctx, check.roll, 0, found[:self.options["qp_rows_filters"]])
+        elif failed == "earlier mover contact":
+            t_c, t_s = int(check.mover_contact[0]), min(int(step.mover_contact[i]), step.roll.z.shape[1])
+            asked = min(self.options["margin"], current_gaps(ctx, self.robot)[1]) + _GAP_TOL
+            found = []
+            for t in range(t_c, t_s):
+                k = int(np.argmin(np.abs(check.roll.z[0, t] - check.movers[:, t]) - check.mover_r))
+                normal = step.roll.z[i, t] - step.movers[k, t]
+                found.append((t, normal / abs(normal) if abs(normal) > 0 else 1.0,
+                              float(abs(normal) - step.mover_r[k] - self.robot.radius), asked))
+            rows = self._linearise(ctx, step.roll, i, found[:self.options["qp_rows_moving"]])
+            return (*rows, True, _SLACK_REPAIR) if len(rows[1]) else None
+        else:
+            return None
+        return (*rows, False, _SLACK_LINEAR if failed == "closer to an obstacle" else _SLACK_REPAIR) if len(rows[1]) else None
+
     def _legal_after_filters(self, check: Step, step: Step, i: int) -> bool:
         """Whether the (single) trajectory of ``check`` passes the preset's filters as sample
         ``i`` of ``step`` passed them."""
         return all(m.passes_like(self.view, check, step, i) for m in self.roles.filters)
 
     def _solve(self, x0: np.ndarray, lo: np.ndarray, hi: np.ndarray, grads: np.ndarray, lb_rows: np.ndarray,
-               x_start: np.ndarray, info: dict) -> np.ndarray | None:
+               x_start: np.ndarray, info: dict, slack_cost: np.ndarray | None = None) -> np.ndarray | None:
         """One OSQP solve: closest to ``x0`` in the window ``[lo, hi]`` under the clearance rows
         ``grads . u + s >= lb_rows``; ``None`` (with ``info["qp"]`` saying why) unless solved."""
-        n_u, n = self.n_u, self._n_x
-        rows = np.zeros((self._m_rows, n))
-        lb = np.full(self._m_rows, -np.inf)
+        n_u, n, m = self.n_u, self._n_x, self._m_rows
+        rows = np.zeros((m, n))
+        lb = np.full(m, -np.inf)
         k = len(lb_rows)
         rows[:k, :n_u] = grads
-        rows[:k, n_u] = 1.0
+        rows[:, n_u:] = np.eye(m)
         lb[:k] = lb_rows
         dense = np.vstack([np.eye(n), rows])
-        q = np.r_[-self._W * x0, _SLACK_LINEAR]
-        lower = np.r_[lo, 0.0, lb]
-        upper = np.r_[hi, np.inf, np.full(self._m_rows, np.inf)]
+        q = np.r_[-self._W * x0, np.full(m, _SLACK_LINEAR)]
+        if slack_cost is not None:
+            q[n_u:n_u + k] = slack_cost
+        lower = np.r_[lo, np.zeros(m), lb]
+        upper = np.r_[hi, np.full(n - n_u + m, np.inf)]
         Ax = dense[self._A_rows, self._A_cols]
         t0 = time.perf_counter()  # the OSQP calls only: update (refactorises), warm start, solve
-        status_val, status, x_opt, solve_s = self._lean.step(q, lower, upper, Ax, np.r_[x_start, 0.0])
+        status_val, status, x_opt, solve_s = self._lean.step(q, lower, upper, Ax, np.r_[x_start, np.zeros(m)])
         elapsed = (time.perf_counter() - t0) * 1e6
         self.qp_times_us.append(elapsed)
         info["qp_us"] += elapsed
@@ -481,10 +529,11 @@ class QPDWAPlanner(DWAPlanner):
         lo = np.array([window.v[0], window.w[0], window.vy[0]][:n_u])
         hi = np.array([window.v[1], window.w[1], window.vy[1]][:n_u])
         row_grads, row_lb = grads, margins - gaps + grads @ x0
+        slack_cost = np.full(len(row_lb), _SLACK_LINEAR)
         margin_min = float(margins.min())
         info["qp_us"] = info["qp_solve_us"] = 0.0
         for p in range(1, o["qp_passes"] + 1):
-            x_opt = self._solve(x0, lo, hi, row_grads, row_lb, x0 if p == 1 else x, info)
+            x_opt = self._solve(x0, lo, hi, row_grads, row_lb, x0 if p == 1 else x, info, slack_cost)
             if x_opt is None:
                 return u0
             x = np.clip(x_opt[:n_u], lo, hi)
@@ -492,13 +541,14 @@ class QPDWAPlanner(DWAPlanner):
             info["qp_passes"] = p
             if not failed:
                 break
-            more = self._rows(ctx, check, 0) if failed == "closer to an obstacle" and p < o["qp_passes"] else None
+            more = self._repair_rows(ctx, failed, check, step, i) if p < o["qp_passes"] else None
             if more is not None and len(row_lb) + len(more[1]) <= self._m_rows:
-                # sequential linearisation: the refined trajectory met an obstacle no row was
-                # linearised at, so add its rows, linearised at the refined command, and solve again
-                g2, gap2, m2 = more
+                # sequential linearisation: the refined trajectory failed a test no row stood
+                # for, so add rows for it and solve again
+                g2, gap2, m2, at_sample, cost = more
                 row_grads = np.vstack([row_grads, g2])
-                row_lb = np.r_[row_lb, m2 - gap2 + g2 @ x]
+                row_lb = np.r_[row_lb, m2 - gap2 + g2 @ (x0 if at_sample else x)]
+                slack_cost = np.r_[slack_cost, np.full(len(m2), cost)]
                 continue
             # a shorter step towards the QP's optimum: the QP's objective (convex) falls all the
             # way from the sample to it, and the checks are relative to the sample, which passes them
@@ -516,7 +566,7 @@ class QPDWAPlanner(DWAPlanner):
             break
         u = (float(x[0]), float(x[1]), float(x[2]) if n_u == 3 else 0.0)
         info["qp"] = "solved" if "qp_fraction" not in info else f"solved: {info['qp_fraction']:g} of the step"
-        info["qp_slack"] = float(x_opt[n_u])
+        info["qp_slack"] = float(x_opt[n_u:].max())
         # a solved QP may hand back the sample itself (its optimum); benchmarks count real changes
         info["qp_change"] = float(max(abs(a - b) for a, b in zip(u, u0)))
         return u

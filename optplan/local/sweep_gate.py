@@ -264,6 +264,7 @@ class SweepGate(Mechanism, MoverSweepSource):
         state = step.ctx.state
         # every rollout point at time t lies within (fastest speed) t of the start
         reach = max(roll.max_speed, math.hypot(state.v, state.vy)) * roll.t
+        seg = max(roll.max_speed, math.hypot(state.v, state.vy)) * roll.dt  # longest step between points
         q_buf = None
         for k in self._now:
             lo, hi = self.swept(k, roll.t)
@@ -275,7 +276,9 @@ class SweepGate(Mechanism, MoverSweepSource):
                 continue
             if q_buf is None:  # scratch arrays shared by the tracks, written in place
                 q_buf, d_buf, e_buf = np.empty(z.shape, complex), np.empty(z.shape), np.empty(z.shape)
-            c = slice(near[0], near[-1] + 1)  # every near time (and any far one between)
+            # every near time (and any far one between), and the one before: a segment into
+            # the first near point may cross the line
+            c = slice(max(near[0] - 1, 0), near[-1] + 1)
             size, shape = len(z) * (c.stop - c.start), (len(z), c.stop - c.start)
             q, d, e = (buf.ravel()[:size].reshape(shape) for buf in (q_buf, d_buf, e_buf))  # contiguous views
             # in the line's frame: position along the line (real part) and off it (imaginary part)
@@ -287,12 +290,43 @@ class SweepGate(Mechanism, MoverSweepSource):
             np.square(d, out=d)
             np.square(q.imag, out=e)
             e += d
-            np.minimum(out, np.sqrt(e.min(axis=1)) - k.radius - R, out=out)
+            g = np.sqrt(e.min(axis=1)) - k.radius - R
+            np.minimum(out, g, out=out)
+            # a rollout that crosses the line has a point within one step's length of it
+            cand = np.flatnonzero((g < seg - k.radius - R) & (out > -k.radius - R))
+            if len(cand):
+                self._crossings(k, q[cand], roll.z0 if c.start == 0 else None, lo[c], hi[c], out, cand, R)
         if rows is not None:
             full = np.full(roll.n, np.inf)
             full[rows] = out
             out = full
         return out, now
+
+    @staticmethod
+    def _crossings(k: Track, q: np.ndarray, z0: complex | None, lo: np.ndarray, hi: np.ndarray,
+                   out: np.ndarray, rows: np.ndarray, R: float) -> None:
+        """Lower ``out[rows]`` to the deepest gap, ``-(radius + R)``, for the rollouts ``q`` that cross the
+        track's line between two points (or from ``z0`` to the first) where the interval may
+        hold the mover. Points 0.1 s apart step over the line, and by how much they miss it
+        is chance: between crossing samples, and between a sample and its refinement, the
+        filter's least-close test would compare that chance."""
+        im = q.imag
+        cross = (im[:, 1:] > 0) != (im[:, :-1] > 0)  # (S, n - 1): segment t -> t+1 (never a.imag == b.imag)
+        a_lo, a_hi = np.minimum(lo[:-1], lo[1:]), np.maximum(hi[:-1], hi[1:])
+        deep = -k.radius - R
+        if cross.any():
+            s_i, t_i = np.nonzero(cross)
+            a, b = q[s_i, t_i], q[s_i, t_i + 1]
+            along = a.real + (b.real - a.real) * (a.imag / (a.imag - b.imag))
+            out[rows[s_i[(along >= a_lo[t_i]) & (along <= a_hi[t_i])]]] = deep
+        if z0 is not None:  # the first segment, from where the robot stands
+            a = (z0 - k.origin) * np.conj(k.axis)
+            b = q[:, 0]
+            first = np.flatnonzero((b.imag > 0) != (a.imag > 0))
+            if len(first):
+                bb = b[first]
+                along = a.real + (bb.real - a.real) * (a.imag / (a.imag - bb.imag))
+                out[rows[first[(along >= lo[0]) & (along <= hi[0])]]] = deep
 
     def strict_filter(self, view, step) -> np.ndarray | None:
         self.update(step.ctx)
@@ -330,12 +364,14 @@ class SweepGate(Mechanism, MoverSweepSource):
         gap = step.aux.get("gate_gap")
         return gap is not None and bool(check.aux["gate_gap"][0] >= gap[i] - 1e-9)
 
-    def clearance_rows(self, view, step, i: int) -> list[tuple[int, complex, float, float]]:
+    def clearance_rows(self, view, step, i: int, like=None) -> list[tuple[int, complex, float, float]]:
         """Per track, the rollout point of sample ``i`` nearest to the interval the mover may
         occupy then, the unit normal from the interval to it, its edge gap, and the gap the
         filter asks: its margin (or the gap now, if smaller) when the sample kept off, or the
-        sample's own gap when the filter kept it as one that comes least close."""
-        gap = step.aux.get("gate_gap")
+        sample's own gap when the filter kept it as one that comes least close. With
+        ``like = (judged, j)``, what it asked of sample ``j`` of ``judged``."""
+        judged, ji = (step, i) if like is None else like
+        gap = judged.aux.get("gate_gap")
         if not self._now or gap is None:
             return []
         roll, R = step.roll, view.robot.radius
@@ -345,8 +381,8 @@ class SweepGate(Mechanism, MoverSweepSource):
         radius = np.array([k.radius for k in tracks])
         swept = [self.swept(k, roll.t) for k in tracks]
         lo, hi = np.array([w[0] for w in swept]), np.array([w[1] for w in swept])
-        asked = min(self.margin, step.aux["gate_now"])  # the threshold this step's filter used
-        asked = asked if gap[i] >= asked else float(gap[i])
+        asked = min(self.margin, judged.aux["gate_now"])  # the threshold the filter used
+        asked = asked if gap[ji] >= asked else float(gap[ji])
         z = roll.z[i]
         q = (z[None, :] - origin[:, None]) * np.conj(axis)[:, None]  # (tracks, T) in each line's frame
         nearest = np.clip(q.real, lo, hi)
