@@ -1,6 +1,6 @@
 """Control-step timings of the local planners (issue 6).
 
-    python benchmarks/dwa_step.py [--repeats 200]
+    python benchmarks/dwa_step.py [--repeats 200] [--contexts 300] [--first-context 0]
 
 One realistic step: the robot in the middle of the shipped 50x50 map
 ``hou2024_base50`` (distance field ``grid_distance_field``, 4 points per cell), its A*
@@ -8,7 +8,8 @@ path, 10 moving obstacles within 1-4 m, 800 samples (20 v x 40 w) x 30 rollout s
 (3 s at 0.1 s). Prints the median ``command()`` time of every preset (and of qp-dwa at the
 presets' own 11x21 samples) with the lowest median of five consecutive blocks of steps, the median OSQP
 time inside ``qp-dwa`` (Python ``update`` + ``solve`` wall time and OSQP's own solve
-time), over steps in 300 seeded contexts along the path, where it is active), the same
+time), over steps in 300 seeded contexts along the path (``--first-context 1000`` for contexts
+not used to develop the QP), where it is active), the same
 calls repeated on warm caches and inside a closed-loop run (20x40 and the presets' default
 11x21 samples), the loop-based reference DWA on the same inputs, the speed-up of the vectorised
 core over it, and the per-obstacle loop vs one broadcast array for mover clearance.
@@ -102,6 +103,8 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeats", type=int, default=200)
     ap.add_argument("--contexts", type=int, default=300, help="seeded contexts for the QP timing")
+    ap.add_argument("--first-context", type=int, default=0,
+                    help="seed of the first context (0-299 were used to develop the QP; 1000 on are held out)")
     args = ap.parse_args()
     robot, ctx = context()
     print(f"hou2024_base50, robot at ({ctx.state.x:.1f}, {ctx.state.y:.1f}), 10 movers, "
@@ -142,8 +145,8 @@ def main() -> None:
 
     planner._lean.step = recording_step
     n_path = len(_BASE["path"])
-    for seed in range(args.contexts):
-        _, c = context(seed, node=1 + seed * (n_path - 3) // max(args.contexts - 1, 1))
+    for n in range(args.contexts):  # the n-th context stands at the n-th of evenly spread path nodes
+        _, c = context(args.first_context + n, node=1 + n * (n_path - 3) // max(args.contexts - 1, 1))
         planner.reset(c.state, c.global_path)
         info = planner.command(c).info
         if "qp_us" in info:
@@ -154,7 +157,7 @@ def main() -> None:
         used = [q for q in qp_info if qp_outcome({"qp": q[2]}) == "used"]
         shortened = sum(q[3] for q in used)
         print(f"\nqp-dwa QP: median update+solve {wall:.1f} us (OSQP solve time {inner:.1f} us; both summed over "
-              f"a step's passes) over {len(qp_info)} active steps in {args.contexts} contexts ({len(used) - shortened} "
+              f"a step's passes) over {len(qp_info)} active steps in {args.contexts} contexts (seeds {args.first_context}-{args.first_context + args.contexts - 1}, {len(used) - shortened} "
               f"used whole, {shortened} used shortened, the rest fell back: {100 * len(used) / len(qp_info):.0f} % "
               "used, goal >= 80 %; goal <= 60 us)")
         for reason, count in Counter(q[2] for q in qp_info if qp_outcome({"qp": q[2]}) != "used").most_common():

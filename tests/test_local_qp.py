@@ -217,3 +217,64 @@ def test_a_refinement_that_meets_an_unrowed_obstacle_is_relinearised_or_shortene
     assert infos[1]["qp"] == "solved: 0.25 of the step" and infos[1]["qp_passes"] == 1
     assert infos[2]["qp"] == "solved" and infos[2]["qp_passes"] == 2 and "qp_fraction" not in infos[2]
     assert infos[2]["qp_change"] > infos[1]["qp_change"]
+
+
+# a robot among ten movers on the shipped 50x50 map (benchmarks/dwa_step.py's contexts 9 and 214)
+CROWDS = {
+    "earlier mover contact": ((0.5, 2.5, math.pi / 2, 0.5, 0.1), (0.5, 7.5), [
+        [3.2136, 0.9039, 0.4861, -0.2743, 0.3], [2.752, 3.4771, 0.1464, -0.2638, 0.3],
+        [0.874, 0.6992, 0.5941, -0.0515, 0.3], [3.6146, 0.5997, -0.4827, -0.1721, 0.3],
+        [3.6863, 4.5145, -0.3233, -0.2538, 0.3], [1.9655, 3.1044, 0.3288, -0.0783, 0.3],
+        [0.7092, 3.8826, -0.295, -0.2892, 0.3], [3.446, 4.0871, 0.0465, -0.5775, 0.3],
+        [1.2302, 4.322, -0.3965, -0.2683, 0.3], [1.3743, 4.0761, -0.2475, -0.4686, 0.3]]),
+    "filter": ((32.5, 42.5, math.pi / 2, 0.5, 0.1), (35.5, 44.5), [
+        [31.3708, 43.1101, 0.2579, -0.1801, 0.3], [33.6135, 40.3677, 0.5844, 0.0734, 0.3],
+        [30.7034, 39.1925, -0.1249, -0.4503, 0.3], [31.8873, 43.7276, -0.4672, -0.2583, 0.3],
+        [33.8986, 40.2167, -0.5244, 0.082, 0.3], [35.2712, 40.3974, 0.3546, 0.4005, 0.3],
+        [30.6753, 43.866, -0.412, -0.0762, 0.3], [29.2277, 41.4449, 0.3027, 0.308, 0.3],
+        [31.6378, 44.0229, 0.4325, 0.2605, 0.3], [34.9182, 39.5769, -0.3313, -0.0031, 0.3]]),
+}
+
+
+@pytest.mark.parametrize("failed", sorted(CROWDS))
+def test_a_refinement_that_fails_a_filter_or_meets_a_mover_earlier_is_repaired(failed):
+    """Among ten movers the first QP's command fails a test the sample passed: it meets a
+    mover earlier, or comes closer to a mover's swept line than the gate allowed the sample.
+    With one pass it falls back to the sample (or a shortened step); with two, rows for that
+    test are added and the whole answer passes every check, verified here on the planner's
+    own rollout: admissible, no earlier mover contact, the gate's judgement of the sample
+    (where the gate judged it)."""
+    from optplan.world.papermaps import paper_map
+
+    grid, start, goal = paper_map("hou2024_base50")
+    field = grid_distance_field(grid)
+    path = op.shortest_path(grid, tuple(start), tuple(goal)).path
+    (x, y, theta, v, w), sub, movers = CROWDS[failed]
+    st = RobotState(x, y, theta, v, w)
+    ctx = LocalContext(state=st, subgoal=np.array(sub), goal=path[-1], global_path=path, static_distance=field,
+                       dynamic=np.array(movers), dt=DT, t=0.0, bounds=grid.bounds)
+    robot = RobotSpec()
+    infos = {}
+    for passes in (1, 2):
+        planner = make_local_planner("qp-dwa", robot, DT, n_v=20, n_w=40, qp_passes=passes)
+        planner.reset(st, path)
+        seen = []
+        verdict = planner._verdict
+        planner._verdict = lambda *a: seen.append(verdict(*a)[0]) or verdict(*a)
+        info = infos[passes] = planner.command(ctx).info
+        assert seen[0] == failed
+    assert qp_outcome(infos[1]) == "fallback" or infos[1].get("qp_fraction", 1.0) < 1.0
+    assert infos[2]["qp"] == "solved" and infos[2]["qp_passes"] == 2 and infos[2]["qp_change"] > 0.01
+    planner = make_local_planner("qp-dwa", robot, DT, n_v=20, n_w=40)
+    planner.reset(st, path)
+    step = planner.evaluate(ctx, planner.window(ctx))
+    best, how = planner.choose(step)
+    assert best == infos[2]["index"]
+    v, w, vy = infos[2]["target"]
+    check = planner._assess(ctx, planner.rollout_of(st, [v], [vy], [w]))
+    assert check.admissible[0] and check.mover_contact[0] >= step.mover_contact[best]
+    # the filters judged this step's samples only if one was safe ("sample" mode); otherwise
+    # the planner evaded the movers and no filter applies
+    assert how["mode"] == ("sample" if failed == "filter" else "evade")
+    if how["mode"] == "sample":
+        assert all(m.passes_like(planner.view, check, step, best) for m in planner.roles.filters)

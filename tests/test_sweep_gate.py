@@ -8,6 +8,7 @@ import pytest
 
 from optplan.local import make_local_planner
 from optplan.local.base import LocalContext
+from optplan.local.rollout import rollout, rollout_ramped
 from optplan.local.sweep_gate import SweepGate, bounce, line_reach
 from optplan.sim.closed_loop import simulate
 from optplan.world.robot import RobotSpec, RobotState
@@ -359,3 +360,29 @@ def test_a_robot_held_beside_a_busy_sweep_goes_round_it():
     the learnt sweep as an obstacle and finds the way north round the block."""
     res = simulate("li2023_exp2_4", global_planner="astar", local_planner="qp-dwa", seed=14)
     assert res.reached and res.collisions == 0 and res.replans >= 1
+
+
+def test_a_rollout_that_crosses_the_movers_line_between_two_points_gets_the_deepest_gap():
+    """Rollout points 0.1 s apart step over a mover's line and miss it by chance (here by
+    more than 5 mm); a straight rollout that crosses the line where the mover may be gets the
+    gap of the line's middle, ``-(r + R)``, and one that stops short of the line keeps its
+    points' gap."""
+    planner = make_local_planner("qp-dwa", ROBOT, 0.1)
+    state = RobotState(x=4.8, y=3.1, theta=0.0, v=0.6)
+    planner.reset(state, np.array([[0.5, 3.0], [11.0, 3.0]]))
+    ctx = context(4.5, state)
+    (gate,) = [m for m in planner.mechanisms if isinstance(m, SweepGate)]
+    deep = -(0.35 + ROBOT.radius)  # the mover's and the robot's radii
+    stepped_over = 0
+    for v in np.linspace(0.0, 0.7, 71):
+        straight = planner._assess(ctx, planner.rollout_of(state, [v], [0.0], [0.0]))
+        gate.strict_filter(planner.view, straight)
+        gap = straight.aux["gate_gap"][0]
+        x = straight.roll.z[0].real
+        points_gap = np.abs(x - 6.0).min() - 0.35 - ROBOT.radius
+        if x[-1] > 6.0:
+            assert gap == pytest.approx(deep, abs=1e-12)
+            stepped_over += points_gap > deep + 0.005
+        else:
+            assert gap == pytest.approx(points_gap, abs=1e-9)
+    assert stepped_over >= 5

@@ -15,15 +15,20 @@
    over the part the robot is committed to before it can stop (gradient of the distance
    field by central differences); a static row asks no more margin than the global path
    keeps next to that point. The slack ``s`` keeps the QP feasible when the
-   margin cannot be met within the window. ``W`` scales each component by its window
+   margin cannot be met within the window (the second pass's rows that must hold have a
+   slack of their own). ``W`` scales each component by its window
    half-width so a step across the window costs the same in ``v`` and ``w``. The position
    derivatives ``dz/du`` come from the rollout formula of ``rollout.py`` in closed form.
    The QP is not run when ``u0`` meets every row by its margin (``u0`` is then its
    optimum) or no command of the window moves a row's point. The result is checked on the
    exact rollout (admissible, no earlier mover contact, no closer to obstacles than ``u0``)
-   and by the filters, as they judged ``u0`` (``passes_like``). A result that comes closer to
-   an obstacle no row was linearised at gets a second pass (``qp_passes``): rows linearised
-   at the result are added and the QP is solved again. A result that still fails a check is
+   and by the filters, as they judged ``u0`` (``passes_like``). A result that fails a check
+   gets a second pass (``qp_passes``) with rows for what it failed, and the QP is solved
+   again: where it comes closer to an obstacle no row was linearised at, rows linearised at
+   the result; where it fails a filter, the filter's rows of its trajectory, asking what the
+   filter asked of ``u0``; where it meets a mover earlier than ``u0``, rows from that contact
+   to ``u0``'s, linearised at ``u0``. The last two ask only what ``u0`` achieves and share a
+   second, dearer slack (``_SLACK_REPAIR``). A result that still fails a check is
    shortened towards ``u0`` (half, then a quarter of the step; the QP's convex objective
    falls all the way). On a non-solved OSQP status, or when no step passes, the sampled
    ``u0`` is used; ``info["qp"]`` says which case happened.
@@ -63,7 +68,9 @@ from .rollout import Rollouts, Step, current_gaps, static_gradient
 from .window import Window, dynamic_window
 
 _SLACK_LINEAR, _SLACK_QUADRATIC = 1e2, 1e4
-# slack cost of a row that asks only what the sample achieves (see QPDWAPlanner._repair_rows)
+# linear cost of the second slack, shared by the rows that ask only what the sample achieves
+# (QPDWAPlanner._repair_rows): with one slack for all rows, a margin the window cannot give
+# (0.35 m of slack) waived every other row as well
 _SLACK_REPAIR = 1e4
 
 # info["qp"] of the steps whose QP stage solves nothing: no row is active, the chosen sample
@@ -183,15 +190,15 @@ class QPDWAPlanner(DWAPlanner):
         o = self.options
         # the first pass has every kind of row, each later one adds mover and static rows
         m_rows = (o["qp_rows_moving"] + o["qp_rows_static"]) * o["qp_passes"] + o["qp_rows_filters"]
-        n = self.n_u + m_rows  # + one slack per row
+        n = self.n_u + 2  # + the clearance rows' slack and the must-hold rows' slack
         half_width = np.asarray(acc, dtype=float) * (self.options["lookahead"] or self.dt)  # of the window
         self._half_width = half_width
         self._W = 1.0 / half_width ** 2
-        P = sp.diags(np.r_[self._W, np.full(m_rows, _SLACK_QUADRATIC)]).tocsc()
-        # box rows (identity) then clearance rows, dense in the command's columns, each with
-        # its own slack: the pattern is fixed once so each step only updates values (explicit
-        # zeros kept in the pattern)
-        rows_pattern = np.hstack([np.ones((m_rows, self.n_u)), np.eye(m_rows)])
+        P = sp.diags(np.r_[self._W, np.full(2, _SLACK_QUADRATIC)]).tocsc()
+        # box rows (identity) then clearance rows, dense in every column (each row's slack
+        # column is 1, the other 0): the pattern is fixed once so each step only updates
+        # values (explicit zeros kept in the pattern)
+        rows_pattern = np.ones((m_rows, n))
         dense = np.vstack([np.eye(n), rows_pattern])
         rows, cols = np.nonzero(dense)
         order = np.lexsort((rows, cols))  # CSC order: by column, then row
@@ -408,13 +415,13 @@ class QPDWAPlanner(DWAPlanner):
                 np.asarray(margins, dtype=float))
 
     def _repair_rows(self, ctx: LocalContext, failed: str, check: Step, step: Step, i: int
-                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool, float] | None:
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool, bool] | None:
         """Rows for the test the refined command (``check``) failed, as ``(grads, gaps,
-        margins, at_sample, slack_cost)``; ``at_sample``: linearised at sample ``i`` rather
+        margins, at_sample, must_hold)``; ``at_sample``: linearised at sample ``i`` rather
         than at the refined command. Rows that ask only what the sample achieves (a filter's
-        standard, no earlier contact) must hold, and their slack costs ``_SLACK_REPAIR``;
-        clearance rows ask ``qp_margin``, which the sample itself may miss. ``None`` when
-        there are none.
+        standard, no earlier contact) must hold: they get a slack of their own, at
+        ``_SLACK_REPAIR``; clearance rows ask ``qp_margin``, which the sample itself may miss,
+        and share the clearance rows' slack. ``None`` when there are none.
 
         - closer to an obstacle: the clearance rows of the refined trajectory;
         - a filter: the filters' rows of the refined trajectory, asking what they asked of
@@ -439,10 +446,10 @@ class QPDWAPlanner(DWAPlanner):
                 found.append((t, normal / abs(normal) if abs(normal) > 0 else 1.0,
                               float(abs(normal) - step.mover_r[k] - self.robot.radius), asked))
             rows = self._linearise(ctx, step.roll, i, found[:self.options["qp_rows_moving"]])
-            return (*rows, True, _SLACK_REPAIR) if len(rows[1]) else None
+            return (*rows, True, True) if len(rows[1]) else None
         else:
             return None
-        return (*rows, False, _SLACK_LINEAR if failed == "closer to an obstacle" else _SLACK_REPAIR) if len(rows[1]) else None
+        return (*rows, False, failed == "filter") if len(rows[1]) else None
 
     def _legal_after_filters(self, check: Step, step: Step, i: int) -> bool:
         """Whether the (single) trajectory of ``check`` passes the preset's filters as sample
@@ -450,25 +457,28 @@ class QPDWAPlanner(DWAPlanner):
         return all(m.passes_like(self.view, check, step, i) for m in self.roles.filters)
 
     def _solve(self, x0: np.ndarray, lo: np.ndarray, hi: np.ndarray, grads: np.ndarray, lb_rows: np.ndarray,
-               x_start: np.ndarray, info: dict, slack_cost: np.ndarray | None = None) -> np.ndarray | None:
+               x_start: np.ndarray, info: dict, must_hold: np.ndarray | None = None) -> np.ndarray | None:
         """One OSQP solve: closest to ``x0`` in the window ``[lo, hi]`` under the clearance rows
-        ``grads . u + s >= lb_rows``; ``None`` (with ``info["qp"]`` saying why) unless solved."""
+        ``grads . u + s >= lb_rows`` (``s``: the clearance rows' slack, or for the rows marked
+        ``must_hold`` their own, dearer one); ``None`` (with ``info["qp"]`` saying why) unless solved."""
         n_u, n, m = self.n_u, self._n_x, self._m_rows
         rows = np.zeros((m, n))
         lb = np.full(m, -np.inf)
         k = len(lb_rows)
         rows[:k, :n_u] = grads
-        rows[:, n_u:] = np.eye(m)
+        repair = np.zeros(m, bool)
+        if must_hold is not None:
+            repair[:k] = must_hold
+        rows[:, n_u] = ~repair
+        rows[:, n_u + 1] = repair
         lb[:k] = lb_rows
         dense = np.vstack([np.eye(n), rows])
-        q = np.r_[-self._W * x0, np.full(m, _SLACK_LINEAR)]
-        if slack_cost is not None:
-            q[n_u:n_u + k] = slack_cost
-        lower = np.r_[lo, np.zeros(m), lb]
-        upper = np.r_[hi, np.full(n - n_u + m, np.inf)]
+        q = np.r_[-self._W * x0, _SLACK_LINEAR, _SLACK_REPAIR]
+        lower = np.r_[lo, np.zeros(2), lb]
+        upper = np.r_[hi, np.full(2 + m, np.inf)]
         Ax = dense[self._A_rows, self._A_cols]
         t0 = time.perf_counter()  # the OSQP calls only: update (refactorises), warm start, solve
-        status_val, status, x_opt, solve_s = self._lean.step(q, lower, upper, Ax, np.r_[x_start, np.zeros(m)])
+        status_val, status, x_opt, solve_s = self._lean.step(q, lower, upper, Ax, np.r_[x_start, np.zeros(2)])
         elapsed = (time.perf_counter() - t0) * 1e6
         self.qp_times_us.append(elapsed)
         info["qp_us"] += elapsed
@@ -529,11 +539,11 @@ class QPDWAPlanner(DWAPlanner):
         lo = np.array([window.v[0], window.w[0], window.vy[0]][:n_u])
         hi = np.array([window.v[1], window.w[1], window.vy[1]][:n_u])
         row_grads, row_lb = grads, margins - gaps + grads @ x0
-        slack_cost = np.full(len(row_lb), _SLACK_LINEAR)
+        must_hold = np.zeros(len(row_lb), bool)
         margin_min = float(margins.min())
         info["qp_us"] = info["qp_solve_us"] = 0.0
         for p in range(1, o["qp_passes"] + 1):
-            x_opt = self._solve(x0, lo, hi, row_grads, row_lb, x0 if p == 1 else x, info, slack_cost)
+            x_opt = self._solve(x0, lo, hi, row_grads, row_lb, x0 if p == 1 else x, info, must_hold)
             if x_opt is None:
                 return u0
             x = np.clip(x_opt[:n_u], lo, hi)
@@ -545,10 +555,10 @@ class QPDWAPlanner(DWAPlanner):
             if more is not None and len(row_lb) + len(more[1]) <= self._m_rows:
                 # sequential linearisation: the refined trajectory failed a test no row stood
                 # for, so add rows for it and solve again
-                g2, gap2, m2, at_sample, cost = more
+                g2, gap2, m2, at_sample, hold = more
                 row_grads = np.vstack([row_grads, g2])
                 row_lb = np.r_[row_lb, m2 - gap2 + g2 @ (x0 if at_sample else x)]
-                slack_cost = np.r_[slack_cost, np.full(len(m2), cost)]
+                must_hold = np.r_[must_hold, np.full(len(m2), hold)]
                 continue
             # a shorter step towards the QP's optimum: the QP's objective (convex) falls all the
             # way from the sample to it, and the checks are relative to the sample, which passes them
