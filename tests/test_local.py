@@ -13,6 +13,7 @@ from optplan.local.mechanisms import VelocityObstacle
 from optplan.local.reference import reference_dwa
 from optplan.local.rollout import assess, rollout, rollout_ramped
 from optplan.world.fields import grid_distance_field
+from optplan.sim.kinematics import step_pose
 from optplan.world.robot import RobotSpec, RobotState
 
 DT = 0.1
@@ -463,3 +464,37 @@ def test_a_robot_pinned_with_open_space_behind_keeps_turning_the_way_it_turns():
     res = op.simulate("li2023_exp2_3", global_planner="astar", local_planner="qp-dwa", seed=2, mover_motion="once",
                       time_limit=45.0)
     assert res.reached and res.collisions == 0
+
+
+def test_the_brake_sample_keeps_a_robot_on_an_arc_able_to_stop(field):
+    """Fox's admissibility asks that the robot can stop on a sample's arc; the arc the robot
+    drives, braked, is rarely on the grid. idwa (yang2023's a_max 0.2 m/s^2) starting on an
+    admissible arc towards a block: without the brake sample, two seconds later no sample of
+    the window is admissible, step after step, and the robot slides into the block; with it,
+    the robot brakes on its arc and stops 3 cm clear. The brake sample is the window's
+    slowest speed on the current arc (same curvature)."""
+    robot = RobotSpec(model="unicycle", radius=0.1, v_max=1.0, w_max=math.radians(40), a_max=0.2,
+                      alpha_max=math.radians(40))
+    start = RobotState(3.389200928824068, 6.766791931259116, 1.470497395698649, 0.4916391193687464,
+                       0.5086952332664573)
+    goal = (5.04, 4.64)
+    runs = {}
+    for brake in (False, True):
+        planner = make_local_planner("idwa", robot, DT, brake_sample=brake)
+        planner.reset(start, np.array([[start.x, start.y], goal]))
+        st, modes, clear = start, [], []
+        for _ in range(40):
+            cmd = planner.command(ctx_at(field, st, goal))
+            modes.append(cmd.info["mode"])
+            x, y, th = step_pose("unicycle", st.x, st.y, st.theta, cmd.v, cmd.w, DT)
+            st = RobotState(float(x), float(y), float(th), cmd.v, cmd.w)
+            clear.append(float(field(np.array([st.x, st.y]))) - robot.radius)
+        runs[brake] = modes, min(clear)
+    assert runs[False][0][0] == "sample" and runs[False][0].count("least-inadmissible") >= 10
+    assert runs[False][1] <= 0.0
+    assert runs[True][0].count("least-inadmissible") <= 2 and runs[True][1] > 0.02
+    planner = make_local_planner("idwa", robot, DT, brake_sample=True)
+    window = planner.window(ctx_at(field, start, goal))
+    v, vy, w = planner._brake_sample(start, window, DT)
+    assert v == pytest.approx(start.v - robot.a_max * DT) and w / v == pytest.approx(start.w / start.v)
+    assert make_local_planner("idwa", robot, DT).options["brake_sample"]  # the preset's default

@@ -122,6 +122,7 @@ class DWAPlanner(MoverSweepSource):
                               # global path by pure pursuit (rollout.rollout_tracking); () = none
         "path_look_aheads": (0.25, 0.5),  # m: their pure-pursuit look-ahead distances ...
         "path_turn_first": (1.5708, 0.3),  # ... and bearings (rad) beyond which they turn in place
+        "brake_sample": False,  # add the sample that brakes hardest along the arc the robot drives
     }
 
     def __init__(self, preset: Preset, robot: RobotSpec, dt: float, **params: Any) -> None:
@@ -213,7 +214,7 @@ class DWAPlanner(MoverSweepSource):
             o[k] = vals
         if o["path_samples"] and not (o["path_look_aheads"] and o["path_turn_first"]):
             raise ParameterError("path_samples need at least one of path_look_aheads (m) and of path_turn_first (rad)")
-        for k in ("omni", "movers_meet_stop"):
+        for k in ("omni", "movers_meet_stop", "brake_sample"):
             o[k] = boolean(k, o[k])
         if o["normalise"] not in ("sum", "minmax", "none"):
             raise ParameterError(f"normalise must be 'sum', 'minmax' or 'none', got {o['normalise']!r}")
@@ -259,11 +260,29 @@ class DWAPlanner(MoverSweepSource):
                                      np.asarray(o["path_look_aheads"]), self.rollout_dt, self.steps, self.robot,
                                      np.asarray(o["path_turn_first"]))
             roll = join_rollouts(roll, track)
+        if o["brake_sample"]:
+            brake = self._brake_sample(ctx.state, window, o["lookahead"] or ctx.dt)
+            if brake is not None:
+                roll = join_rollouts(roll, self.rollout_of(ctx.state, [brake[0]], [brake[1]], [brake[2]]))
         step = self._assess(ctx, roll)
         if self.omni:  # the acceleration limit bounds the (v, vy) vector: keep the disc of the box
             dv = np.hypot(step.roll.v - ctx.state.v, step.roll.vy - ctx.state.vy)
             step.admissible &= dv <= self.robot.a_max * (o["lookahead"] or ctx.dt) * (1 + 1e-9)
         return step
+
+    def _brake_sample(self, state: RobotState, window: Window, period: float) -> tuple[float, float, float] | None:
+        """``(v, vy, w)``: the slowest speed of the window on the arc the robot drives now
+        (the same curvature), or ``None`` when it stands still. Fox's admissibility asks that
+        the robot can stop on a sample's arc; the arc it is on, braked, is rarely on the grid,
+        so a grazing robot can find every sample of the next window inadmissible."""
+        speed = math.hypot(state.v, state.vy)
+        if speed < 1e-6:
+            return None
+        scale = max(speed - self.robot.a_max * period, 0.0) / speed
+        v = float(np.clip(state.v * scale, window.v[0], window.v[1]))
+        vy = float(np.clip(state.vy * scale, window.vy[0], window.vy[1])) if self.omni else 0.0
+        w = float(np.clip(state.w * scale, window.w[0], window.w[1]))
+        return v, vy, w
 
     def rollout_of(self, state: RobotState, lin_v, lin_vy, w) -> Rollouts:
         """The planner's rollouts of the grid ``(lin_v, lin_vy) x w`` (constant velocities, or
