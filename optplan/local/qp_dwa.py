@@ -433,8 +433,8 @@ class QPDWAPlanner(DWAPlanner):
         if failed == "closer to an obstacle":
             rows = self._rows(ctx, check, 0)
         elif failed == "filter":
-            found = [row for m in self.roles.filters for row in m.clearance_rows(self.view, check, 0, like=(step, i))
-                     if row[2] < row[3]]
+            found = sorted((row for m in self.roles.filters for row in m.clearance_rows(self.view, check, 0, like=(step, i))
+                            if row[2] < row[3]), key=lambda row: row[2])
             rows = self._linearise(ctx, check.roll, 0, found[:self.options["qp_rows_filters"]])
         elif failed == "earlier mover contact":
             t_c, t_s = int(check.mover_contact[0]), min(int(step.mover_contact[i]), step.roll.z.shape[1])
