@@ -475,7 +475,8 @@ class QPDWAPlanner(DWAPlanner):
         dense = np.vstack([np.eye(n), rows])
         q = np.r_[-self._W * x0, _SLACK_LINEAR, _SLACK_REPAIR]
         lower = np.r_[lo, np.zeros(2), lb]
-        upper = np.r_[hi, np.full(2 + m, np.inf)]
+        # without must-hold rows their slack is fixed at 0 (a free unused variable slows ADMM)
+        upper = np.r_[hi, np.inf, np.inf if repair.any() else 0.0, np.full(m, np.inf)]
         Ax = dense[self._A_rows, self._A_cols]
         t0 = time.perf_counter()  # the OSQP calls only: update (refactorises), warm start, solve
         status_val, status, x_opt, solve_s = self._lean.step(q, lower, upper, Ax, np.r_[x_start, np.zeros(2)])
@@ -542,11 +543,13 @@ class QPDWAPlanner(DWAPlanner):
         must_hold = np.zeros(len(row_lb), bool)
         margin_min = float(margins.min())
         info["qp_us"] = info["qp_solve_us"] = 0.0
+        results = []  # each pass's answer
         for p in range(1, o["qp_passes"] + 1):
             x_opt = self._solve(x0, lo, hi, row_grads, row_lb, x0 if p == 1 else x, info, must_hold)
             if x_opt is None:
                 return u0
             x = np.clip(x_opt[:n_u], lo, hi)
+            results.append(x)
             failed, check, closer_by = self._verdict(ctx, step, i, x, margin_min, info)
             info["qp_passes"] = p
             if not failed:
@@ -560,13 +563,14 @@ class QPDWAPlanner(DWAPlanner):
                 row_lb = np.r_[row_lb, m2 - gap2 + g2 @ (x0 if at_sample else x)]
                 must_hold = np.r_[must_hold, np.full(len(m2), hold)]
                 continue
-            # a shorter step towards the QP's optimum: the QP's objective (convex) falls all the
-            # way from the sample to it, and the checks are relative to the sample, which passes them
-            for fraction in _BACKTRACK:
-                if not self._verdict(ctx, step, i, x0 + fraction * (x - x0), margin_min, info)[0]:
-                    x = x0 + fraction * (x - x0)
-                    info["qp_fraction"] = fraction
-                    break
+            # a shorter step towards a pass's answer, the last pass's first: the QP's objective
+            # (convex) falls all the way from the sample to it, and the checks are relative to
+            # the sample, which passes them
+            shorter = next(((xr, f) for xr in reversed(results) for f in _BACKTRACK
+                            if not self._verdict(ctx, step, i, x0 + f * (xr - x0), margin_min, info)[0]), None)
+            if shorter is not None:
+                x = x0 + shorter[1] * (shorter[0] - x0)
+                info["qp_fraction"] = shorter[1]
             else:
                 info["qp"] = (f"fallback: refined command failed the rollout check ({failed})" if failed != "filter" else
                               "fallback: refined command failed a filter the sampled one passed")
