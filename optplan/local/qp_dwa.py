@@ -27,10 +27,11 @@
    again: where it comes closer to an obstacle no row was linearised at, rows linearised at
    the result; where it fails a filter, the filter's rows of its trajectory, asking what the
    filter asked of ``u0``; where it meets a mover earlier than ``u0``, rows from that contact
-   to ``u0``'s, linearised at ``u0``. The last two ask only what ``u0`` achieves and share a
-   second, dearer slack (``_SLACK_REPAIR``). A result that still fails a check is
-   shortened towards ``u0`` (half, then a quarter of the step; the QP's convex objective
-   falls all the way). On a non-solved OSQP status, or when no step passes, the sampled
+   to ``u0``'s, and where it cannot stop before a static obstacle, rows at its first
+   colliding points, both linearised at ``u0``. These ask only what ``u0`` achieves and share
+   a second, dearer slack (``_SLACK_REPAIR``). A result that still fails a check is
+   shortened towards ``u0`` or towards the first pass's answer (half, then a quarter of the
+   step; the QP's convex objective falls all the way). On a non-solved OSQP status, or when no step passes, the sampled
    ``u0`` is used; ``info["qp"]`` says which case happened.
 3. **Ruckig** (``limiter.RuckigLimiter``): the refined velocity becomes the target of a
    jerk-limited profile; the command is the profile one period ahead.
@@ -419,13 +420,15 @@ class QPDWAPlanner(DWAPlanner):
         """Rows for the test the refined command (``check``) failed, as ``(grads, gaps,
         margins, at_sample, must_hold)``; ``at_sample``: linearised at sample ``i`` rather
         than at the refined command. Rows that ask only what the sample achieves (a filter's
-        standard, no earlier contact) must hold: they get a slack of their own, at
+        standard, no earlier contact, no earlier static collision) must hold: they get a slack of their own, at
         ``_SLACK_REPAIR``; clearance rows ask ``qp_margin``, which the sample itself may miss,
         and share the clearance rows' slack. ``None`` when there are none.
 
         - closer to an obstacle: the clearance rows of the refined trajectory;
         - a filter: the filters' rows of the refined trajectory, asking what they asked of
           sample ``i``;
+        - not admissible (it cannot stop before a static obstacle): rows at its first
+          colliding points, asking the collision test's clearance, linearised at the sample;
         - an earlier mover contact: a row per point from the refined trajectory's first
           contact to the sample's (possibly past ``qp_horizon``), asking the contact test's
           gap, linearised at the sample: at the refined command a ramping rollout's early
@@ -436,6 +439,20 @@ class QPDWAPlanner(DWAPlanner):
             found = sorted((row for m in self.roles.filters for row in m.clearance_rows(self.view, check, 0, like=(step, i))
                             if row[2] < row[3]), key=lambda row: row[2])
             rows = self._linearise(ctx, check.roll, 0, found[:self.options["qp_rows_filters"]])
+        elif failed == "not admissible":
+            # the refined trajectory meets a static obstacle before it could stop: rows at its
+            # first colliding points, asking the collision test's clearance, on the sample's
+            # trajectory (clear there: it is admissible), linearised at the sample
+            H = step.roll.z.shape[1]
+            t_h, t_s = int(check.static_hit[0]), int(step.stop_index()[i])
+            asked = min(self.static_margin(ctx), current_gaps(ctx, self.robot)[0]) + _GAP_TOL
+            z = step.roll.z[i, t_h:min(t_s, H, t_h + self.options["qp_rows_static"])]
+            if len(z) == 0:
+                return None
+            grad = static_gradient(ctx, z)
+            found = [(t_h + q, grad[q], float(step.static_gap[i, t_h + q]), asked) for q in range(len(z))]
+            rows = self._linearise(ctx, step.roll, i, found)
+            return (*rows, True, True) if len(rows[1]) else None
         elif failed == "earlier mover contact":
             t_c, t_s = int(check.mover_contact[0]), min(int(step.mover_contact[i]), step.roll.z.shape[1])
             asked = min(self.options["margin"], current_gaps(ctx, self.robot)[1]) + _GAP_TOL
