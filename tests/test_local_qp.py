@@ -278,3 +278,32 @@ def test_a_refinement_that_fails_a_filter_or_meets_a_mover_earlier_is_repaired(f
     assert how["mode"] == ("sample" if failed == "filter" else "evade")
     if how["mode"] == "sample":
         assert all(m.passes_like(planner.view, check, step, best) for m in planner.roles.filters)
+
+
+def test_a_refinement_that_cannot_stop_before_a_block_is_repaired():
+    """At 0.87 m/s beside the block at (7-9, 5-6), 0.3 m asked: the first QP's command could not
+    stop before the block (not admissible). With one pass the planner keeps a shortened step
+    or the sample; with two, rows at the first colliding points (on the sample's trajectory,
+    which is clear there) are added and the whole answer is admissible, checked here on the
+    planner's own rollout."""
+    field = grid_distance_field(op.GridMap.from_rows([[int(c) for c in r] for r in TWO_BLOCKS]))
+    robot = RobotSpec()
+    st = RobotState(8.684260378825256, 6.685889383290613, -0.2939023107739782, 0.8724148860798918,
+                    -0.20174539676612746)
+    goal = np.array([5.717301253482249, 3.7648661308701983])
+    ctx = LocalContext(state=st, subgoal=goal, goal=goal, global_path=np.array([[st.x, st.y], goal]),
+                       static_distance=field, dynamic=np.zeros((0, 5)), dt=DT, t=0.0)
+    infos = {}
+    for passes in (1, 2):
+        planner = make_local_planner("qp-dwa", robot, DT, path_samples=(), qp_margin=0.3, qp_passes=passes)
+        planner.reset(st, ctx.global_path)
+        seen = []
+        verdict = planner._verdict
+        planner._verdict = lambda *a: seen.append(verdict(*a)[0]) or verdict(*a)
+        infos[passes] = planner.command(ctx).info
+        assert seen[0] == "not admissible"
+    assert qp_outcome(infos[1]) == "fallback" or infos[1].get("qp_fraction", 1.0) < 1.0
+    assert infos[2]["qp"] == "solved" and infos[2]["qp_passes"] == 2 and infos[2]["qp_change"] > 0.05
+    v, w, vy = infos[2]["target"]
+    check = planner._assess(ctx, planner.rollout_of(st, [v], [vy], [w]))
+    assert check.admissible[0]
