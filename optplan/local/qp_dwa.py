@@ -15,8 +15,8 @@
    over the part the robot is committed to before it can stop (gradient of the distance
    field by central differences); a static row asks no more margin than the global path
    keeps next to that point. The slack ``s`` keeps the QP feasible when the
-   margin cannot be met within the window (the second pass's rows that must hold have a
-   slack of their own). ``W`` scales each component by its window
+   margin cannot be met within the window (the second pass's rows that must hold take it at
+   1/100). ``W`` scales each component by its window
    half-width so a step across the window costs the same in ``v`` and ``w``. The position
    derivatives ``dz/du`` come from the rollout formula of ``rollout.py`` in closed form.
    The QP is not run when ``u0`` meets every row by its margin (``u0`` is then its
@@ -28,8 +28,8 @@
    the result; where it fails a filter, the filter's rows of its trajectory, asking what the
    filter asked of ``u0``; where it meets a mover earlier than ``u0``, rows from that contact
    to ``u0``'s, and where it cannot stop before a static obstacle, rows at its first
-   colliding points, both linearised at ``u0``. These ask only what ``u0`` achieves and share
-   a second, dearer slack (``_SLACK_REPAIR``). A result that still fails a check is
+   colliding points, both linearised at ``u0``. These ask only what ``u0`` achieves: the
+   slack relaxes them 100 times less (``_SLACK_REPAIR_FACTOR``). A result that still fails a check is
    shortened towards ``u0`` or towards the first pass's answer (half, then a quarter of the
    step; the QP's convex objective falls all the way). On a non-solved OSQP status, or when no step passes, the sampled
    ``u0`` is used; ``info["qp"]`` says which case happened.
@@ -69,10 +69,11 @@ from .rollout import Rollouts, Step, current_gaps, static_gradient
 from .window import Window, dynamic_window
 
 _SLACK_LINEAR, _SLACK_QUADRATIC = 1e2, 1e4
-# linear cost of the second slack, shared by the rows that ask only what the sample achieves
-# (QPDWAPlanner._repair_rows): with one slack for all rows, a margin the window cannot give
-# (0.35 m of slack) waived every other row as well
-_SLACK_REPAIR = 1e4
+# the rows that ask only what the sample achieves (QPDWAPlanner._repair_rows) take the slack
+# at 1/100: with it at full weight, a margin the window cannot give (0.35 m of slack) waived
+# them as well (a second slack variable did the same, but OSQP hit its iteration limit twice
+# as often)
+_SLACK_REPAIR_FACTOR = 100.0
 
 # info["qp"] of the steps whose QP stage solves nothing: no row is active, the chosen sample
 # follows the path with a command that changes along the horizon (the QP linearises a constant one),
@@ -188,19 +189,17 @@ class QPDWAPlanner(DWAPlanner):
 
     # ------------------------------------------------------------------ QP set-up (once)
     def _setup_qp(self, acc) -> None:
+        n = self.n_u + 1  # + slack
         o = self.options
         # the first pass has every kind of row, each later one adds mover and static rows
         m_rows = (o["qp_rows_moving"] + o["qp_rows_static"]) * o["qp_passes"] + o["qp_rows_filters"]
-        n = self.n_u + 2  # + the clearance rows' slack and the must-hold rows' slack
         half_width = np.asarray(acc, dtype=float) * (self.options["lookahead"] or self.dt)  # of the window
         self._half_width = half_width
         self._W = 1.0 / half_width ** 2
-        P = sp.diags(np.r_[self._W, np.full(2, _SLACK_QUADRATIC)]).tocsc()
-        # box rows (identity) then clearance rows, dense in every column (each row's slack
-        # column is 1, the other 0): the pattern is fixed once so each step only updates
-        # values (explicit zeros kept in the pattern)
-        rows_pattern = np.ones((m_rows, n))
-        dense = np.vstack([np.eye(n), rows_pattern])
+        P = sp.diags(np.r_[self._W, _SLACK_QUADRATIC]).tocsc()
+        # box rows (identity) then clearance rows, dense in every column: the pattern is fixed
+        # once so each step only updates values (explicit zeros kept in the pattern)
+        dense = np.vstack([np.eye(n), np.ones((m_rows, n))])
         rows, cols = np.nonzero(dense)
         order = np.lexsort((rows, cols))  # CSC order: by column, then row
         self._A_rows, self._A_cols = rows[order], cols[order]
@@ -420,9 +419,9 @@ class QPDWAPlanner(DWAPlanner):
         """Rows for the test the refined command (``check``) failed, as ``(grads, gaps,
         margins, at_sample, must_hold)``; ``at_sample``: linearised at sample ``i`` rather
         than at the refined command. Rows that ask only what the sample achieves (a filter's
-        standard, no earlier contact, no earlier static collision) must hold: they get a slack of their own, at
-        ``_SLACK_REPAIR``; clearance rows ask ``qp_margin``, which the sample itself may miss,
-        and share the clearance rows' slack. ``None`` when there are none.
+        standard, no earlier contact, no earlier static collision) must hold: the slack relaxes
+        them ``_SLACK_REPAIR_FACTOR`` times less; clearance rows ask ``qp_margin``, which the
+        sample itself may miss. ``None`` when there are none.
 
         - closer to an obstacle: the clearance rows of the refined trajectory;
         - a filter: the filters' rows of the refined trajectory, asking what they asked of
@@ -476,27 +475,22 @@ class QPDWAPlanner(DWAPlanner):
     def _solve(self, x0: np.ndarray, lo: np.ndarray, hi: np.ndarray, grads: np.ndarray, lb_rows: np.ndarray,
                x_start: np.ndarray, info: dict, must_hold: np.ndarray | None = None) -> np.ndarray | None:
         """One OSQP solve: closest to ``x0`` in the window ``[lo, hi]`` under the clearance rows
-        ``grads . u + s >= lb_rows`` (``s``: the clearance rows' slack, or for the rows marked
-        ``must_hold`` their own, dearer one); ``None`` (with ``info["qp"]`` saying why) unless solved."""
-        n_u, n, m = self.n_u, self._n_x, self._m_rows
-        rows = np.zeros((m, n))
-        lb = np.full(m, -np.inf)
+        ``grads . u + s >= lb_rows`` (``s / _SLACK_REPAIR_FACTOR`` in the rows marked
+        ``must_hold``); ``None`` (with ``info["qp"]`` saying why) unless solved."""
+        n_u, n = self.n_u, self._n_x
+        rows = np.zeros((self._m_rows, n))
+        lb = np.full(self._m_rows, -np.inf)
         k = len(lb_rows)
         rows[:k, :n_u] = grads
-        repair = np.zeros(m, bool)
-        if must_hold is not None:
-            repair[:k] = must_hold
-        rows[:, n_u] = ~repair
-        rows[:, n_u + 1] = repair
+        rows[:k, n_u] = 1.0 if must_hold is None else np.where(must_hold, 1.0 / _SLACK_REPAIR_FACTOR, 1.0)
         lb[:k] = lb_rows
         dense = np.vstack([np.eye(n), rows])
-        q = np.r_[-self._W * x0, _SLACK_LINEAR, _SLACK_REPAIR]
-        lower = np.r_[lo, np.zeros(2), lb]
-        # without must-hold rows their slack is fixed at 0 (a free unused variable slows ADMM)
-        upper = np.r_[hi, np.inf, np.inf if repair.any() else 0.0, np.full(m, np.inf)]
+        q = np.r_[-self._W * x0, _SLACK_LINEAR]
+        lower = np.r_[lo, 0.0, lb]
+        upper = np.r_[hi, np.inf, np.full(self._m_rows, np.inf)]
         Ax = dense[self._A_rows, self._A_cols]
         t0 = time.perf_counter()  # the OSQP calls only: update (refactorises), warm start, solve
-        status_val, status, x_opt, solve_s = self._lean.step(q, lower, upper, Ax, np.r_[x_start, np.zeros(2)])
+        status_val, status, x_opt, solve_s = self._lean.step(q, lower, upper, Ax, np.r_[x_start, 0.0])
         elapsed = (time.perf_counter() - t0) * 1e6
         self.qp_times_us.append(elapsed)
         info["qp_us"] += elapsed
@@ -597,7 +591,7 @@ class QPDWAPlanner(DWAPlanner):
             break
         u = (float(x[0]), float(x[1]), float(x[2]) if n_u == 3 else 0.0)
         info["qp"] = "solved" if "qp_fraction" not in info else f"solved: {info['qp_fraction']:g} of the step"
-        info["qp_slack"] = float(x_opt[n_u:].max())
+        info["qp_slack"] = float(x_opt[n_u])
         # a solved QP may hand back the sample itself (its optimum); benchmarks count real changes
         info["qp_change"] = float(max(abs(a - b) for a, b in zip(u, u0)))
         return u
