@@ -219,6 +219,20 @@ def test_a_refinement_that_meets_an_unrowed_obstacle_is_relinearised_or_shortene
     assert infos[2]["qp_change"] > infos[1]["qp_change"]
 
 
+
+def by_passes(ctx, robot, **params):
+    """``{passes: (command info, first verdict of the QP's answer)}`` for one and two passes of
+    a fresh qp-dwa on ``ctx``."""
+    out = {}
+    for passes in (1, 2):
+        planner = make_local_planner("qp-dwa", robot, DT, qp_passes=passes, **params)
+        planner.reset(ctx.state, ctx.global_path)
+        seen = []
+        verdict = planner._verdict
+        planner._verdict = lambda *a: seen.append(verdict(*a)[0]) or verdict(*a)
+        out[passes] = planner.command(ctx).info, seen[0] if seen else None
+    return out
+
 # a robot among ten movers on the shipped 50x50 map (benchmarks/dwa_step.py's contexts 37 and 214)
 CROWDS = {
     "earlier mover contact": ((0.5, 8.5, math.pi / 4, 0.5, 0.1), (3.5, 13.5), [
@@ -254,15 +268,9 @@ def test_a_refinement_that_fails_a_filter_or_meets_a_mover_earlier_is_repaired(f
     ctx = LocalContext(state=st, subgoal=np.array(sub), goal=path[-1], global_path=path, static_distance=field,
                        dynamic=np.array(movers), dt=DT, t=0.0, bounds=grid.bounds)
     robot = RobotSpec()
-    infos = {}
-    for passes in (1, 2):
-        planner = make_local_planner("qp-dwa", robot, DT, n_v=20, n_w=40, qp_passes=passes)
-        planner.reset(st, path)
-        seen = []
-        verdict = planner._verdict
-        planner._verdict = lambda *a: seen.append(verdict(*a)[0]) or verdict(*a)
-        info = infos[passes] = planner.command(ctx).info
-        assert seen[0] == failed
+    runs = by_passes(ctx, robot, n_v=20, n_w=40)
+    assert runs[1][1] == runs[2][1] == failed
+    infos = {passes: info for passes, (info, _) in runs.items()}
     assert qp_outcome(infos[1]) == "fallback" or infos[1].get("qp_fraction", 1.0) < 1.0
     assert infos[2]["qp"] == "solved" and infos[2]["qp_passes"] == 2 and infos[2]["qp_change"] > 0.01
     planner = make_local_planner("qp-dwa", robot, DT, n_v=20, n_w=40)
@@ -293,17 +301,13 @@ def test_a_refinement_that_cannot_stop_before_a_block_is_repaired():
     goal = np.array([5.717301253482249, 3.7648661308701983])
     ctx = LocalContext(state=st, subgoal=goal, goal=goal, global_path=np.array([[st.x, st.y], goal]),
                        static_distance=field, dynamic=np.zeros((0, 5)), dt=DT, t=0.0)
-    infos = {}
-    for passes in (1, 2):
-        planner = make_local_planner("qp-dwa", robot, DT, path_samples=(), qp_margin=0.3, qp_passes=passes)
-        planner.reset(st, ctx.global_path)
-        seen = []
-        verdict = planner._verdict
-        planner._verdict = lambda *a: seen.append(verdict(*a)[0]) or verdict(*a)
-        infos[passes] = planner.command(ctx).info
-        assert seen[0] == "not admissible"
+    runs = by_passes(ctx, robot, path_samples=(), qp_margin=0.3)
+    assert runs[1][1] == runs[2][1] == "not admissible"
+    infos = {passes: info for passes, (info, _) in runs.items()}
     assert qp_outcome(infos[1]) == "fallback" or infos[1].get("qp_fraction", 1.0) < 1.0
     assert infos[2]["qp"] == "solved" and infos[2]["qp_passes"] == 2 and infos[2]["qp_change"] > 0.05
     v, w, vy = infos[2]["target"]
+    planner = make_local_planner("qp-dwa", robot, DT, path_samples=(), qp_margin=0.3)
+    planner.reset(st, ctx.global_path)
     check = planner._assess(ctx, planner.rollout_of(st, [v], [vy], [w]))
     assert check.admissible[0]
