@@ -438,14 +438,10 @@ class QPDWAPlanner(DWAPlanner):
             found = sorted((row for m in self.roles.filters for row in m.clearance_rows(self.view, check, 0, like=(step, i))
                             if row[2] < row[3]), key=lambda row: row[2])
             rows = self._linearise(ctx, check.roll, 0, found[:self.options["qp_rows_filters"]])
-        elif failed == "not admissible":
-            # the refined trajectory meets a static obstacle before it could stop: rows at its
-            # first colliding points, asking the collision test's clearance, on the sample's
-            # trajectory (clear there: it is admissible), linearised at the sample
-            H = step.roll.z.shape[1]
+        elif failed == "not admissible":  # the sample's trajectory is clear at those points
             t_h, t_s = int(check.static_hit[0]), int(step.stop_index()[i])
             asked = min(self.static_margin(ctx), current_gaps(ctx, self.robot)[0]) + _GAP_TOL
-            z = step.roll.z[i, t_h:min(t_s, H, t_h + self.options["qp_rows_static"])]
+            z = step.roll.z[i, t_h:min(t_s, t_h + self.options["qp_rows_static"])]
             if len(z) == 0:
                 return None
             grad = static_gradient(ctx, z)
