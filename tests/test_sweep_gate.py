@@ -364,9 +364,9 @@ def test_a_robot_held_beside_a_busy_sweep_goes_round_it():
 
 def test_a_rollout_that_crosses_the_movers_line_between_two_points_gets_the_deepest_gap():
     """Rollout points 0.1 s apart step over a mover's line and miss it by chance (here by
-    more than 5 mm); a straight rollout that crosses the line where the mover may be gets the
-    gap of the line's middle, ``-(r + R)``, and one that stops short of the line keeps its
-    points' gap."""
+    more than 5 mm); measured for the gate's least-close rule, a straight rollout that crosses
+    the line where the mover may be gets the gap of the line's middle, ``-(r + R)``, and one
+    that stops short of the line keeps its points' gap."""
     planner = make_local_planner("qp-dwa", ROBOT, 0.1)
     state = RobotState(x=4.8, y=3.1, theta=0.0, v=0.6)
     planner.reset(state, np.array([[0.5, 3.0], [11.0, 3.0]]))
@@ -376,7 +376,7 @@ def test_a_rollout_that_crosses_the_movers_line_between_two_points_gets_the_deep
     stepped_over = 0
     for v in np.linspace(0.0, 0.7, 71):
         straight = planner._assess(ctx, planner.rollout_of(state, [v], [0.0], [0.0]))
-        gate.strict_filter(planner.view, straight)
+        gate.strict_filter(planner.view, straight, crossings=True)  # as the least-close rule measures
         gap = straight.aux["gate_gap"][0]
         x = straight.roll.z[0].real
         points_gap = np.abs(x - 6.0).min() - 0.35 - ROBOT.radius

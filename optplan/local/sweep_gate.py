@@ -250,9 +250,14 @@ class SweepGate(Mechanism, MoverSweepSource):
         slack = 0.5 * reach / self.grid
         return lo - slack, hi + slack
 
-    def gaps(self, view: PlannerView, step: Step, rows: np.ndarray | None = None) -> tuple[np.ndarray, float]:
+    def gaps(self, view: PlannerView, step: Step, rows: np.ndarray | None = None,
+             crossings: bool = False) -> tuple[np.ndarray, float]:
         """Smallest edge gap ``(S,)`` of every rollout to the swept intervals, and the gap now;
         with ``rows`` (indices) only those samples are measured (the others are ``inf``).
+        With ``crossings``, a rollout that crosses a line between two points where the
+        interval may hold the mover gets the deepest gap (:meth:`_crossings`); the strict test
+        does not need it (such a rollout has a point within half a step of the line and fails
+        it anyway), the least-close relaxation does.
 
         Gaps up to ``margin`` are exact; a larger value only says the gap exceeds ``margin``
         (rollout times that provably keep farther are not measured), which is all the
@@ -278,7 +283,7 @@ class SweepGate(Mechanism, MoverSweepSource):
                 q_buf, d_buf, e_buf = np.empty(z.shape, complex), np.empty(z.shape), np.empty(z.shape)
             # every near time (and any far one between), and the one before: a segment into
             # the first near point may cross the line
-            c = slice(max(near[0] - 1, 0), near[-1] + 1)
+            c = slice(max(near[0] - crossings, 0), near[-1] + 1)
             size, shape = len(z) * (c.stop - c.start), (len(z), c.stop - c.start)
             q, d, e = (buf.ravel()[:size].reshape(shape) for buf in (q_buf, d_buf, e_buf))  # contiguous views
             # in the line's frame: position along the line (real part) and off it (imaginary part)
@@ -292,10 +297,10 @@ class SweepGate(Mechanism, MoverSweepSource):
             e += d
             g = np.sqrt(e.min(axis=1)) - k.radius - R
             np.minimum(out, g, out=out)
-            # a rollout that crosses the line has a point within one step's length of it
-            cand = np.flatnonzero((g < seg - k.radius - R) & (out > -k.radius - R))
-            if len(cand):
-                self._crossings(k, q[cand], roll.z0 if c.start == 0 else None, lo[c], hi[c], out, cand, R)
+            if crossings:  # a rollout that crosses inside the interval has a point within half a step
+                cand = np.flatnonzero((g < 0.5 * seg - k.radius - R) & (out > -k.radius - R))
+                if len(cand):
+                    self._crossings(k, q[cand], roll.z0 if c.start == 0 else None, lo[c], hi[c], out, cand, R)
         if rows is not None:
             full = np.full(roll.n, np.inf)
             full[rows] = out
@@ -328,11 +333,11 @@ class SweepGate(Mechanism, MoverSweepSource):
                 along = a.real + (bb.real - a.real) * (a.imag / (a.imag - bb.imag))
                 out[rows[first[(along >= lo[0]) & (along <= hi[0])]]] = deep
 
-    def strict_filter(self, view, step) -> np.ndarray | None:
+    def strict_filter(self, view, step, crossings: bool = False) -> np.ndarray | None:
         self.update(step.ctx)
         if not self._now:
             return None
-        gap, now = self.gaps(view, step)
+        gap, now = self.gaps(view, step, crossings=crossings)
         step.aux["gate_gap"], step.aux["gate_now"] = gap, now
         return gap >= min(self.margin, now)
 
@@ -345,11 +350,14 @@ class SweepGate(Mechanism, MoverSweepSource):
         safe = step.admissible & step.mover_free
         if not self._now or not safe.any():
             return None
-        gap, now = self.gaps(view, step, np.flatnonzero(safe))
-        step.aux["gate_gap"], step.aux["gate_now"] = gap, now
+        rows = np.flatnonzero(safe)
+        gap, now = self.gaps(view, step, rows)
         keep = (gap >= min(self.margin, now)) & safe
-        if not keep.any():
-            keep = (gap >= gap[safe].max() - 1e-9) & safe  # nothing safe keeps off: come least close
+        if not keep.any():  # nothing safe keeps off: come least close
+            if gap[safe].max() < self._crossing_band(view, step):  # crossings can decide it
+                gap, now = self.gaps(view, step, rows, crossings=True)
+            keep = (gap >= gap[safe].max() - 1e-9) & safe
+        step.aux["gate_gap"], step.aux["gate_now"] = gap, now
         step.aux["gate_rejected"] = int((~keep).sum())
         return keep
 
@@ -362,7 +370,19 @@ class SweepGate(Mechanism, MoverSweepSource):
         if keep is None or keep[0]:
             return True
         gap = step.aux.get("gate_gap")
-        return gap is not None and bool(check.aux["gate_gap"][0] >= gap[i] - 1e-9)
+        if gap is None or gap[i] >= min(self.margin, step.aux["gate_now"]):
+            return False  # the sample kept off: the strict test was the standard
+        if gap[i] < self._crossing_band(view, step):  # measured as the filter measured the sample
+            self.strict_filter(view, check, crossings=True)
+        return bool(check.aux["gate_gap"][0] >= gap[i] - 1e-9)
+
+    def _crossing_band(self, view, step) -> float:
+        """Gaps below which a rollout may cross a line between two points: within half of the
+        longest step between rollout points. When the least-close samples keep above it, no
+        crossing can change which samples the relaxed rule keeps, and it is not measured."""
+        roll, state = step.roll, step.ctx.state
+        seg = max(roll.max_speed, math.hypot(state.v, state.vy)) * roll.dt
+        return 0.5 * seg - min(k.radius for k in self._now) - view.robot.radius
 
     def clearance_rows(self, view, step, i: int, like=None) -> list[tuple[int, complex, float, float]]:
         """Per track, the rollout point of sample ``i`` nearest to the interval the mover may
