@@ -467,12 +467,13 @@ def test_a_robot_pinned_with_open_space_behind_keeps_turning_the_way_it_turns():
 
 
 def test_the_brake_sample_keeps_a_robot_on_an_arc_able_to_stop(field):
-    """Fox's admissibility asks that the robot can stop on a sample's arc; the arc the robot
-    drives, braked, is rarely on the grid. idwa (yang2023's a_max 0.2 m/s^2) starting on an
-    admissible arc towards a block: without the brake sample, two seconds later no sample of
-    the window is admissible, step after step, and the robot slides into the block; with it,
-    the robot brakes on its arc and stops 3 cm clear. The brake sample is the window's
-    slowest speed on the current arc (same curvature)."""
+    """Fox's admissibility asks that the robot can stop on a sample's arc, braking at once;
+    the arc the robot drives, braked, is rarely on the grid, and the command is held for a
+    period first. idwa (yang2023's a_max 0.2 m/s^2) starting on an admissible arc towards a
+    block: with the plain test and grid, two seconds later no sample of the window is
+    admissible, step after step, and the robot slides into the block; with the preset's
+    brake sample and held period it keeps clear. The brake sample is the window's slowest
+    speed on the current arc (same curvature)."""
     robot = RobotSpec(model="unicycle", radius=0.1, v_max=1.0, w_max=math.radians(40), a_max=0.2,
                       alpha_max=math.radians(40))
     start = RobotState(3.389200928824068, 6.766791931259116, 1.470497395698649, 0.4916391193687464,
@@ -480,7 +481,7 @@ def test_the_brake_sample_keeps_a_robot_on_an_arc_able_to_stop(field):
     goal = (5.04, 4.64)
     runs = {}
     for brake in (False, True):
-        planner = make_local_planner("idwa", robot, DT, brake_sample=brake)
+        planner = make_local_planner("idwa", robot, DT, **({} if brake else {"brake_sample": False, "reaction": 0.0}))
         planner.reset(start, np.array([[start.x, start.y], goal]))
         st, modes, clear = start, [], []
         for _ in range(40):

@@ -49,8 +49,9 @@ PRESETS: dict[str, Preset] = {p.name: p for p in (
                Term("heading_change", 1.5 * FOX_HEADING)),  # lambda, eq 19 (0 unless VO flags a mover)
         mechanisms=(("velocity_obstacle", {}),),
         # ours: at yang2023's a_max of 0.2 m/s^2 the grid missed the braked arc, and the robot
-        # slid into blocks in the fusion experiment (docs/fidelity/yang2023.md)
-        options={"brake_sample": True},
+        # slid into blocks in the fusion experiment; and the stopping distance counts the
+        # control period (0.1 s) for which a command is held (docs/fidelity/yang2023.md)
+        options={"brake_sample": True, "reaction": 0.1},
     ),
     Preset(
         name="ba-dwa",

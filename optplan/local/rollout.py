@@ -142,6 +142,11 @@ def rollout_ramped(state: RobotState, lin_v: np.ndarray, lin_vy: np.ndarray, w: 
 
 def join_rollouts(a: Rollouts, b: Rollouts) -> Rollouts:
     """The samples of ``a`` followed by those of ``b`` (same start, step and horizon)."""
+    if all(r.theta is None and r.profile is None and r.tracking is None for r in (a, b)):
+        # constant commands both: headings and speeds follow from (v, vy, w), nothing per step
+        return Rollouts(v=np.r_[a.v, b.v], vy=np.r_[a.vy, b.vy], w=np.r_[a.w, b.w], z=np.vstack([a.z, b.z]), t=a.t,
+                        z0=a.z0, theta0=a.theta0, dt=a.dt)
+
     def per_step(r: Rollouts) -> tuple[np.ndarray, np.ndarray]:
         theta = r.theta if r.theta is not None else r.theta0 + np.multiply.outer(r.w, r.t)
         profile = r.profile if r.profile is not None else np.broadcast_to(r.speed[:, None], r.z.shape)
