@@ -386,16 +386,19 @@ class QPDWAPlanner(DWAPlanner):
                     break
                 if all(abs(t - q) >= 3 for q in picked):  # spread the rows along the trajectory
                     picked.append(int(t))
-        gate = []
-        if filters and o["qp_rows_filters"]:
-            gate = sorted((row for m in self.roles.filters for row in m.clearance_rows(self.view, step, i)
-                           if row[2] < o["qp_activate"]), key=lambda row: row[2])[:o["qp_rows_filters"]]
+        gate = self._filter_rows(step, i, lambda row: row[2] < o["qp_activate"]) if filters else []
         if picked:
             grad_z = static_gradient(ctx, z[picked])
             asked = (self._static_margins(ctx, z[picked]).tolist() if o["qp_committed"]
                      else [o["qp_margin"]] * len(picked))
             rows += [(t, grad_z[q], sg[t], asked[q]) for q, t in enumerate(picked)]
         return self._linearise(ctx, roll, i, rows + gate)
+
+    def _filter_rows(self, step: Step, i: int, wanted, like: tuple[Step, int] | None = None) -> list:
+        """The filters' clearance rows of sample ``i`` of ``step`` that ``wanted(row)`` selects,
+        nearest first, at most ``qp_rows_filters`` (``like``: see ``clearance_rows``)."""
+        found = (row for m in self.roles.filters for row in m.clearance_rows(self.view, step, i, like=like))
+        return sorted((row for row in found if wanted(row)), key=lambda row: row[2])[:self.options["qp_rows_filters"]]
 
     def _linearise(self, ctx: LocalContext, roll: Rollouts, i: int, rows: list[tuple[int, complex, float, float]]):
         """``(grad (k, n_u), gap0 (k,), margin (k,))`` of clearance rows ``(rollout point, outward
@@ -435,9 +438,7 @@ class QPDWAPlanner(DWAPlanner):
         if failed == "closer to an obstacle":
             rows = self._rows(ctx, check, 0)
         elif failed == "filter":
-            found = sorted((row for m in self.roles.filters for row in m.clearance_rows(self.view, check, 0, like=(step, i))
-                            if row[2] < row[3]), key=lambda row: row[2])
-            rows = self._linearise(ctx, check.roll, 0, found[:self.options["qp_rows_filters"]])
+            rows = self._linearise(ctx, check.roll, 0, self._filter_rows(check, 0, lambda row: row[2] < row[3], like=(step, i)))
         elif failed == "not admissible":  # the sample's trajectory is clear at those points
             t_h, t_s = int(check.static_hit[0]), int(step.stop_index()[i])
             asked = min(self.static_margin(ctx), current_gaps(ctx, self.robot)[0]) + _GAP_TOL

@@ -266,10 +266,10 @@ class SweepGate(Mechanism, MoverSweepSource):
         R = view.robot.radius
         z = roll.z if rows is None else roll.z[rows]
         out, now = np.full(len(z), np.inf), math.inf
-        state = step.ctx.state
         # every rollout point at time t lies within (fastest speed) t of the start
-        reach = max(roll.max_speed, math.hypot(state.v, state.vy)) * roll.t
-        seg = max(roll.max_speed, math.hypot(state.v, state.vy)) * roll.dt  # longest step between points
+        fastest = self._fastest(step)
+        reach = fastest * roll.t
+        seg = fastest * roll.dt  # longest step between points
         q_buf = None
         for k in self._now:
             lo, hi = self.swept(k, roll.t)
@@ -283,7 +283,7 @@ class SweepGate(Mechanism, MoverSweepSource):
                 q_buf, d_buf, e_buf = np.empty(z.shape, complex), np.empty(z.shape), np.empty(z.shape)
             # every near time (and any far one between), and the one before: a segment into
             # the first near point may cross the line
-            c = slice(max(near[0] - crossings, 0), near[-1] + 1)
+            c = slice(max(near[0] - 1, 0) if crossings else near[0], near[-1] + 1)
             size, shape = len(z) * (c.stop - c.start), (len(z), c.stop - c.start)
             q, d, e = (buf.ravel()[:size].reshape(shape) for buf in (q_buf, d_buf, e_buf))  # contiguous views
             # in the line's frame: position along the line (real part) and off it (imaginary part)
@@ -380,9 +380,13 @@ class SweepGate(Mechanism, MoverSweepSource):
         """Gaps below which a rollout may cross a line between two points: within half of the
         longest step between rollout points. When the least-close samples keep above it, no
         crossing can change which samples the relaxed rule keeps, and it is not measured."""
-        roll, state = step.roll, step.ctx.state
-        seg = max(roll.max_speed, math.hypot(state.v, state.vy)) * roll.dt
-        return 0.5 * seg - min(k.radius for k in self._now) - view.robot.radius
+        return 0.5 * self._fastest(step) * step.roll.dt - min(k.radius for k in self._now) - view.robot.radius
+
+    @staticmethod
+    def _fastest(step) -> float:
+        """Fastest planar speed on the rollouts or of the robot now, m/s."""
+        state = step.ctx.state
+        return max(step.roll.max_speed, math.hypot(state.v, state.vy))
 
     def clearance_rows(self, view, step, i: int, like=None) -> list[tuple[int, complex, float, float]]:
         """Per track, the rollout point of sample ``i`` nearest to the interval the mover may
