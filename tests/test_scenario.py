@@ -11,6 +11,7 @@ import pytest
 import optplan as op
 from optplan.errors import ScenarioError
 from optplan.world.scenario import DynamicObstacle, load_scenario, scenario_names
+from optplan.world.polyline import point_segment_distances
 from optplan.worldgen.scenarios import realize
 
 ROWS = [
@@ -323,8 +324,36 @@ def test_movers_drawn_to_cross_once_meet_a_robot_driving_the_path():
             if m.phase == 0.0:  # (a mover that would have had to start before t = 0 is late)
                 assert at / once.robot.v_max - 0.5 <= t[k] <= at / (0.3 * once.robot.v_max) + 0.5
                 timed += 1
-    assert timed >= 10  # of the 20 movers    assert _room(random_dynamic={"count": 1, "motion": "once"}).random_dynamic["motion"] == "once"
+    assert timed >= 10  # of the 20 movers
+    assert _room(random_dynamic={"count": 1, "motion": "once"}).random_dynamic["motion"] == "once"
     assert _room(random_dynamic={"count": 1}).random_dynamic["motion"] == "shuttle"
     with pytest.raises(ScenarioError, match="motion"):
         _room(random_dynamic={"count": 1, "motion": "twice"})
+
+
+def test_movers_with_unseen_ends_are_seen_only_while_they_drive():
+    """``ends_unseen``: a once-mover waits and stops where a robot on the reference path
+    cannot sense it, so the robot never sees it stand and then set off (yang2023's movers
+    drive at 0.8 m/s); its track still crosses the path, on time, through free space."""
+    from optplan.worldgen.scenarios import reference_path
+
+    sc = load_scenario("yang2023_fusion")
+    assert sc.random_dynamic["ends_unseen"] is True
+    once = replace(sc, random_dynamic={**sc.random_dynamic, "motion": "once"})
+    path = reference_path(once)
+    for seed in range(3):
+        for m in realize(once, seed).dynamic:
+            a, b = m.waypoints
+            for end in (a, b):
+                gap = np.hypot(*(path - end).T).min() - m.radius
+                assert gap >= once.sensor_range + 0.5 - 1e-3
+            assert bool(once.world.segments_free(a, b, m.radius))
+            assert point_segment_distances(path, a, b).min() < 0.01  # it crosses the path
+    # the plain draw leaves ends in view (the case the option exists for)
+    plain = replace(once, random_dynamic={**once.random_dynamic, "ends_unseen": False})
+    ends = np.array([m.waypoints[0] for s in range(3) for m in realize(plain, s).dynamic])
+    assert (np.array([np.hypot(*(path - e).T).min() for e in ends]) - 0.6 < once.sensor_range).any()
+    assert _room(random_dynamic={"count": 1}).random_dynamic["ends_unseen"] is False
+    with pytest.raises(ScenarioError, match="ends_unseen must be true or false"):
+        _room(random_dynamic={"count": 1, "ends_unseen": 1})
 

@@ -65,7 +65,14 @@ Optional keys added by optplan (all validated like the rest):
   when a robot driving that path from the start at a speed drawn between 30 % and 100 % of
   its ``v_max`` would get there (it waits at its first end until it must set off; a mover
   that would have had to start before ``t = 0`` starts part-way). This is how hou2024 §4.5 and
-  li2023 §6.2 draw their movers: an origin and a path.
+  li2023 §6.2 draw their movers: an origin and a path. ``ends_unseen: true`` (default false;
+  ``motion: once`` only) lengthens both ends of the track, along it, until a robot on the
+  reference path cannot sense a mover standing there (the disc beyond ``sensor_range`` +
+  0.5 m of every path point): the robot only ever sees it drive, as a mover in the papers'
+  uniform motion. A track whose longer ends are not free is drawn again. Without it a mover
+  may stand beside the path in view and set off 1-2 s before the robot passes (or stop in
+  its way): a jump in velocity that no prediction can foresee, and that a robot with the
+  papers' accelerations cannot avoid once it sees it.
 
 * Draws no map can hold are refused when the file is read: more random obstacles than
   the map has cells (at most 10,000) or blocks wider than the map, and more random
@@ -234,6 +241,10 @@ def _read_random(spec, key: str, allowed: dict[str, Any]) -> dict | None:
             if v not in MOVER_MOTIONS:
                 raise ScenarioError(f"{key}.motion must be one of {', '.join(MOVER_MOTIONS)}, got {v!r}")
             continue
+        if k == "ends_unseen":
+            if not isinstance(v, bool):
+                raise ScenarioError(f"{key}.ends_unseen must be true or false, got {v!r}")
+            continue
         if isinstance(allowed[k], tuple):
             out[k] = file_range(v, f"{key}.{k}")
         else:
@@ -289,7 +300,7 @@ def scenario_from_dict(data: dict, base_dir: str | os.PathLike | None = None, so
                                     {"count": 0, "size": 1.0, "keep_away": 2.0})
     random_dynamic = _read_random(data.get("random_dynamic"), "random_dynamic",
                                   {"count": 0, "radius": 0.3, "speed": (0.3, 0.6), "length": (3.0, 8.0),
-                                   "keep_away": 3.0, "motion": "shuttle"})
+                                   "keep_away": 3.0, "motion": "shuttle", "ends_unseen": False})
     return Scenario(world, robot, start, goal, unknown_cells=cells, unknown_circles=circles,
                     dynamic=_read_movers(data.get("dynamic_obstacles")), random_obstacles=random_obstacles,
                     random_dynamic=random_dynamic, source=source, **kwargs)

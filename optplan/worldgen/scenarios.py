@@ -203,6 +203,12 @@ def _draw_random_movers(sc: Scenario, spec: dict, rng, path: np.ndarray) -> list
                 a, b = (p, b) if end == "a" else (a, p)
         if not bool(world.segments_free(a, b, radius)) or np.hypot(*(b - a)) < max(1.0, spec["length"][0] / 2):
             continue
+        if spec.get("motion") == "once" and spec.get("ends_unseen"):
+            # the robot may see the mover only while it drives: a start or stop in view is a
+            # jump in velocity that no prediction from its motion can foresee
+            a, b = _out_of_sight(sc, path, i, a, radius), _out_of_sight(sc, path, i, b, radius)
+            if a is None or b is None:
+                continue
         # the mover must never touch the robot waiting at the start or arrived at the goal
         near = radius + sc.robot.radius + 0.5
         if point_segment_distances(np.stack([sc.start[:2], sc.goal]), a, b).min() < near:
@@ -236,6 +242,29 @@ def _draw_random_movers(sc: Scenario, spec: dict, rng, path: np.ndarray) -> list
                              phase=round(float(phase), 3))
         out.append(ob)
     return out
+
+
+_UNSEEN_MARGIN = 0.5  # m beyond sensor_range: the robot strays this far from the reference path
+_UNSEEN_STEP = 0.1  # m: the approach grows in these steps
+
+
+def _out_of_sight(sc: Scenario, path: np.ndarray, i: int, end: np.ndarray, radius: float) -> np.ndarray | None:
+    """The end ``end`` of a track through ``path[i]``, moved outwards along the track until a
+    mover standing there is out of a robot's sensing from every point of ``path``, or ``None``
+    when that longer track is not free of known obstacles and the border (by ``radius``)."""
+    out = end - path[i]
+    length = float(np.hypot(*out))
+    if length == 0:
+        return None
+    u = out / length
+    need = sc.sensor_range + radius + _UNSEEN_MARGIN
+    xmin, ymin, xmax, ymax = sc.bounds
+    far = math.hypot(xmax - xmin, ymax - ymin)
+    for s in np.arange(length, far + _UNSEEN_STEP, _UNSEEN_STEP):
+        p = path[i] + s * u
+        if float(np.hypot(*(path - p).T).min()) >= need:
+            return np.round(p, 3) if bool(sc.world.segments_free(path[i], p, radius)) else None
+    return None
 
 
 def _once_across(sc: Scenario, path: np.ndarray, i: int, a: np.ndarray, b: np.ndarray, radius: float,
