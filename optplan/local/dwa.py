@@ -123,6 +123,8 @@ class DWAPlanner(MoverSweepSource):
         "path_look_aheads": (0.25, 0.5),  # m: their pure-pursuit look-ahead distances ...
         "path_turn_first": (1.5708, 0.3),  # ... and bearings (rad) beyond which they turn in place
         "brake_sample": False,  # add the sample that brakes hardest along the arc the robot drives
+        "exact_free": False,  # free distance to where the clearance crosses the margin between
+                              # rollout points (rollout.assess), not to the last free point
     }
 
     def __init__(self, preset: Preset, robot: RobotSpec, dt: float, **params: Any) -> None:
@@ -214,7 +216,7 @@ class DWAPlanner(MoverSweepSource):
             o[k] = vals
         if o["path_samples"] and not (o["path_look_aheads"] and o["path_turn_first"]):
             raise ParameterError("path_samples need at least one of path_look_aheads (m) and of path_turn_first (rad)")
-        for k in ("omni", "movers_meet_stop", "brake_sample"):
+        for k in ("omni", "movers_meet_stop", "brake_sample", "exact_free"):
             o[k] = boolean(k, o[k])
         if o["normalise"] not in ("sum", "minmax", "none"):
             raise ParameterError(f"normalise must be 'sum', 'minmax' or 'none', got {o['normalise']!r}")
@@ -305,7 +307,7 @@ class DWAPlanner(MoverSweepSource):
         return assess(ctx, self.robot, roll, margin=o["margin"], static_margin=self.static_margin(ctx),
                       reaction=self._reaction(), mover_range=o["mover_range"],
                       mover_growth=o["mover_growth"], growth_cap=o["growth_cap"], predict=predict,
-                      movers_meet_stop=o["movers_meet_stop"])
+                      movers_meet_stop=o["movers_meet_stop"], exact_free=o["exact_free"])
 
     def _reaction(self) -> float:
         return self.options["reaction"]

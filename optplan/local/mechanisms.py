@@ -287,5 +287,28 @@ class InitialHeading(Mechanism):
         return 0.0, w, {"mode": "align-initial-heading", "heading_error": err}
 
 
+@dataclass
+class ReachSubgoal(Mechanism):
+    """Ours, not a paper's: the speed is capped where the subgoal would lie inside both of the
+    robot's tightest turning circles (radius ``v / w_max``, left and right), from where no
+    turn reaches it and the robot orbits it at full speed. A target at lateral offset ``y``
+    and distance ``d`` stays outside the circle on its side while ``v <= w_max d^2 / (2 |y|)``.
+
+    Fox's velocity term rewards speed and a one-step heading term (yang2023 §5.2) barely
+    tells a slower turn from a faster one, so nothing in idwa's evaluation slows the robot
+    for a target beside it (docs/fidelity/yang2023.md: orbits round the goal, or round the
+    end of a wall the path turns about)."""
+
+    name: ClassVar[str] = "reach_subgoal"
+
+    def adjust_window(self, view: PlannerView, ctx: LocalContext, window: Window) -> Window:
+        st = ctx.state
+        dx, dy = float(ctx.subgoal[0]) - st.x, float(ctx.subgoal[1]) - st.y
+        lateral = abs(-math.sin(st.theta) * dx + math.cos(st.theta) * dy)
+        if lateral < 1e-9:
+            return window  # straight ahead or behind: a turn in place then a straight line reaches it
+        return window.capped(v_hi=view.robot.w_max * (dx * dx + dy * dy) / (2.0 * lateral))
+
+
 MECHANISMS: dict[str, type[Mechanism]] = {m.name: m for m in (
-    AdaptiveVelocity, VelocityObstacle, BrakeAndWait, InitialHeading, SweepGate, PathCreep)}
+    AdaptiveVelocity, VelocityObstacle, BrakeAndWait, InitialHeading, SweepGate, PathCreep, ReachSubgoal)}

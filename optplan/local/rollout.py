@@ -395,7 +395,7 @@ def assess(ctx: LocalContext, robot: RobotSpec, roll: Rollouts, *, margin: float
            static_margin: float | None = None, reaction: float = 0.0,
            mover_range: float = 3.0, mover_growth: float = 0.0, growth_cap: float = 0.0,
            predict: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
-           movers_meet_stop: bool = False) -> Step:
+           movers_meet_stop: bool = False, exact_free: bool = False) -> Step:
     """Clearance of every rollout point, the free distance and the admissibility of every sample.
 
     A rollout point collides when its clearance is below ``margin``; when the robot already
@@ -419,6 +419,11 @@ def assess(ctx: LocalContext, robot: RobotSpec, roll: Rollouts, *, margin: float
             horizon. Otherwise the rollout runs on through the obstacle, and a trajectory
             that would leave the robot stopped in a pocket of clutter on a mover's track
             counts as clear of the mover because its straight continuation is.
+        exact_free: the free distance runs on from the last free rollout point to where the
+            clearance, interpolated linearly, crosses the margin. Cut at the last free point it
+            falls short by up to a step's length, by a different amount from one period to the
+            next: a robot that braked on an arc judged able to stop could find the same arc
+            judged unable one period later (docs/fidelity/yang2023.md).
     """
     static_gap = np.asarray(ctx.static_distance(roll.xy), dtype=float) - robot.radius
     movers, vel, radii = predict_movers(ctx.dynamic, roll.t)
@@ -428,7 +433,8 @@ def assess(ctx: LocalContext, robot: RobotSpec, roll: Rollouts, *, margin: float
     keep = relevant_movers(roll.z0, movers, radii, roll.t, roll.max_speed, robot.radius, beyond)
     now_static, now_moving = current_gaps(ctx, robot)
     s_margin = margin if static_margin is None else static_margin
-    first = first_hit(static_gap < min(s_margin, now_static))  # 0 = the point after one step
+    limit = min(s_margin, now_static)
+    first = first_hit(static_gap < limit)  # 0 = the point after one step
     z = roll.z
     if movers_meet_stop and (first < z.shape[1]).any():
         held = np.minimum(np.arange(z.shape[1])[None, :], first[:, None] - 1)       # -1: still at z0
@@ -437,11 +443,34 @@ def assess(ctx: LocalContext, robot: RobotSpec, roll: Rollouts, *, margin: float
     fastest = float(np.abs(vel[keep]).max(initial=0.0))
     growth = np.minimum(mover_growth * fastest * roll.t, growth_cap) if mover_growth > 0 else 0.0
     free, stopping = _stopping_test(roll, first, robot.a_max, reaction)
+    if exact_free:
+        free = free + _beyond_last_free(roll, first, static_gap, limit, now_static)
     admissible = stopping <= free + 1e-12
     contact = first_hit(dyn_gap < min(margin, now_moving))
     target = complex(*np.asarray(ctx.subgoal, dtype=float)[:2])
     return Step(ctx, robot, roll, static_gap, dyn_gap, movers, vel, radii, free, stopping, admissible, contact, target,
                 growth, first, mover_range=beyond, mover_points=z)
+
+
+def _beyond_last_free(roll: Rollouts, first: np.ndarray, static_gap: np.ndarray, limit: float,
+                      gap_now: float) -> np.ndarray:
+    """``(S,)`` path length (m) from each sample's last free rollout point (the robot where
+    none is) to where its clearance, linear between that point and the first colliding one,
+    falls to ``limit``; 0 for samples that stay free."""
+    S, H = static_gap.shape
+    hit = first < H
+    out = np.zeros(S)
+    if not hit.any():
+        return out
+    rows = np.flatnonzero(hit)
+    k = first[rows]
+    inside = static_gap[rows, k]
+    before = np.where(k > 0, static_gap[rows, np.maximum(k - 1, 0)], gap_now)
+    drop = before - inside
+    frac = np.clip(np.where(drop > 0, (before - limit) / np.where(drop > 0, drop, 1.0), 0.0), 0.0, 1.0)
+    step = (roll.profile[rows, k] if roll.profile is not None else roll.speed[rows]) * roll.dt
+    out[rows] = frac * step
+    return out
 
 
 def _stopping_test(roll: Rollouts, first: np.ndarray, decel: float, reaction: float) -> tuple[np.ndarray, np.ndarray]:
