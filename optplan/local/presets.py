@@ -47,11 +47,15 @@ PRESETS: dict[str, Preset] = {p.name: p for p in (
                Term("binary_distance", FOX_DIST),
                Term("velocity", FOX_VEL),
                Term("heading_change", 1.5 * FOX_HEADING)),  # lambda, eq 19 (0 unless VO flags a mover)
-        mechanisms=(("velocity_obstacle", {}),),
+        # reach_subgoal is ours: without it the robot orbited a subgoal beside it at full
+        # speed (docs/fidelity/yang2023.md)
+        mechanisms=(("velocity_obstacle", {}), ("reach_subgoal", {})),
         # ours: at yang2023's a_max of 0.2 m/s^2 the grid missed the braked arc, and the robot
-        # slid into blocks in the fusion experiment; and the stopping distance counts the
-        # control period (0.1 s) for which a command is held (docs/fidelity/yang2023.md)
-        options={"brake_sample": True, "reaction": 0.1},
+        # slid into blocks in the fusion experiment; the stopping distance counts the control
+        # period (0.1 s) for which a command is held; and the free distance runs to where the
+        # clearance crosses the margin, so a braked arc judged able to stop stays so
+        # (docs/fidelity/yang2023.md)
+        options={"brake_sample": True, "reaction": 0.1, "exact_free": True},
     ),
     Preset(
         name="ba-dwa",
