@@ -290,7 +290,7 @@ class InitialHeading(Mechanism):
 @dataclass
 class ReachSubgoal(Mechanism):
     """Ours, not a paper's: the speed is capped where the subgoal would lie inside both of the
-    robot's tightest turning circles (radius ``v / w_max``, left and right), from where no
+    robot's tightest turning circles (radius ``v / w_max``, left and right; a unicycle's), from where no
     turn reaches it and the robot orbits it at full speed. A target at lateral offset ``y``
     and distance ``d`` stays outside the circle on its side while ``v <= w_max d^2 / (2 |y|)``.
 

@@ -70,8 +70,8 @@ Optional keys added by optplan (all validated like the rest):
   reference path cannot sense a mover standing there (the disc beyond ``sensor_range`` +
   0.5 m of every path point): the robot only ever sees it drive, as a mover in the papers'
   uniform motion. A track whose longer ends are not free is drawn again. Without it a mover
-  may stand beside the path in view and set off 1-2 s before the robot passes (or stop in
-  its way): a jump in velocity that no prediction can foresee, and that a robot with the
+  may stand beside the path in view and set off 0.2-1.6 s before the robot passes (or stop
+  in its way): a jump in velocity that no prediction can foresee, and that a robot with the
   papers' accelerations cannot avoid once it sees it.
 
 * Draws no map can hold are refused when the file is read: more random obstacles than

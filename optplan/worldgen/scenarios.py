@@ -256,15 +256,14 @@ def _out_of_sight(sc: Scenario, path: np.ndarray, i: int, end: np.ndarray, radiu
     length = float(np.hypot(*out))
     if length == 0:
         return None
-    u = out / length
-    need = sc.sensor_range + radius + _UNSEEN_MARGIN
     xmin, ymin, xmax, ymax = sc.bounds
-    far = math.hypot(xmax - xmin, ymax - ymin)
-    for s in np.arange(length, far + _UNSEEN_STEP, _UNSEEN_STEP):
-        p = path[i] + s * u
-        if float(np.hypot(*(path - p).T).min()) >= need:
-            return np.round(p, 3) if bool(sc.world.segments_free(path[i], p, radius)) else None
-    return None
+    along = np.arange(length, math.hypot(xmax - xmin, ymax - ymin) + _UNSEEN_STEP, _UNSEEN_STEP)
+    ends = path[i] + along[:, None] * (out / length)
+    gap = np.hypot(ends[:, None, 0] - path[None, :, 0], ends[:, None, 1] - path[None, :, 1]).min(axis=1)
+    far = np.flatnonzero(gap >= sc.sensor_range + radius + _UNSEEN_MARGIN)
+    if not len(far) or not bool(sc.world.segments_free(path[i], ends[far[0]], radius)):
+        return None
+    return np.round(ends[far[0]], 3)
 
 
 def _once_across(sc: Scenario, path: np.ndarray, i: int, a: np.ndarray, b: np.ndarray, radius: float,
