@@ -70,10 +70,12 @@ def one_seed(job) -> tuple | None:
     world = realized_scenario(sc, seed, plan, "once")
     env = SimEnvironment(world)
     traj = run.trajectory
+    if not world.dynamic:
+        return None
     for row in traj:
         m = env.movers(row[0])
         gap = np.hypot(m[:, 0] - row[1], m[:, 1] - row[2]) - m[:, 4] - world.robot.radius
-        if len(m) and gap.min() < 0:
+        if gap.min() < 0:
             contact, mover = float(row[0]), int(np.argmin(gap))
             break
     else:
