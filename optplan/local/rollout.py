@@ -466,8 +466,8 @@ def _beyond_last_free(roll: Rollouts, first: np.ndarray, static_gap: np.ndarray,
     k = first[rows]
     inside = static_gap[rows, k]
     before = np.where(k > 0, static_gap[rows, np.maximum(k - 1, 0)], gap_now)
-    drop = before - inside
-    frac = np.clip(np.where(drop > 0, (before - limit) / np.where(drop > 0, drop, 1.0), 0.0), 0.0, 1.0)
+    # before >= limit > inside (limit is at most gap_now): the drop is positive
+    frac = np.clip((before - limit) / (before - inside), 0.0, 1.0)
     step = (roll.profile[rows, k] if roll.profile is not None else roll.speed[rows]) * roll.dt
     out[rows] = frac * step
     return out
