@@ -59,8 +59,8 @@ def part_local(args) -> int:
     from optplan.viz.animate import write_run_gif
 
     if args.quick:
-        sets = paper_local("yuan2021 §5.3 analog (quick smoke test, 60 s limit): path switch, A* global path", ["yuan2021_path_switch"], 1,
-                           planners=["dwa", "ba-dwa"], time_limit=60)
+        sets = paper_local("yuan2021 §5.3 analog (quick smoke test): path switch, A* global path", ["yuan2021_path_switch"], 1,
+                           planners=["dwa", "ba-dwa"])
     else:
         gopts = {"pop": 50, "iters": args.iters or 100}
         paper_local("yuan2021 §5.2 analog: newly added obstacles (IBA global path)", ["yuan2021_added_obstacles"],
