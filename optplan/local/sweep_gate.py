@@ -315,23 +315,16 @@ class SweepGate(Mechanism, MoverSweepSource):
         hold the mover. Points 0.1 s apart step over the line, and by how much they miss it
         is chance: between crossing samples, and between a sample and its refinement, the
         filter's least-close test would compare that chance."""
+        if z0 is not None:  # the first segment starts where the robot stands
+            q = np.concatenate([np.full((len(q), 1), (z0 - k.origin) * np.conj(k.axis)), q], axis=1)
+            lo, hi = np.r_[lo[0], lo], np.r_[hi[0], hi]
         im = q.imag
-        cross = (im[:, 1:] > 0) != (im[:, :-1] > 0)  # (S, n - 1): segment t -> t+1 (never a.imag == b.imag)
-        a_lo, a_hi = np.minimum(lo[:-1], lo[1:]), np.maximum(hi[:-1], hi[1:])
-        deep = -k.radius - R
-        if cross.any():
-            s_i, t_i = np.nonzero(cross)
+        s_i, t_i = np.nonzero((im[:, 1:] > 0) != (im[:, :-1] > 0))  # segment t -> t+1 crosses the line
+        if len(s_i):
             a, b = q[s_i, t_i], q[s_i, t_i + 1]
-            along = a.real + (b.real - a.real) * (a.imag / (a.imag - b.imag))
-            out[rows[s_i[(along >= a_lo[t_i]) & (along <= a_hi[t_i])]]] = deep
-        if z0 is not None:  # the first segment, from where the robot stands
-            a = (z0 - k.origin) * np.conj(k.axis)
-            b = q[:, 0]
-            first = np.flatnonzero((b.imag > 0) != (a.imag > 0))
-            if len(first):
-                bb = b[first]
-                along = a.real + (bb.real - a.real) * (a.imag / (a.imag - bb.imag))
-                out[rows[first[(along >= lo[0]) & (along <= hi[0])]]] = deep
+            along = a.real + (b.real - a.real) * (a.imag / (a.imag - b.imag))  # never a.imag == b.imag
+            inside = (along >= np.minimum(lo[t_i], lo[t_i + 1])) & (along <= np.maximum(hi[t_i], hi[t_i + 1]))
+            out[rows[s_i[inside]]] = -k.radius - R
 
     def strict_filter(self, view, step, crossings: bool = False) -> np.ndarray | None:
         self.update(step.ctx)
