@@ -55,12 +55,30 @@ def remove_collinear(path, tol: float = 1e-9) -> np.ndarray:
     return P[keep]
 
 
-def _sight_from(world, P: np.ndarray, anchor: int, clearance: float) -> tuple[np.ndarray, np.ndarray]:
-    """The indices after ``anchor`` and whether the straight segment from ``P[anchor]`` to
-    each is free (one batched query)."""
-    later = np.arange(anchor + 1, len(P))
-    free = np.asarray(world.segments_free(np.repeat(P[anchor:anchor + 1], len(later), 0), P[later], clearance))
-    return later, free
+def _walk(world, P: np.ndarray, clearance: float, next_from) -> np.ndarray:
+    """Keep ``P[0]``, then repeatedly the point ``next_from(later, free, anchor)`` chooses
+    from the indices after the anchor and whether each is visible from it (one batched query
+    per anchor); never fewer than one step forward."""
+    n = len(P)
+    if n < 3:
+        return P
+    kept, anchor = [0], 0
+    while anchor < n - 1:
+        later = np.arange(anchor + 1, n)
+        free = np.asarray(world.segments_free(np.repeat(P[anchor:anchor + 1], len(later), 0), P[later], clearance))
+        anchor = max(int(next_from(later, free, anchor)), anchor + 1)
+        kept.append(anchor)
+    return P[kept]
+
+
+def _before_first_blocked(later: np.ndarray, free: np.ndarray, anchor: int) -> int:
+    blocked = np.flatnonzero(~free)
+    # when the next point itself is not visible the walk keeps it: the path is invalid there
+    return later[blocked[0]] - 1 if blocked.size else later[-1]
+
+
+def _farthest_visible(later: np.ndarray, free: np.ndarray, anchor: int) -> int:
+    return later[free].max(initial=anchor)
 
 
 def key_points(world, path, clearance: float = 0.0) -> np.ndarray:
@@ -70,40 +88,13 @@ def key_points(world, path, clearance: float = 0.0) -> np.ndarray:
     in order; at the first blocked connection ``P1 Pm``, ``P(m-1)`` is a key point
     and becomes the new anchor. The returned path keeps start and goal.
     """
-    P = remove_collinear(path)
-    n = len(P)
-    if n < 3:
-        return P
-    kept = [0]
-    anchor = 0
-    while anchor < n - 1:
-        later, free = _sight_from(world, P, anchor, clearance)
-        blocked = np.nonzero(~free)[0]
-        # the first blocked target (if any) makes its predecessor the next key point
-        nxt = later[blocked[0]] - 1 if blocked.size else n - 1
-        if nxt <= anchor:  # the next point itself is not visible: keep it, the path is invalid there
-            nxt = anchor + 1
-        kept.append(nxt)
-        anchor = nxt
-    return P[kept]
+    return _walk(world, remove_collinear(path), clearance, _before_first_blocked)
 
 
 def prune_direct(world, path, clearance: float = 0.0) -> np.ndarray:
     """Direct-connection pruning (chen2025 §4.3.1): from each kept node, connect to
     the farthest later node with a free straight segment and drop those between."""
-    P = remove_duplicates(path)
-    n = len(P)
-    if n < 3:
-        return P
-    kept = [0]
-    anchor = 0
-    while anchor < n - 1:
-        later, free = _sight_from(world, P, anchor, clearance)
-        visible = later[free]
-        nxt = int(visible.max()) if visible.size else anchor + 1
-        kept.append(nxt)
-        anchor = nxt
-    return P[kept]
+    return _walk(world, remove_duplicates(path), clearance, _farthest_visible)
 
 
 def spline_resample(waypoints, n_points: int = 100, parametrisation: str = "uniform") -> np.ndarray:
