@@ -152,9 +152,9 @@ def _plot_simulation(args, realized_scenario, scenario, plan, res) -> None:
 def _add_simulate_arguments(parser) -> None:
     parser.add_argument("scenario", help="scenario YAML file, the name of a shipped scenario, or a generated "
                                             "family drawn from --seed (clutter, clutter-movers)")
-    parser.add_argument("--global", dest="global_planner", default="astar",
+    parser.add_argument("--global", "--global-planner", dest="global_planner", default="astar", metavar="NAME",
                         help="global planner (see 'optplan algorithms'); default astar (visibility on circle worlds)")
-    parser.add_argument("--local", dest="local_planner", default="dwa",
+    parser.add_argument("--local", "--local-planner", dest="local_planner", default="dwa", metavar="NAME",
                         help="local planner: dwa, missa-dwa, idwa, ba-dwa, iga-dwa, qp-dwa; default dwa")
     parser.add_argument("--refine", default="none", choices=_refine_choices(), help="refine the global path")
     parser.add_argument("--seed", type=int, default=0, help="random seed (global planner, random obstacles); default 0")
@@ -339,7 +339,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="start in metres (default: a paper map's own start, or the --scen query's)")
     p.add_argument("--goal", nargs=2, type=float, metavar=("X", "Y"),
                    help="goal in metres (default: a paper map's own goal, or the --scen query's)")
-    p.add_argument("--algo", default="astar", help="planner name (see 'optplan algorithms'); default astar")
+    p.add_argument("--algo", "--algorithm", dest="algo", default="astar", metavar="NAME", help="planner name (see 'optplan algorithms'); default astar")
     p.add_argument("--refine", default="none", choices=_refine_choices(), help="refinement stage")
     p.add_argument("--tube-radius", type=float, default=None, metavar="M",
                    help="metres around the path in which refinement may pass obstacles on the other side "

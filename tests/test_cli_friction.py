@@ -61,3 +61,16 @@ def test_a_spec_runs_scen_queries_and_the_octile_optimum_matches(tmp_path):
     (tmp_path / "q.scen").write_text("version 1\n0\tq.map\t4\t3\t0\t0\t3\t2\t3.6056\n")  # starts on '@'
     with pytest.raises(op.OptplanError, match="query 0 start"):
         run_experiment(spec, workers=1, progress=False)
+
+
+def test_the_python_keyword_names_are_accepted_as_flags(capsys):
+    """``--algorithm``, ``--global-planner`` and ``--local-planner`` (the keywords of op.plan and
+    op.simulate) mean what ``--algo``, ``--global`` and ``--local`` mean."""
+    assert main(["plan", "chen2025_20", "--algorithm", "dijkstra", "--json"]) == 0
+    long = json.loads(capsys.readouterr().out)
+    assert main(["plan", "chen2025_20", "--algo", "dijkstra", "--json"]) == 0
+    short = json.loads(capsys.readouterr().out)
+    assert long["algorithm"] == "dijkstra" and long["path"] == short["path"]
+    # the planner name reaches the check of local planners
+    assert main(["simulate", "li2023_exp1", "--global-planner", "astar", "--local-planner", "no-such-dwa"]) == 2
+    assert "unknown local planner 'no-such-dwa'" in capsys.readouterr().err
