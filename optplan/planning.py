@@ -1,6 +1,8 @@
 """``op.plan``: one entry point for every global planner (graph search and metaheuristics)."""
 from __future__ import annotations
 
+import inspect
+
 import numpy as np
 
 from .checks import metres, population_budget, seed_bound
@@ -150,7 +152,7 @@ def plan(world, start, goal, algorithm: str = "astar", refine: str | None = None
                              "'visibility' or a metaheuristic such as 'pso', 'ipso' or 'ga'")
     from .solvers.catalog import check_plan_options, check_refine_options
 
-    check_plan_options(name, world, params, names)
+    check_plan_options(name, world, params, names, list(inspect.signature(plan).parameters)[3:-1])
     if refine not in (None, "none"):
         check_refine_options(refine, refine_options)
     if name in GRAPH_METHODS:

@@ -74,3 +74,21 @@ def test_the_python_keyword_names_are_accepted_as_flags(capsys):
     # the planner name reaches the check of local planners
     assert main(["simulate", "li2023_exp1", "--global-planner", "astar", "--local-planner", "no-such-dwa"]) == 2
     assert "unknown local planner 'no-such-dwa'" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("call,meant", [
+    (lambda: op.plan(*op.world.papermaps.paper_map("chen2025_20"), algorithm="gwo", itrs=3), "iters"),
+    (lambda: op.plan(*op.world.papermaps.paper_map("chen2025_20"), algorithm="gwo", population=3), "pop"),
+    (lambda: op.optimize(lambda X: X.sum(1), [(0, 1)] * 3, algorithm="gwo", population=30), "pop"),
+    (lambda: op.optimize(lambda X: X.sum(1), [(0, 1)] * 3, algorithm="gwo", a_inital=2.0), "a_initial"),
+    (lambda: op.load_scenario({"map": "arena", "start": [1.5, 37.5], "goal": [40.5, 10.5], "robto": {}}), "robot"),
+])
+def test_a_misspelt_keyword_names_the_one_meant(call, meant):
+    with pytest.raises(op.OptplanError, match=rf"\(did you mean '{meant}'\?\)"):
+        call()
+
+
+def test_an_unrelated_keyword_gets_no_guess():
+    with pytest.raises(op.ParameterError) as exc:
+        op.optimize(lambda X: X.sum(1), [(0, 1)] * 3, algorithm="gwo", colour="red")
+    assert "'colour'" in str(exc.value) and "did you mean" not in str(exc.value)

@@ -99,7 +99,7 @@ def test_every_shipped_scenario_loads_and_realises(name):
     (base(unknown_obstacles=[{"cells": [[9, 9]]}]), "outside the 6x4 map"),
     (base(unknown_obstacles=[{"cells": [[1.5, 2]]}]), "integer cell indices"),
     (base(unknown_obstacles=[{"cells": [[1, 2], [1e300, 2]]}]), "cell [1e+300, 2.0] is outside any map"),
-    (base(unknown_obstacles=[{"box": [1, 2]}]), "unknown key(s) ['box']"),
+    (base(unknown_obstacles=[{"box": [1, 2]}]), "unknown key(s) 'box'"),
     (base(dynamic_obstacles=[{"radius": 0.3, "start": [0.8, 0.5], "velocity": [0, 0]}]), "overlaps the robot's start"),
     (base(dynamic_obstacles=[{"radius": 0.3, "waypoints": [[1, 1], [2, 2]]}]), "no 'speed'"),
     (base(dynamic_obstacles=[{"radius": 0.3, "start": [4, 3], "velocity": [1, 0], "at_border": "wrap"}]), "at_border"),

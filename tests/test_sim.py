@@ -201,6 +201,9 @@ def test_unknown_option_and_unknown_local_planner():
     sc = open_room()
     with pytest.raises(ParameterError, match="unknown simulate option"):
         op.simulate(sc, local_planner=Replay([]), warp_speed=True)
+    # a shortened parameter name is pointed at the one meant, not just listed as unknown
+    with pytest.raises(ParameterError, match=r"'local' \(did you mean 'local_planner'\?\)"):
+        op.simulate(sc, local="dwa")
     with pytest.raises(op.UnknownAlgorithmError):
         op.simulate(sc, local_planner="no-such-planner")
 

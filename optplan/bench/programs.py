@@ -29,7 +29,7 @@ from functools import partial
 from pathlib import Path
 from typing import Any, Callable, Mapping
 
-from ..errors import ParameterError, UnknownAlgorithmError
+from ..errors import ParameterError, UnknownAlgorithmError, named_with_hints
 
 SMOOTHING = "smoothing"
 # the arguments a spec may give the built-in programs (the rest of their parameters are objects)
@@ -149,7 +149,7 @@ def check_program(name, args, init, where: str = "spec") -> dict[str, Any]:
         allowed = SMOOTHING_ARGS if name == SMOOTHING else PAPER_ARGS
         bad = sorted(set(args) - set(allowed))
         if bad:
-            raise ParameterError(f"{where}: program {name!r} takes no argument {', '.join(map(repr, bad))}; its "
+            raise ParameterError(f"{where}: program {name!r} takes no argument {named_with_hints(bad, allowed)}; its "
                                  f"arguments are {', '.join(allowed)}")
     else:
         try:

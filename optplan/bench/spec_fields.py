@@ -9,7 +9,7 @@ from pathlib import Path
 from typing import Any, Mapping
 
 from ..checks import population_budget
-from ..errors import ParameterError, ScenarioError, UnknownAlgorithmError
+from ..errors import ParameterError, ScenarioError, UnknownAlgorithmError, named_with_hints
 
 ALGO_KEYS = {"name", "label", "params", "runs"}
 MAX_PARAMS = 200  # per algorithm entry; every parameter is a column of the results table
@@ -40,7 +40,7 @@ def check_keys(d: Mapping, allowed: set, where: str) -> None:
     """Refuse keys of ``d`` outside ``allowed``, naming them and the allowed ones."""
     unknown = sorted(set(d) - allowed)
     if unknown:
-        raise ScenarioError(f"{where}: unknown key(s) {', '.join(map(repr, unknown))}; allowed: "
+        raise ScenarioError(f"{where}: unknown key(s) {named_with_hints(unknown, allowed)}; allowed: "
                             f"{', '.join(sorted(allowed))}")
 
 
@@ -207,8 +207,6 @@ def check_local(lp, where: str) -> str:
 def check_param_names(kind, algorithm: str, params: Mapping, where: str) -> None:
     """A misspelt parameter is found when the spec is loaded, not when every run fails
     (``kind.accepted_params`` lists what a run of that kind takes)."""
-    import difflib
-
     try:  # op.plan's and op.optimize's default budget where the spec gives none
         population_budget(params.get("pop", 30), params.get("iters", 500), params.get("max_evals"))
     except ParameterError as exc:
@@ -219,10 +217,8 @@ def check_param_names(kind, algorithm: str, params: Mapping, where: str) -> None
     known -= {"world", "start", "goal", "f", "bounds", "algorithm", "seed", "refine", "callback"}
     unknown = sorted(set(params) - known)
     if unknown:
-        hints = [f"{u!r} (did you mean {difflib.get_close_matches(u, known, 1)[0]!r}?)"
-                 if difflib.get_close_matches(u, known, 1) else repr(u) for u in unknown]
-        raise ScenarioError(f"{where}: {algorithm} does not take the parameter(s) {', '.join(hints)}; it takes "
-                            f"{', '.join(sorted(known))}")
+        raise ScenarioError(f"{where}: {algorithm} does not take the parameter(s) {named_with_hints(unknown, known)}; "
+                            f"it takes {', '.join(sorted(known))}")
 
 
 def parse_algorithms(kind, items, shared: Mapping, where: str) -> list[AlgorithmSpec]:

@@ -25,7 +25,7 @@ from typing import Any, Callable
 
 import numpy as np
 
-from ..errors import ParameterError, UnknownAlgorithmError
+from ..errors import ParameterError, UnknownAlgorithmError, named_with_hints
 from ..world.queries import check_start_goal
 from .expressions import Constraint, Expr, ProgramContext
 from .variables import Variables, Waypoints, as_variables
@@ -63,7 +63,7 @@ class ProgramSolver:
         known = self.all_options()
         unknown = sorted(set(given) - set(known))
         if unknown:
-            raise ParameterError(f"{self.name} has no option {', '.join(map(repr, unknown))}; its options are "
+            raise ParameterError(f"{self.name} has no option {named_with_hints(unknown, known)}; its options are "
                                  f"{', '.join(sorted(known)) or 'none'} (op.show_options({self.name!r}) lists them)")
         return {k: known[k].check(k, v) for k, v in given.items()}
 

@@ -31,7 +31,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from ..checks import boolean
-from ..errors import ParameterError
+from ..errors import ParameterError, named_with_hints
 from ..world.robot import Command, RobotSpec, RobotState
 from .base import LocalContext, MoverSweepSource
 from .critics import CRITICS, Critic
@@ -167,7 +167,7 @@ class DWAPlanner(MoverSweepSource):
                     raise ParameterError(f"{key} must be a dict of parameters, True or False, got {value!r}")
             else:
                 known = sorted(set(opts) | set(terms) | set(mechs) | set(MECHANISMS) | {"weights"})
-                raise ParameterError(f"unknown parameter {key!r} for local planner {preset.name!r}; "
+                raise ParameterError(f"unknown parameter {named_with_hints([key], known)} for local planner {preset.name!r}; "
                                      f"known: {', '.join(known)}")
         self.options = self._checked(opts)
         # what the mechanisms see of the planner (the options read-only, live)

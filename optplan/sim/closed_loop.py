@@ -22,6 +22,8 @@ Collisions otherwise are counted per period and the run goes on.
 """
 from __future__ import annotations
 
+import inspect
+
 import sys
 import time
 from dataclasses import replace
@@ -31,7 +33,7 @@ import numpy as np
 
 from ..checks import seed as checked_seed
 from ..checks import seed_bound
-from ..errors import ParameterError, UnknownAlgorithmError
+from ..errors import ParameterError, UnknownAlgorithmError, named_with_hints
 from ..local.base import LocalContext, MoverSweepSource
 from ..nav.navigator import Navigator, preset_defaults
 from ..results import SimResult
@@ -136,7 +138,9 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
     """
     unknown = sorted(set(options) - set(OPTIONS))
     if unknown:
-        raise ParameterError(f"unknown simulate option(s) {unknown}; known: {', '.join(OPTIONS)}")
+        named = list(inspect.signature(simulate).parameters)[1:-1]  # a misspelt local_planner= lands here too
+        raise ParameterError(f"unknown simulate option(s) {named_with_hints(unknown, [*OPTIONS, *named])}; "
+                             f"known: {', '.join(OPTIONS)}")
     checked_seed("seed", seed)
     seed_bound("seed", seed)
     family = family_options(scenario)

@@ -14,7 +14,7 @@ import dataclasses
 import inspect
 from typing import Callable, Iterable
 
-from ..errors import ParameterError, UnknownAlgorithmError
+from ..errors import ParameterError, UnknownAlgorithmError, named_with_hints
 
 # keywords op.plan passes itself: never user options of the planner's entry point
 PLAN_OWN = frozenset({"world", "grid", "start", "goal", "algorithm", "seed", "pop", "iters", "clearance",
@@ -116,8 +116,10 @@ def _takers(option: str, world, names: Iterable[str]) -> list[str]:
     return out
 
 
-def check_plan_options(name: str, world, params: dict, planner_names: Iterable[str]) -> None:
-    """Raise a ParameterError for a keyword the planner ``name`` does not take on ``world``."""
+def check_plan_options(name: str, world, params: dict, planner_names: Iterable[str],
+                       caller_params: Iterable[str] = ()) -> None:
+    """Raise a ParameterError for a keyword the planner ``name`` does not take on ``world``
+    (``caller_params``, the caller's own keywords, are only offered as spellings meant)."""
     accepted = planner_options(name, world, params.get("encoding"))
     unknown = sorted(set(params) - accepted)
     if not unknown:
@@ -136,7 +138,7 @@ def check_plan_options(name: str, world, params: dict, planner_names: Iterable[s
             where.append(f"{opt!r} is a refinement option: pass it as refine_options={{{opt!r}: ...}} with "
                          f"refine={refiners[0]!r}")
         else:
-            where.append(f"no planner takes {opt!r}")
+            where.append(f"no planner takes {named_with_hints([opt], [*accepted, *caller_params])}")
     kind = planner_kind(name, world, params.get("encoding"))
     raise ParameterError(f"{name} ({kind} planner) has no option {', '.join(map(repr, unknown))}; "
                          f"{'; '.join(where)}. {name} takes: {', '.join(sorted(accepted)) or 'none'}")
@@ -152,6 +154,6 @@ def check_refine_options(method: str, options: dict) -> None:
 
     hint = [f"{o!r} is an option of refine={other!r}" for other in METHODS if other != method
             for o in unknown if o in refine_options(other)]
-    raise ParameterError(f"refine={method!r} has no option {', '.join(map(repr, unknown))}"
+    raise ParameterError(f"refine={method!r} has no option {named_with_hints(unknown, accepted)}"
                          f"{' (' + '; '.join(hint) + ')' if hint else ''}; its refine_options are: "
                          f"{', '.join(sorted(accepted))}")

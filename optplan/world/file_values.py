@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from ..errors import ScenarioError
+from ..errors import ScenarioError, named_with_hints
 
 
 def file_number(value, key: str, *, positive: bool = False, non_negative: bool = False) -> float:
@@ -44,7 +44,7 @@ def file_mapping(value, key: str, allowed: tuple[str, ...]) -> dict:
         raise ScenarioError(f"{key} must be a mapping with keys {', '.join(allowed)}, got {value!r}")
     unknown = sorted(set(map(str, value)) - set(allowed))
     if unknown:
-        raise ScenarioError(f"unknown key(s) {unknown} in {key}; known: {', '.join(allowed)}")
+        raise ScenarioError(f"unknown key(s) {named_with_hints(unknown, allowed)} in {key}; known: {', '.join(allowed)}")
     return value
 
 

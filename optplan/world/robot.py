@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ..errors import ParameterError
+from ..errors import ParameterError, named_with_hints
 
 MODELS = ("unicycle", "omni")
 FIELDS = ("model", "radius", "v_max", "v_min", "w_max", "a_max", "alpha_max", "jerk_max", "vy_max")
@@ -86,7 +86,7 @@ class RobotSpec:
             d["alpha_max"] = math.radians(float(d.pop("alpha_max_deg")))
         unknown = set(d) - set(FIELDS)
         if unknown:
-            raise ParameterError(f"unknown robot key(s) {sorted(unknown)}; known: {', '.join(FILE_KEYS)}")
+            raise ParameterError(f"unknown robot key(s) {named_with_hints(sorted(unknown), FILE_KEYS)}; known: {', '.join(FILE_KEYS)}")
         return cls(**d)
 
 

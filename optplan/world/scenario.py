@@ -99,7 +99,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import MapFormatError, OptplanError, ScenarioError
+from ..errors import MapFormatError, OptplanError, ScenarioError, named_with_hints
 from .file_values import file_mapping, file_number, file_points, file_range, file_vector
 from .movers import BORDER_MODES, DynamicObstacle
 from .robot import FILE_KEYS, RobotSpec
@@ -258,7 +258,7 @@ def scenario_from_dict(data: dict, base_dir: str | os.PathLike | None = None, so
         raise ScenarioError(f"a scenario must be a mapping of keys ({', '.join(REQUIRED)} required), got {type(data).__name__}")
     unknown = sorted(set(map(str, data)) - set(TOP_KEYS))
     if unknown:
-        raise ScenarioError(f"unknown scenario key(s) {unknown}; known: {', '.join(TOP_KEYS)}")
+        raise ScenarioError(f"unknown scenario key(s) {named_with_hints(unknown, TOP_KEYS)}; known: {', '.join(TOP_KEYS)}")
     missing = [k for k in REQUIRED if k not in data]
     if missing:
         raise ScenarioError(f"scenario is missing required key(s) {missing}; see DESIGN.md 'Scenario YAML'")
@@ -271,7 +271,7 @@ def scenario_from_dict(data: dict, base_dir: str | os.PathLike | None = None, so
         raise ScenarioError(f"robot must be a mapping with keys {', '.join(FILE_KEYS)}, got {robot_spec!r}")
     bad = sorted(set(map(str, robot_spec)) - set(FILE_KEYS))
     if bad:
-        raise ScenarioError(f"unknown robot key(s) {bad}; known: {', '.join(FILE_KEYS)}")
+        raise ScenarioError(f"unknown robot key(s) {named_with_hints(bad, FILE_KEYS)}; known: {', '.join(FILE_KEYS)}")
     for k, v in robot_spec.items():
         if k == "model" or (k == "jerk_max" and v is None):
             continue

@@ -34,7 +34,7 @@ import time
 import numpy as np
 from scipy.sparse.csgraph import dijkstra
 
-from ...errors import InfeasibleQueryError, ParameterError
+from ...errors import InfeasibleQueryError, ParameterError, named_with_hints
 from ...formulations.paper_programs import paper_program
 from ...rng import as_generator
 from ..archive import ARCHIVE_EVERY
@@ -285,11 +285,11 @@ def plan_cell_ga(world, start, goal, *, improved: bool, seed=0, pop: int = 50, i
         raise ParameterError(f"postprocess must be 'keypoints', 'collinear' or 'none', got {postprocess!r}")
     s = world.check_query_point(start, "start", clearance)
     g = world.check_query_point(goal, "goal", clearance)
-    try:
-        p = GAParams(improved=improved, **params)
-    except TypeError:
-        raise ParameterError(f"unknown GA option(s) {', '.join(sorted(params))}; known: "
-                             f"{', '.join(f for f in GAParams.__dataclass_fields__ if f != 'improved')}") from None
+    known = [f for f in GAParams.__dataclass_fields__ if f != "improved"]
+    unknown = sorted(set(params) - set(known))
+    if unknown:  # only the unknown ones, each with the name it was likely meant to be
+        raise ParameterError(f"unknown GA option(s) {named_with_hints(unknown, known)}; known: {', '.join(known)}")
+    p = GAParams(improved=improved, **params)
     name = "iga" if improved else "ga"
     if np.array_equal(world.cell_of(s), world.cell_of(g)):   # one cell: the straight move is the path
         return make_plan_result(world, np.stack([s, g]), name, time.perf_counter() - t0, clearance=clearance)

@@ -6,6 +6,8 @@ path formulations are solved through the same call.
 """
 from __future__ import annotations
 
+import inspect
+
 import time
 from typing import Callable
 
@@ -116,6 +118,7 @@ def optimize(f: Callable, bounds, algorithm: str = "gwo", pop: int = 30, iters: 
         **params: the algorithm's own parameters (see its class for defaults).
     """
     cls = get_algorithm(algorithm)
+    cls.check_params(params, list(inspect.signature(optimize).parameters)[:-1])
     function()("f", f)
     repair, callback = function(optional=True)("repair", repair), function(optional=True)("callback", callback)
     if init is not None and not callable(init):

@@ -37,7 +37,7 @@ from typing import Callable
 
 import numpy as np
 
-from ...errors import ParameterError
+from ...errors import ParameterError, named_with_hints
 from ...rng import as_generator
 from ..budget import Budget, BudgetExhausted
 
@@ -250,11 +250,18 @@ class Algorithm:
         """Whether this very class declares ``BATCHABLE = True``."""
         return bool(vars(cls).get("BATCHABLE", False))
 
-    def __init__(self, **params) -> None:
-        unknown = set(params) - set(self.defaults())
+    @classmethod
+    def check_params(cls, params, caller_params=()) -> None:
+        """Refuse a parameter the algorithm does not have (``caller_params``, the caller's own
+        keywords, are only offered as the spelling meant)."""
+        unknown = sorted(set(params) - set(cls.defaults()))
         if unknown:
-            raise ParameterError(f"{self.name} has no parameter(s) {sorted(unknown)}; "
-                                 f"known: {sorted(self.defaults())}")
+            raise ParameterError(f"{cls.name} has no parameter(s) "
+                                 f"{named_with_hints(unknown, [*cls.defaults(), *caller_params])}; "
+                                 f"known: {sorted(cls.defaults())}")
+
+    def __init__(self, **params) -> None:
+        self.check_params(params)
         for k, v in {**self.defaults(), **params}.items():
             setattr(self, k, v)
 
