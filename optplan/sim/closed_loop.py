@@ -23,7 +23,6 @@ Collisions otherwise are counted per period and the run goes on.
 from __future__ import annotations
 
 import inspect
-
 import sys
 import time
 from dataclasses import replace
