@@ -3,10 +3,10 @@
     python benchmarks/graph_speed.py            # every table
     python benchmarks/graph_speed.py --quick    # 32x32 to 128x128 only, fewer repeats
 
-networkx is the anchor for A*: it is not a dependency of optplan. If it is not
-importable the script says how to get it (``pip install networkx``, or
-``pip install --target DIR networkx`` and ``PYTHONPATH=DIR``) and leaves its
-column empty.
+networkx is the anchor for A*: it is not a dependency of optplan. When it is not
+importable the script installs it for itself into ``/tmp/networkx-anchor`` (``pip
+install --target``, kept out of optplan's environment; ``--anchor-dir`` elsewhere);
+``--no-anchors`` leaves its column empty instead.
 
 Table 1 (A*, 8-connected cell centres, no corner cutting): seeded maps from
 32x32 to 512x512 (random 20 % and 30 % obstacles, a maze, rooms with doors),
@@ -28,7 +28,10 @@ random grids, seeded 256x256 city maps (corner to corner) and seeded circle worl
 from __future__ import annotations
 
 import argparse
+import importlib
 import math
+import subprocess
+import sys
 import time
 from pathlib import Path
 
@@ -42,10 +45,27 @@ from optplan.worldgen.city import city_map
 
 DATA = Path(__file__).resolve().parents[1].parent / "shared" / "data" / "movingai"
 
-try:
-    import networkx as nx
-except ImportError:  # an optional anchor, never a dependency
-    nx = None
+nx = None  # the anchor, imported by main() (never a dependency of optplan)
+
+
+def import_networkx(anchor_dir: Path, install: bool):
+    """networkx from this environment or ``anchor_dir``, installed there when absent."""
+    if str(anchor_dir) not in sys.path:
+        sys.path.append(str(anchor_dir))
+    try:
+        return importlib.import_module("networkx")
+    except ImportError:
+        if not install:
+            return None
+    print(f"installing networkx into {anchor_dir} (kept out of optplan's environment) ...", file=sys.stderr)
+    try:
+        subprocess.run([sys.executable, "-m", "pip", "install", "-q", "--target", str(anchor_dir), "networkx"],
+                       check=True)
+        importlib.invalidate_caches()
+        return importlib.import_module("networkx")
+    except (subprocess.CalledProcessError, OSError, ImportError) as exc:
+        print(f"could not set up networkx: {exc}", file=sys.stderr)
+        return None
 
 
 def timed(fn, repeats: int):
@@ -177,16 +197,18 @@ def astar_table(sizes, repeats: int) -> None:
         from optplan.solvers.graph.astar import cell_path  # the search without validation and metrics
     except ImportError:  # before the exact-ends change
         cell_path = None
+    from optplan.solvers.graph.astar import astar_cells
     print("## A* on 8-connected grids (one query between far free cell centres)\n")
     if nx is None:
-        print("networkx is not installed: its column is empty. Install it for this benchmark only with "
-              "`pip install networkx` (or `pip install --target DIR networkx` and run with PYTHONPATH=DIR).\n")
+        print("networkx is not available (--no-anchors, or it could not be installed): its column is empty.\n")
     print(f"times: best of {repeats} interleaved rounds after a first (cold) call on a fresh map. "
-          "search = `cell_path` (the path between the two points, as networkx returns one); "
+          "nodes = `astar_cells` (cell to cell, a list of cells: the job networkx's astar_path does); "
+          "search = `cell_path` (between the two exact points: the end cells joined, the path as points); "
           "API = `shortest_path`, which also validates the path and computes its metrics\n")
-    print("| map | size | length [m] | astar cold API [ms] | astar search [ms] | astar API [ms] | dijkstra API [ms] "
-          "| networkx astar_path [ms] | scipy dijkstra tree [ms] | networkx / astar search | networkx / astar API |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    print("| map | size | length [m] | astar cold API [ms] | astar nodes [ms] | astar search [ms] | astar API [ms] "
+          "| dijkstra API [ms] | networkx astar_path [ms] | scipy dijkstra tree [ms] | networkx / astar nodes "
+          "| networkx / astar search | networkx / astar API |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     from scipy.sparse.csgraph import dijkstra
 
     for name, grid in grid_cases(sizes):
@@ -204,6 +226,9 @@ def astar_table(sizes, repeats: int) -> None:
         fns = {"api": lambda: shortest_path(grid, s, g, method="astar"),
                "dijkstra": lambda: shortest_path(grid, s, g, method="dijkstra"),
                "scipy": lambda: dijkstra(A, directed=True, indices=si)}
+        table = move_table(grid)
+        assert abs(astar_cells(table, [si], [gi])[1] * grid.resolution - r.length) < 1e-9, name
+        fns["nodes"] = lambda: astar_cells(table, [si], [gi])
         if cell_path is not None:
             fns["search"] = lambda: cell_path(grid, s, g)
         if nx is not None:
@@ -216,9 +241,9 @@ def astar_table(sizes, repeats: int) -> None:
         t = interleaved(fns, repeats)
         cell = lambda k: f"{1e3 * t[k]:.2f}" if k in t else "-"
         ratio = lambda k: f"{t['nx'] / t[k]:.2f}" if "nx" in t and k in t else "-"
-        print(f"| {name} | {grid.width}x{grid.height} | {r.length:.4f} | {1e3 * cold:.2f} | {cell('search')} "
-              f"| {cell('api')} | {cell('dijkstra')} | {cell('nx')} | {cell('scipy')} | {ratio('search')} "
-              f"| {ratio('api')} |", flush=True)
+        print(f"| {name} | {grid.width}x{grid.height} | {r.length:.4f} | {1e3 * cold:.2f} | {cell('nodes')} "
+              f"| {cell('search')} | {cell('api')} | {cell('dijkstra')} | {cell('nx')} | {cell('scipy')} "
+              f"| {ratio('nodes')} | {ratio('search')} | {ratio('api')} |", flush=True)
 
 
 def visibility_cases(quick: bool):
@@ -309,7 +334,13 @@ def main() -> None:
     ap.add_argument("--skip-visibility", action="store_true")
     ap.add_argument("--skip-astar", action="store_true")
     ap.add_argument("--timeout", type=float, default=120.0, help="seconds per visibility query (default 120)")
+    ap.add_argument("--no-anchors", action="store_true", help="do not import or install networkx")
+    ap.add_argument("--anchor-dir", type=Path, default=Path("/tmp/networkx-anchor"),
+                    help="where networkx is installed when this environment has none")
     a = ap.parse_args()
+    global nx
+    if not a.skip_astar and not a.no_anchors:
+        nx = import_networkx(a.anchor_dir, install=True)
     sizes = (32, 64, 128) if a.quick else (32, 64, 128, 256, 512)
     if not a.skip_astar:
         astar_table(sizes, 3 if a.quick else 5)
