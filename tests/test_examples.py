@@ -21,6 +21,12 @@ CASES = [
      ["§4.2 claim", "| 0 |", "re-plan [s]"]),
     (["li2023_iga_idwa.py", "--part", "convergence", "--quick", "--runs", "2"],
      ["Figures 13-14 analog", "| li2023_30 | IGA | population std |", "Claim of §6.1"]),
+    # the local smoke runs: each paper's own local planner reaches the goal without a collision
+    # (the scenario's own time limit; the goal-only DWA baseline may fail)
+    (["li2023_iga_idwa.py", "--part", "local", "--quick"], ["| li2023_exp1 | iga-dwa | 1 | 100.0 |"]),
+    (["hou2024_missa_dwa.py", "--part", "local", "--quick"], ["| hou2024_table4_1 | missa-dwa | 1 | 100.0 |"]),
+    (["yang2023_ipso_idwa.py", "--part", "local", "--quick"], ["| yang2023_idwa_crossing | idwa | 1 | 100.0 |"]),
+    (["yuan2021_iba_dwa.py", "--part", "local", "--quick"], ["| yuan2021_path_switch | ba-dwa | 1 | 100.0 |"]),
 ]
 
 
