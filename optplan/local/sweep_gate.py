@@ -317,7 +317,7 @@ class SweepGate(Mechanism, MoverSweepSource):
         filter's least-close test would compare that chance."""
         if z0 is not None:  # the first segment starts where the robot stands
             q = np.concatenate([np.full((len(q), 1), (z0 - k.origin) * np.conj(k.axis)), q], axis=1)
-            lo, hi = np.r_[lo[0], lo], np.r_[hi[0], hi]
+            lo, hi = np.concatenate((lo[:1], lo)), np.concatenate((hi[:1], hi))
         im = q.imag
         s_i, t_i = np.nonzero((im[:, 1:] > 0) != (im[:, :-1] > 0))  # segment t -> t+1 crosses the line
         if len(s_i):
