@@ -77,12 +77,11 @@ def demo_figure(grid, results: dict, optimum: float, out: str | Path | None):
     each path's final length after pruning and refinement marked past the curve (the refined
     runs share the msiar-gwo search, so only their marks differ)."""
     import numpy as np
-    from matplotlib.figure import Figure
 
     from .viz.convergence import draw_convergence, post_processing_x
-    from .viz.plots import draw_paths
+    from .viz.plots import blank_figure, draw_paths
 
-    fig = Figure(figsize=(12.5, 6.2))
+    fig = blank_figure((12.5, 6.2))
     ax_map, ax_conv = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.0, 1.05]})
     exact = "exact optimum (visibility)"
     paths = {(exact if k == "visibility" else k): r.path for k, r in results.items()}

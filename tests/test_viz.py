@@ -67,6 +67,23 @@ print(matplotlib.get_backend(), "matplotlib.pyplot" in sys.modules)
     assert out == ["svg", "False"]
 
 
+
+def test_a_backend_matplotlib_does_not_know_is_an_error_that_says_so(tmp_path):
+    """matplotlib refuses to import with an unknown MPLBACKEND; optplan, which needs no backend,
+    reports that as the user's setting (exit 2, one line), not as an internal error."""
+    import os
+
+    env = {**os.environ, "MPLBACKEND": "no-such-backend"}
+    out = tmp_path / "p.png"
+    proc = subprocess.run([sys.executable, "-m", "optplan", "plan", "arena", "--start", "1.5", "37.5", "--goal",
+                           "40.5", "10.5", "--plot", str(out)], capture_output=True, text=True, env=env)
+    assert proc.returncode == 2 and "internal error" not in proc.stderr
+    assert "unset MPLBACKEND" in proc.stderr and "no-such-backend" in proc.stderr
+    env["MPLBACKEND"] = "agg"  # a valid one is fine, whatever it is
+    proc = subprocess.run([sys.executable, "-m", "optplan", "plan", "arena", "--start", "1.5", "37.5", "--goal",
+                           "40.5", "10.5", "--plot", str(out)], capture_output=True, text=True, env=env)
+    assert proc.returncode == 0 and out.read_bytes()[:4] == b"\x89PNG"
+
 def _imported_modules(path: Path) -> set[str]:
     """Absolute names of the modules ``path`` imports (relative imports resolved)."""
     parts = list(path.relative_to(PACKAGE.parent).with_suffix("").parts)

@@ -31,12 +31,9 @@ def animate_run(scenario, result, filename: str | Path, fps: int = 10, max_frame
     Returns:
         The path written.
     """
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
-    from matplotlib.patches import Circle, Rectangle
     from PIL import Image
 
-    from .plots import draw_world
+    from .plots import blank_figure, draw_world
     from ..sim.environment import SimEnvironment
 
     sc = scenario
@@ -49,7 +46,10 @@ def animate_run(scenario, result, filename: str | Path, fps: int = 10, max_frame
     traj = np.asarray(result.trajectory)
     frames = np.unique(np.linspace(0, len(traj) - 1, min(max_frames, len(traj))).astype(int))
     # a Figure on its own Agg canvas (blitting needs one): pyplot and the backend are left alone
-    fig = Figure(figsize=(6, 6))
+    fig = blank_figure((6, 6))  # first, so that a matplotlib that cannot start says why
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.patches import Circle, Rectangle
+
     FigureCanvasAgg(fig)
     ax = fig.add_subplot()
     draw_world(ax, sc.world)

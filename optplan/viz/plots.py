@@ -12,13 +12,26 @@ from typing import Mapping
 
 import numpy as np
 
+from ..errors import ParameterError
+
+
+def blank_figure(figsize: tuple[float, float] = (6.4, 4.8)):
+    """A Figure attached to no GUI and registered with no pyplot state. A matplotlib that
+    cannot start (it refuses an ``MPLBACKEND`` it does not know when it is imported) is a
+    ParameterError that says how to fix it, not an internal error."""
+    try:
+        from matplotlib.figure import Figure
+    except ValueError as exc:
+        if "backend" not in str(exc):
+            raise
+        raise ParameterError(f"matplotlib cannot start: {exc}. optplan draws without a screen and uses no "
+                             "backend: unset MPLBACKEND, or set it to one matplotlib knows, such as 'agg'") from None
+    return Figure(figsize=figsize)
+
 
 def new_figure(figsize: tuple[float, float] = (6.4, 4.8)):
-    """A Figure with one Axes, attached to no GUI and registered with no pyplot state;
-    returns ``(fig, ax)``."""
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=figsize)
+    """:func:`blank_figure` with one Axes; returns ``(fig, ax)``."""
+    fig = blank_figure(figsize)
     return fig, fig.add_subplot()
 
 
