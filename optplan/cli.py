@@ -405,6 +405,10 @@ def _check_outputs(args) -> None:
             raise OptplanError(f"--{flag} {value} is a folder; give a file name")
         if name == "export" and target.suffix.lower() not in (".csv", ".yaml", ".yml"):
             raise OptplanError(f"--export {value}: use a .csv or .yaml file name")
+        if name in ("plot", "out"):  # pictures: a format matplotlib writes
+            from .viz.plots import figure_format
+
+            figure_format(target)
         parent = target if folder else target.parent
         existing = next((d for d in (parent, *parent.parents) if d.exists()), None)
         if existing is None or not existing.is_dir() or not os.access(existing, os.W_OK):

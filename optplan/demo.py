@@ -79,7 +79,7 @@ def demo_figure(grid, results: dict, optimum: float, out: str | Path | None):
     import numpy as np
 
     from .viz.convergence import draw_convergence, post_processing_x
-    from .viz.plots import blank_figure, draw_paths
+    from .viz.plots import blank_figure, draw_paths, save_figure
 
     fig = blank_figure((12.5, 6.2))
     ax_map, ax_conv = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.0, 1.05]})
@@ -106,5 +106,5 @@ def demo_figure(grid, results: dict, optimum: float, out: str | Path | None):
     ax_conv.set_title("convergence: search, then pruning / refinement", fontsize=10)
     fig.tight_layout()
     if out is not None:
-        fig.savefig(out, dpi=110)
+        save_figure(fig, out, 110)
     return fig

@@ -84,6 +84,21 @@ def test_a_backend_matplotlib_does_not_know_is_an_error_that_says_so(tmp_path):
                            "40.5", "10.5", "--plot", str(out)], capture_output=True, text=True, env=env)
     assert proc.returncode == 0 and out.read_bytes()[:4] == b"\x89PNG"
 
+
+def test_a_picture_format_matplotlib_cannot_write_is_refused_before_any_work(tmp_path, capsys):
+    from optplan.cli import main
+
+    assert main(["plan", "arena", "--start", "1.5", "37.5", "--goal", "40.5", "10.5", "--plot",
+                 str(tmp_path / "p.xyz")]) == 2
+    err = capsys.readouterr()
+    assert "matplotlib writes no .xyz pictures" in err.err and ".svg" in err.err and err.out == ""
+    assert main(["demo", "--out", str(tmp_path / "d.bmpx")]) == 2  # the demo refuses it before planning
+    assert capsys.readouterr().out == ""
+    from optplan.viz.plots import new_figure, save_figure
+
+    fig, _ = new_figure()
+    assert save_figure(fig, tmp_path / "new" / "folder" / "f.svg").read_text().lstrip().startswith("<?xml")
+
 def _imported_modules(path: Path) -> set[str]:
     """Absolute names of the modules ``path`` imports (relative imports resolved)."""
     parts = list(path.relative_to(PACKAGE.parent).with_suffix("").parts)

@@ -176,7 +176,7 @@ def plot_run(scenario, result, filename: str | Path | None = None, title: str | 
     """
     from matplotlib.patches import Circle, Rectangle
 
-    from .plots import draw_world, finish_figure, new_figure
+    from .plots import draw_world, finish_figure, new_figure, save_figure
     from ..sim.environment import SimEnvironment
 
     sc = scenario
@@ -205,9 +205,7 @@ def plot_run(scenario, result, filename: str | Path | None = None, title: str | 
     fig = finish_figure(fig, None, f"{head}: {outcome_text(result)} after {result.time_s:.1f} s", dpi=dpi)
     ax.title.set_color(OUTCOME_COLOURS.get(result.status, "black"))
     if filename is not None:
-        filename = Path(filename)
-        filename.parent.mkdir(parents=True, exist_ok=True)
-        fig.savefig(filename, dpi=dpi)
+        save_figure(fig, filename, dpi)
     return fig
 
 

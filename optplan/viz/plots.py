@@ -29,6 +29,30 @@ def blank_figure(figsize: tuple[float, float] = (6.4, 4.8)):
     return Figure(figsize=figsize)
 
 
+def figure_format(filename: str | Path) -> str:
+    """The picture format of ``filename`` (its suffix, lower case; ``""`` for none, which
+    writes matplotlib's default, PNG), refused with a ParameterError when matplotlib cannot
+    write it."""
+    suffix = Path(filename).suffix.lower().lstrip(".")
+    blank_figure((1, 1))  # matplotlib starts, or says why it cannot
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    known = FigureCanvasBase.get_supported_filetypes()
+    if suffix and suffix not in known:
+        raise ParameterError(f"{filename}: matplotlib writes no .{suffix} pictures; use one of "
+                             f"{', '.join('.' + k for k in sorted(known))}")
+    return suffix
+
+
+def save_figure(fig, filename: str | Path, dpi: int = 110) -> Path:
+    """Write ``fig`` to ``filename`` (format from its suffix, checked; its folder created)."""
+    filename = Path(filename)
+    figure_format(filename)
+    filename.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(filename, dpi=dpi)
+    return filename
+
+
 def new_figure(figsize: tuple[float, float] = (6.4, 4.8)):
     """:func:`blank_figure` with one Axes; returns ``(fig, ax)``."""
     fig = blank_figure(figsize)
@@ -112,7 +136,5 @@ def finish_figure(fig, filename: str | Path | None = None, title: str = "", dpi:
         fig.axes[0].set_title(title)
     fig.tight_layout()
     if filename is not None:
-        filename = Path(filename)
-        filename.parent.mkdir(parents=True, exist_ok=True)
-        fig.savefig(filename, dpi=dpi)
+        save_figure(fig, filename, dpi)
     return fig
