@@ -92,3 +92,10 @@ def test_an_unrelated_keyword_gets_no_guess():
     with pytest.raises(op.ParameterError) as exc:
         op.optimize(lambda X: X.sum(1), [(0, 1)] * 3, algorithm="gwo", colour="red")
     assert "'colour'" in str(exc.value) and "did you mean" not in str(exc.value)
+
+
+def test_an_occupancy_array_passed_as_the_world_is_pointed_at_gridmap():
+    occ = np.zeros((5, 5), bool)
+    with pytest.raises(op.ParameterError, match=r"op\.GridMap\(occ"):
+        op.plan(occ, (0.5, 0.5), (4.5, 4.5))
+    assert op.plan(op.GridMap(occ), (0.5, 0.5), (4.5, 4.5)).length == pytest.approx(4 * np.sqrt(2))

@@ -11,8 +11,12 @@ def check_world(world, what: str = "world"):
     with their query methods); a file name is refused with a hint to load it first."""
     needed = ("check_query_point", "is_free", "segments_free", "clearance")
     if not all(callable(getattr(world, m, None)) for m in needed):
-        hint = " (load a map file with op.load_map first)" if isinstance(world, (str, bytes)) or \
-            hasattr(world, "__fspath__") else ""
+        if isinstance(world, (str, bytes)) or hasattr(world, "__fspath__"):
+            hint = " (load a map file with op.load_map first)"
+        elif isinstance(world, (np.ndarray, list)):
+            hint = " (an occupancy array, True = blocked, becomes a map with op.GridMap(occ, resolution=...))"
+        else:
+            hint = ""
         raise ParameterError(f"{what} must be an op.GridMap or op.CircleWorld, got {type(world).__name__}{hint}")
     return world
 
