@@ -67,7 +67,6 @@ print(matplotlib.get_backend(), "matplotlib.pyplot" in sys.modules)
     assert out == ["svg", "False"]
 
 
-
 def test_a_backend_matplotlib_does_not_know_is_an_error_that_says_so(tmp_path):
     """matplotlib refuses to import with an unknown MPLBACKEND; optplan, which needs no backend,
     reports that as the user's setting (exit 2, one line), not as an internal error."""
@@ -98,6 +97,7 @@ def test_a_picture_format_matplotlib_cannot_write_is_refused_before_any_work(tmp
 
     fig, _ = new_figure()
     assert save_figure(fig, tmp_path / "new" / "folder" / "f.svg").read_text().lstrip().startswith("<?xml")
+
 
 def _imported_modules(path: Path) -> set[str]:
     """Absolute names of the modules ``path`` imports (relative imports resolved)."""

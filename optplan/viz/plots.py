@@ -15,10 +15,10 @@ import numpy as np
 from ..errors import ParameterError
 
 
-def blank_figure(figsize: tuple[float, float] = (6.4, 4.8)):
-    """A Figure attached to no GUI and registered with no pyplot state. A matplotlib that
-    cannot start (it refuses an ``MPLBACKEND`` it does not know when it is imported) is a
-    ParameterError that says how to fix it, not an internal error."""
+def _figure_class():
+    """matplotlib's Figure. A matplotlib that cannot start (it refuses an ``MPLBACKEND`` it does
+    not know when it is imported) is a ParameterError that says how to fix it, not an internal
+    error."""
     try:
         from matplotlib.figure import Figure
     except ValueError as exc:
@@ -26,7 +26,12 @@ def blank_figure(figsize: tuple[float, float] = (6.4, 4.8)):
             raise
         raise ParameterError(f"matplotlib cannot start: {exc}. optplan draws without a screen and uses no "
                              "backend: unset MPLBACKEND, or set it to one matplotlib knows, such as 'agg'") from None
-    return Figure(figsize=figsize)
+    return Figure
+
+
+def blank_figure(figsize: tuple[float, float] = (6.4, 4.8)):
+    """A Figure attached to no GUI and registered with no pyplot state."""
+    return _figure_class()(figsize=figsize)
 
 
 def figure_format(filename: str | Path) -> str:
@@ -34,7 +39,7 @@ def figure_format(filename: str | Path) -> str:
     writes matplotlib's default, PNG), refused with a ParameterError when matplotlib cannot
     write it."""
     suffix = Path(filename).suffix.lower().lstrip(".")
-    blank_figure((1, 1))  # matplotlib starts, or says why it cannot
+    _figure_class()  # matplotlib starts, or says why it cannot
     from matplotlib.backend_bases import FigureCanvasBase
 
     known = FigureCanvasBase.get_supported_filetypes()

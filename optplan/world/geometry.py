@@ -47,7 +47,7 @@ def _check_clearance(clearance: float) -> float:
 
 
 def _clamp(x, lo, hi):
-    """``_clamp(x, lo, hi)`` as two ufuncs: np.clip's Python dispatch (a dtype-limits
+    """``np.clip(x, lo, hi)`` as two ufuncs: np.clip's Python dispatch (a dtype-limits
     lookup on every call) cost a fifth of a small map's ``shortest_path``."""
     return np.minimum(np.maximum(x, lo), hi)
 

@@ -7,7 +7,6 @@ path formulations are solved through the same call.
 from __future__ import annotations
 
 import inspect
-
 import time
 from typing import Callable
 
