@@ -49,7 +49,8 @@ def part_local(args) -> int:
     from optplan.viz.animate import write_run_gif
 
     if args.quick:
-        paper_local("hou2024 Table 4 analog (quick smoke test: 1 random obstacle, A* global path)", ["hou2024_table4_1"], 1,
+        paper_local("hou2024 Table 4 analog (quick smoke test: 1 random obstacle, A* global path)",
+                    ["hou2024_table4_1"], 1,
                     planners=["dwa", "missa-dwa"])
     else:
         runs = args.runs if args.runs != 50 else 20

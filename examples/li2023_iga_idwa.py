@@ -123,7 +123,8 @@ def part_local(args) -> int:
     from optplan.viz.animate import write_run_gif
 
     if args.quick:
-        paper_local("li2023 Experiment I analog (quick smoke test): traditional DWA vs IGA-DWA, A* global path", ["li2023_exp1"], 1,
+        paper_local("li2023 Experiment I analog (quick smoke test): traditional DWA vs IGA-DWA, A* global path",
+                    ["li2023_exp1"], 1,
                     planners=["dwa", "iga-dwa"])
     else:
         gopts = {"pop": 50, "iters": args.iters or 100}

@@ -59,7 +59,8 @@ def part_local(args) -> int:
     from optplan.viz.animate import write_run_gif
 
     if args.quick:
-        sets = paper_local("yuan2021 §5.3 analog (quick smoke test): path switch, A* global path", ["yuan2021_path_switch"], 1,
+        sets = paper_local("yuan2021 §5.3 analog (quick smoke test): path switch, A* global path",
+                           ["yuan2021_path_switch"], 1,
                            planners=["dwa", "ba-dwa"])
     else:
         gopts = {"pop": 50, "iters": args.iters or 100}

@@ -339,7 +339,8 @@ def build_parser() -> argparse.ArgumentParser:
                    help="start in metres (default: a paper map's own start, or the --scen query's)")
     p.add_argument("--goal", nargs=2, type=float, metavar=("X", "Y"),
                    help="goal in metres (default: a paper map's own goal, or the --scen query's)")
-    p.add_argument("--algo", "--algorithm", dest="algo", default="astar", metavar="NAME", help="planner name (see 'optplan algorithms'); default astar")
+    p.add_argument("--algo", "--algorithm", dest="algo", default="astar", metavar="NAME",
+                   help="planner name (see 'optplan algorithms'); default astar")
     p.add_argument("--refine", default="none", choices=_refine_choices(), help="refinement stage")
     p.add_argument("--tube-radius", type=float, default=None, metavar="M",
                    help="metres around the path in which refinement may pass obstacles on the other side "

@@ -167,8 +167,8 @@ class DWAPlanner(MoverSweepSource):
                     raise ParameterError(f"{key} must be a dict of parameters, True or False, got {value!r}")
             else:
                 known = sorted(set(opts) | set(terms) | set(mechs) | set(MECHANISMS) | {"weights"})
-                raise ParameterError(f"unknown parameter {named_with_hints([key], known)} for local planner {preset.name!r}; "
-                                     f"known: {', '.join(known)}")
+                raise ParameterError(f"unknown parameter {named_with_hints([key], known)} for local planner "
+                                     f"{preset.name!r}; known: {', '.join(known)}")
         self.options = self._checked(opts)
         # what the mechanisms see of the planner (the options read-only, live)
         self.view = PlannerView(robot, self.dt, MappingProxyType(self.options))
