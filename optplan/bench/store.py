@@ -73,6 +73,9 @@ def _sql_value(value: Any) -> Any:
     return json.dumps(value)
 
 
+LOCK_TIMEOUT_S = 60.0  # how long a writer waits for another process's lock on the database
+
+
 class ResultStore:
     """SQLite results of runs; ``path=":memory:"`` keeps them in memory.
 
@@ -88,20 +91,35 @@ class ResultStore:
                 raise ParameterError(f"results database folder {parent} does not exist; create it or pick another "
                                      f"--db path")
         try:
-            self.conn = sqlite3.connect(self.path, timeout=60, isolation_level=None)
+            self.conn = sqlite3.connect(self.path, timeout=LOCK_TIMEOUT_S, isolation_level=None)
             self.conn.row_factory = sqlite3.Row
-            if self.path != ":memory:":
-                self.conn.execute("PRAGMA journal_mode=WAL")
-                self.conn.execute("PRAGMA synchronous=NORMAL")
-            cols = ", ".join(f"{c} {t}" for c, t in IDENTITY_COLUMNS)
-            self.conn.execute(f"CREATE TABLE IF NOT EXISTS runs ({cols})")
-            tcols = ", ".join(f"{c} TEXT" for c in TRACE_COLUMNS)
-            self.conn.execute(f"CREATE TABLE IF NOT EXISTS traces (key TEXT PRIMARY KEY, {tcols})")
+            self._set_up()
         except sqlite3.DatabaseError as exc:
             raise ParameterError(f"cannot use {self.path} as a results database ({exc}); pass another --db file") \
                 from None
         self._columns = {r["name"] for r in self.conn.execute("PRAGMA table_info(runs)")}
         self._check_schema()
+
+    def _set_up(self) -> None:
+        """WAL mode and the two tables (idempotent). Two processes that create one new file at
+        the same moment can meet a lock SQLite reports at once instead of waiting for it (seen
+        once in CI: 'database is locked' in a fresh database): the set-up is retried until
+        :data:`LOCK_TIMEOUT_S`."""
+        deadline = time.monotonic() + LOCK_TIMEOUT_S
+        while True:
+            try:
+                if self.path != ":memory:":
+                    self.conn.execute("PRAGMA journal_mode=WAL")
+                    self.conn.execute("PRAGMA synchronous=NORMAL")
+                cols = ", ".join(f"{c} {t}" for c, t in IDENTITY_COLUMNS)
+                self.conn.execute(f"CREATE TABLE IF NOT EXISTS runs ({cols})")
+                tcols = ", ".join(f"{c} TEXT" for c in TRACE_COLUMNS)
+                self.conn.execute(f"CREATE TABLE IF NOT EXISTS traces (key TEXT PRIMARY KEY, {tcols})")
+                return
+            except sqlite3.OperationalError as exc:
+                if "locked" not in str(exc) or time.monotonic() > deadline:
+                    raise
+                time.sleep(0.05)
 
     def _check_schema(self) -> None:
         """Refuse a database whose ``runs``/``traces`` tables were made by something else."""
