@@ -211,6 +211,7 @@ def astar_table(sizes, repeats: int) -> None:
     print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     from scipy.sparse.csgraph import dijkstra
 
+    lowest: dict[str, tuple[float, str]] = {}  # column -> (lowest networkx / ours, where)
     for name, grid in grid_cases(sizes):
         s, g = far_query(grid)
         t0 = time.perf_counter()
@@ -244,6 +245,12 @@ def astar_table(sizes, repeats: int) -> None:
         print(f"| {name} | {grid.width}x{grid.height} | {r.length:.4f} | {1e3 * cold:.2f} | {cell('nodes')} "
               f"| {cell('search')} | {cell('api')} | {cell('dijkstra')} | {cell('nx')} | {cell('scipy')} "
               f"| {ratio('nodes')} | {ratio('search')} | {ratio('api')} |", flush=True)
+        for k in ("nodes", "search"):
+            if "nx" in t and k in t:
+                lowest[k] = min(lowest.get(k, (math.inf, "")), (t["nx"] / t[k], f"{name} {grid.width}x{grid.height}"))
+    if lowest:
+        print("\nlowest networkx / astar (goal, issue 30: >= 2x on every map size): "
+              + "; ".join(f"{k} {v:.2f} ({where})" for k, (v, where) in lowest.items()))
 
 
 def visibility_cases(quick: bool):
