@@ -388,6 +388,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 # options that name a file or folder the command writes
 OUTPUT_OPTIONS = ("plot", "gif", "csv", "out", "plots", "export", "export_ompl")
+PICTURE_OPTIONS = ("plot", "out")  # of those, the ones matplotlib writes (format from the suffix)
 
 
 def _check_outputs(args) -> None:
@@ -406,7 +407,7 @@ def _check_outputs(args) -> None:
             raise OptplanError(f"--{flag} {value} is a folder; give a file name")
         if name == "export" and target.suffix.lower() not in (".csv", ".yaml", ".yml"):
             raise OptplanError(f"--export {value}: use a .csv or .yaml file name")
-        if name in ("plot", "out"):  # pictures: a format matplotlib writes
+        if name in PICTURE_OPTIONS:
             from .viz.plots import figure_format
 
             figure_format(target)
