@@ -152,7 +152,7 @@ def plan(world, start, goal, algorithm: str = "astar", refine: str | None = None
                              "'visibility' or a metaheuristic such as 'pso', 'ipso' or 'ga'")
     from .solvers.catalog import check_plan_options, check_refine_options
 
-    check_plan_options(name, world, params, names, list(inspect.signature(plan).parameters)[3:-1])
+    check_plan_options(name, world, params, names, _PLAN_KEYWORDS)
     if refine not in (None, "none"):
         check_refine_options(refine, refine_options)
     if name in GRAPH_METHODS:
@@ -181,3 +181,9 @@ def plan(world, start, goal, algorithm: str = "astar", refine: str | None = None
     if result.seed is None and name not in GRAPH_METHODS and isinstance(seed, (int, np.integer)):
         result.seed = int(seed)
     return result
+
+
+# op.plan's own keywords: offered as the spelling meant when a planner option is unknown
+_PLAN_KEYWORDS = tuple(inspect.signature(plan).parameters)[3:-1]
+
+

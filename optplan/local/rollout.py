@@ -142,10 +142,11 @@ def rollout_ramped(state: RobotState, lin_v: np.ndarray, lin_vy: np.ndarray, w: 
 
 def join_rollouts(a: Rollouts, b: Rollouts) -> Rollouts:
     """The samples of ``a`` followed by those of ``b`` (same start, step and horizon)."""
+    both = dict(v=np.concatenate((a.v, b.v)), vy=np.concatenate((a.vy, b.vy)), w=np.concatenate((a.w, b.w)),
+                z=np.vstack([a.z, b.z]), t=a.t, z0=a.z0, theta0=a.theta0, dt=a.dt)
     if all(r.theta is None and r.profile is None and r.tracking is None for r in (a, b)):
         # constant commands both: headings and speeds follow from (v, vy, w), nothing per step
-        return Rollouts(v=np.r_[a.v, b.v], vy=np.r_[a.vy, b.vy], w=np.r_[a.w, b.w], z=np.vstack([a.z, b.z]), t=a.t,
-                        z0=a.z0, theta0=a.theta0, dt=a.dt)
+        return Rollouts(**both)
 
     def per_step(r: Rollouts) -> tuple[np.ndarray, np.ndarray]:
         theta = r.theta if r.theta is not None else r.theta0 + np.multiply.outer(r.w, r.t)
@@ -154,9 +155,7 @@ def join_rollouts(a: Rollouts, b: Rollouts) -> Rollouts:
 
     (ta, pa), (tb, pb) = per_step(a), per_step(b)
     mask = [r.tracking if r.tracking is not None else np.zeros(r.n, dtype=bool) for r in (a, b)]
-    return Rollouts(v=np.r_[a.v, b.v], vy=np.r_[a.vy, b.vy], w=np.r_[a.w, b.w], z=np.vstack([a.z, b.z]), t=a.t,
-                    z0=a.z0, theta0=a.theta0, dt=a.dt, theta=np.vstack([ta, tb]), profile=np.vstack([pa, pb]),
-                    tracking=np.r_[mask[0], mask[1]])
+    return Rollouts(**both, theta=np.vstack([ta, tb]), profile=np.vstack([pa, pb]), tracking=np.concatenate(mask))
 
 
 def rollout_tracking(state: RobotState, path: np.ndarray, speeds: np.ndarray, look_aheads: np.ndarray, dt: float,

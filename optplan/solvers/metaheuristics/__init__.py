@@ -117,7 +117,7 @@ def optimize(f: Callable, bounds, algorithm: str = "gwo", pop: int = 30, iters: 
         **params: the algorithm's own parameters (see its class for defaults).
     """
     cls = get_algorithm(algorithm)
-    cls.check_params(params, list(inspect.signature(optimize).parameters)[:-1])
+    cls.check_params(params, _OPTIMIZE_KEYWORDS)
     function()("f", f)
     repair, callback = function(optional=True)("repair", repair), function(optional=True)("callback", callback)
     if init is not None and not callable(init):
@@ -145,6 +145,10 @@ def optimize(f: Callable, bounds, algorithm: str = "gwo", pop: int = 30, iters: 
         runtime_s=time.perf_counter() - t0, status=status, message=message, algorithm=cls.name,
         seed=int(seed) if isinstance(seed, (int, np.integer)) else None,
         archive=pooled_archive(state.snapshots) if archive_every else None)
+
+
+# optimize's own keywords: offered as the spelling meant when an algorithm parameter is unknown
+_OPTIMIZE_KEYWORDS = tuple(inspect.signature(optimize).parameters)[:-1]
 
 
 def _optimize_seeds(cls, f, lo, hi, pop, budget, seeds, *, init, repair, callback, progress, archive_every,
