@@ -71,8 +71,16 @@ def grid_path_collides(occ: np.ndarray, res: float, origin, path, depth: Fr = Fr
     cell's open square shrunk by ``depth`` on every side."""
     h, w = occ.shape
     # metres to grid units as the documented convention does, (x - origin) / resolution in
-    # float64 (a decimal resolution such as 0.3 has no exact binary value); from there on exact
-    pts = [(Fr((float(x) - origin[0]) / res), Fr((float(y) - origin[1]) / res)) for x, y in path]
+    # float64 (a decimal resolution such as 0.3 has no exact binary value), a value within
+    # the snapping tolerance of a multiple of 1/2 put on it; from there on exact
+    reach = max(abs(origin[0]), abs(origin[1])) + max(h, w) * res
+    tol = max(1e-9, 16 * 2.0 ** -52 * reach / res)
+
+    def snapped(v: float) -> Fr:
+        near = Fr(round(2 * v), 2)
+        return near if abs(Fr(v) - near) <= Fr(tol) else Fr(v)
+
+    pts = [(snapped((float(x) - origin[0]) / res), snapped((float(y) - origin[1]) / res)) for x, y in path]
     for i, (x, y) in enumerate(pts):
         if not (0 <= x <= w and 0 <= y <= h):
             return f"point {i} outside the map"

@@ -350,6 +350,7 @@ def test_points_convention_is_checked_never_applied():
 def test_visibility_blocks_and_prunings_keep_the_optimum(monkeypatch):
     """Tiny segment batches and no sampled rejection give the same any-angle optimum."""
     from optplan.solvers.graph import visibility as V
+    from optplan.world import geometry as G
 
     rng = np.random.default_rng(11)
     grid = random_grid(rng, 24, 24, 0.25)
@@ -360,7 +361,7 @@ def test_visibility_blocks_and_prunings_keep_the_optimum(monkeypatch):
         ref = shortest_path(grid, s, g, method="visibility")
     except op.InfeasibleQueryError:
         pytest.skip("this seed's corners are not connected")
-    monkeypatch.setattr(V, "SPAN_BUDGET", 10)
+    monkeypatch.setattr(G, "SPAN_BUDGET", 10)
     monkeypatch.setattr(V, "SAMPLE_BUDGET", 40)
     assert shortest_path(grid, s, g, method="visibility").length == pytest.approx(ref.length, abs=1e-12)
     monkeypatch.setattr(V, "SAMPLE_STEPS", np.zeros(0))

@@ -32,6 +32,9 @@ _DERIVED = DerivedStore("world.geometry")  # this module's data derived from wor
 
 _VERTEX_EPS = 1e-9  # float mode: how close to a lattice vertex counts as "through it"
 _INT_LIMIT = 1 << 24  # doubled coordinates beyond this fall back to float mode
+# cells of segment length (|dx| + |dy| + 2 per segment) that one block of the segment rule
+# visits: its work arrays hold about that many entries (~10 int64 arrays)
+SPAN_BUDGET = 1_000_000
 
 
 # --------------------------------------------------------------------------- helpers
@@ -70,6 +73,19 @@ def _expand(counts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     starts = np.cumsum(counts) - counts
     offset = np.arange(owner.size) - starts[owner]
     return owner, offset
+
+
+def _blocks(weights: np.ndarray, budget: float):
+    """Consecutive ``(first, last)`` slices of items whose weights add up to at most
+    ``budget`` (an item heavier than that forms a block of its own): the work arrays of
+    one block then stay within a fixed size, whatever the number of items."""
+    ends = np.cumsum(weights, dtype=float)
+    first = 0
+    while first < len(ends):
+        base = ends[first - 1] if first else 0.0
+        last = max(int(np.searchsorted(ends, base + budget, side="right")), first + 1)
+        yield first, last
+        first = last
 
 
 def _floor_div(n, d, integer: bool):
@@ -131,9 +147,6 @@ def _segments_free_grid_units(occ_pad: np.ndarray, col_cum: np.ndarray, a: np.nd
     dx, dy = x1 - x0, y1 - y0  # dx > 0
     H, W = occ_pad.shape[0] - 2, occ_pad.shape[1] - 2
 
-    def blocked(ix, iy):
-        return occ_pad[_clamp(iy + 1, 0, H + 1), _clamp(ix + 1, 0, W + 1)]
-
     def num(xv, seg):  # y(x) * dx, exact in integer mode
         return y0[seg] * dx[seg] + (xv - x0[seg]) * dy[seg]
 
@@ -172,7 +185,8 @@ def _segments_free_grid_units(occ_pad: np.ndarray, col_cum: np.ndarray, a: np.nd
         on_line = (yv % S) == 0
         row = _floor_div(yv, S, integer).astype(np.int64)
         # inside a row: that cell must be free; on a grid line: not both neighbours blocked
-        bad = np.where(on_line, blocked(f_k, row - 1) & blocked(f_k, row), blocked(f_k, row))
+        bad = np.where(on_line, _blocked_at(occ_pad, f_k, row - 1) & _blocked_at(occ_pad, f_k, row),
+                       _blocked_at(occ_pad, f_k, row))
         ok[f_seg[bad]] = False
 
     # ---- lattice vertices strictly inside the segment: no double corners
@@ -191,13 +205,34 @@ def _segments_free_grid_units(occ_pad: np.ndarray, col_cum: np.ndarray, a: np.nd
             Y = np.round(q)
             on_vertex = np.abs(q - Y) <= _VERTEX_EPS
         seg, X, Y = seg[on_vertex], (X[on_vertex] // S if integer else X[on_vertex] / S), Y[on_vertex]
-        X = X.astype(np.int64)
-        Y = Y.astype(np.int64)
-        bl, br = blocked(X - 1, Y - 1), blocked(X, Y - 1)
-        tl, tr = blocked(X - 1, Y), blocked(X, Y)
-        double = (bl & tr & ~br & ~tl) | (br & tl & ~bl & ~tr)
-        ok[seg[double]] = False
+        ok[seg[_double_corner(occ_pad, X.astype(np.int64), Y.astype(np.int64))]] = False
     return ok
+
+
+def _blocked_at(occ_pad: np.ndarray, ix, iy) -> np.ndarray:
+    """Whether cells ``(ix, iy)`` of the map padded into ``occ_pad`` are blocked (outside: yes)."""
+    H, W = occ_pad.shape[0] - 2, occ_pad.shape[1] - 2
+    return occ_pad[_clamp(iy + 1, 0, H + 1), _clamp(ix + 1, 0, W + 1)]
+
+
+def _double_corner(occ_pad: np.ndarray, X: np.ndarray, Y: np.ndarray) -> np.ndarray:
+    """Whether lattice vertices ``(X, Y)`` (integers, grid units of ``occ_pad``'s map) are
+    points where two blocked cells meet only diagonally (the frame counts as blocked)."""
+    bl, br = _blocked_at(occ_pad, X - 1, Y - 1), _blocked_at(occ_pad, X, Y - 1)
+    tl, tr = _blocked_at(occ_pad, X - 1, Y), _blocked_at(occ_pad, X, Y)
+    return (bl & tr & ~br & ~tl) | (br & tl & ~bl & ~tr)
+
+
+def double_corner_points(grid, points) -> np.ndarray:
+    """Whether points (metres) lie exactly on a lattice vertex where two blocked cells meet
+    only diagonally: a path that has such a point as an inner vertex passes through it."""
+    g = grid.to_grid(_as_points(points).reshape(-1, 2))
+    on = np.isfinite(g).all(axis=1) & np.all(g == np.round(g), axis=1)
+    out = np.zeros(len(g), dtype=bool)
+    if np.any(on):
+        v = g[on].astype(np.int64)
+        out[on] = _double_corner(grid.padded, v[:, 0], v[:, 1])
+    return out
 
 
 def _cached_transpose(grid) -> np.ndarray:
@@ -336,32 +371,30 @@ def segments_clearance(grid, a, b) -> np.ndarray:
     # the border is closest at an end point (distance to it is linear along a segment)
     border = np.minimum.reduce([ga[:, 0], ga[:, 1], grid.width - ga[:, 0], grid.height - ga[:, 1],
                                 gb[:, 0], gb[:, 1], grid.width - gb[:, 0], grid.height - gb[:, 1]])
-    # growing search radius r: every blocked cell within r of a segment is enumerated, so a
-    # segment whose nearest enumerated cell (or the border) is within r has its exact value
-    todo = np.nonzero(free)[0]
-    r = 1.0
-    limit = 2.0 * (grid.width + grid.height)
-    while todo.size:
-        sidx, lo = _blocked_cells_near(grid, ga[todo], gb[todo], np.full(todo.size, r))
-        near = np.full(todo.size, np.inf)
-        if sidx.size:
-            np.minimum.at(near, sidx, _segment_box_distance(ga[todo][sidx], gb[todo][sidx], lo, lo + 1.0))
-        value = np.minimum(near, border[todo])
-        done = (value <= r) | (r >= limit)
-        out[todo[done]] = np.maximum(value[done], 0.0)
-        todo = todo[~done]
-        r *= 2.0
+    ok = np.nonzero(free)[0]
+    if ok.size:
+        near = _distance_to_cells(_DERIVED.of(grid), "tree_blocked", lambda: _boundary_cells(grid.occ),
+                                  ga[ok], gb[ok])
+        out[ok] = np.maximum(np.minimum(near, border[ok]), 0.0)
     bad = np.nonzero(~free)[0]
     if bad.size:
-        seg = gb[bad] - ga[bad]
-        counts = np.maximum(np.ceil(np.hypot(seg[:, 0], seg[:, 1]) * 20).astype(np.int64), 1)
-        owner, off = _expand(counts + 1)
-        t = off / counts[owner]
-        pts = grid.to_world(ga[bad][owner] + t[:, None] * seg[owner])
-        depth = np.full(bad.size, np.inf)
-        np.minimum.at(depth, owner, grid_clearance(grid, pts) / grid.resolution)
-        out[bad] = np.minimum(depth, 0.0)
+        out[bad] = _crossing_depth(grid, ga[bad], gb[bad])
     return out * grid.resolution
+
+
+def _crossing_depth(grid, ga: np.ndarray, gb: np.ndarray) -> np.ndarray:
+    """Minus the deepest penetration (grid units, <= 0) among the end points of segments
+    that break the rule and their samples every 1/20 cell, in blocks of bounded size."""
+    seg = gb - ga
+    counts = np.maximum(np.ceil(np.hypot(seg[:, 0], seg[:, 1]) * 20).astype(np.int64), 1) + 1
+    depth = np.full(len(ga), np.inf)
+    for first, last in _blocks(counts, 20 * PIECE_BLOCK):
+        owner, off = _expand(counts[first:last])
+        owner += first
+        t = off / (counts[owner] - 1)
+        pts = grid.to_world(ga[owner] + t[:, None] * seg[owner])
+        np.minimum.at(depth, owner, grid_clearance(grid, pts) / grid.resolution)
+    return np.minimum(depth, 0.0)
 
 
 def segments_free(grid, a, b, clearance: float = 0.0) -> np.ndarray:
@@ -386,10 +419,18 @@ def segments_free(grid, a, b, clearance: float = 0.0) -> np.ndarray:
     inside &= (ga[:, 0] <= grid.width) & (gb[:, 0] <= grid.width)
     inside &= (ga[:, 1] <= grid.height) & (gb[:, 1] <= grid.height)
     ok = inside.copy()
-    if np.any(inside):
-        ok[inside] = _segments_rule(grid, ga[inside], gb[inside])
-    if c > 0 and np.any(ok):
-        ok[ok] = _segments_clear_grid_units(grid, ga[ok], gb[ok], c / grid.resolution)
+    idx = np.nonzero(inside)[0]
+    r = c / grid.resolution
+    # the rule's work arrays hold about |dx| + |dy| + 2 entries per segment (and the
+    # clearance band (2r + 2) times that): blocks of bounded span keep memory bounded
+    d = np.abs(gb[idx] - ga[idx])
+    span = d.sum(axis=1) + 2.0 + (4.0 * r * (1.0 + d.max(axis=1)) if r > 0 else 0.0)
+    for first, last in _blocks(span, SPAN_BUDGET):
+        part = idx[first:last]
+        free = _segments_rule(grid, ga[part], gb[part])
+        if r > 0 and np.any(free):
+            free[free] = _segments_clear_grid_units(grid, ga[part[free]], gb[part[free]], r)
+        ok[part] = free
     return ok.reshape(shape)
 
 
@@ -404,30 +445,56 @@ def _boundary_cells(mask: np.ndarray) -> np.ndarray:
     return np.stack([ix, iy], axis=1)
 
 
-def _distance_to_cells(tree_cache: dict, key: str, cells_fn, p: np.ndarray) -> np.ndarray:
-    """Exact distance (grid units) from points to the union of unit squares."""
+# pieces of a segment measured at once by the exact distance: each piece is at most
+# 2 * PIECE_HALF cells long, and one block holds at most PIECE_BLOCK pieces, so memory grows
+# with the path's length and never with the map's area
+PIECE_HALF = 1.0
+PIECE_BLOCK = 1 << 15
+
+
+def _distance_to_cells(tree_cache: dict, key: str, cells_fn, a: np.ndarray, b: np.ndarray | None = None) -> np.ndarray:
+    """Exact distance (grid units) from points ``a`` (or segments ``a -> b``) to the union
+    of the unit squares whose lower-left corners ``cells_fn()`` lists.
+
+    A segment is cut into pieces no longer than ``2 * PIECE_HALF`` cells. For each piece,
+    the squares nearest to its midpoint are read from a k-d tree of their centres, ``k``
+    doubling until no unread square can be nearer: a square whose centre is ``D`` from the
+    midpoint is at least ``D - sqrt(1/2) - half`` from the piece. The segment's value is its
+    pieces' minimum. A segment must not enter a square's interior (the caller checks the
+    segment rule first; a touch gives 0)."""
     from scipy.spatial import cKDTree
 
     if key not in tree_cache:
         cells = cells_fn()
         tree_cache[key] = (cKDTree(cells + 0.5) if len(cells) else None, cells)
     tree, cells = tree_cache[key]
-    out = np.full(len(p), np.inf)
-    if tree is None or len(p) == 0:
+    b = a if b is None else b
+    out = np.full(len(a), np.inf)
+    if tree is None or len(a) == 0:
         return out
-    todo = np.arange(len(p))
-    k = min(8, len(cells))
-    while todo.size:
-        dist, idx = tree.query(p[todo], k=k)
-        dist, idx = dist.reshape(len(todo), -1), idx.reshape(len(todo), -1)
-        lo = cells[idx].astype(float)
-        gap = np.maximum(np.maximum(lo - p[todo, None, :], p[todo, None, :] - (lo + 1.0)), 0.0)
-        d = np.hypot(gap[..., 0], gap[..., 1]).min(axis=1)
-        out[todo] = d
-        # an unqueried square has distance >= its centre distance - sqrt(2)/2
-        done = (dist[:, -1] - np.sqrt(0.5) > d) | (k >= len(cells))
-        todo = todo[~done]
-        k = min(2 * k, len(cells))
+    seg = b - a
+    counts = np.maximum(np.ceil(np.hypot(seg[:, 0], seg[:, 1]) / (2 * PIECE_HALF)), 1).astype(np.int64)
+    for first, last in _blocks(counts, PIECE_BLOCK):
+        owner, off = _expand(counts[first:last])
+        owner += first
+        n = counts[owner].astype(float)
+        pa = a[owner] + (off / n)[:, None] * seg[owner]
+        pb = a[owner] + ((off + 1) / n)[:, None] * seg[owner]
+        mid, half = 0.5 * (pa + pb), 0.5 * np.hypot(pb[:, 0] - pa[:, 0], pb[:, 1] - pa[:, 1])
+        piece = np.full(len(owner), np.inf)
+        todo = np.arange(len(owner))
+        k = min(8, len(cells))
+        while todo.size:
+            dist, idx = tree.query(mid[todo], k=k)
+            dist, idx = dist.reshape(len(todo), -1), idx.reshape(len(todo), -1)
+            lo = cells[idx.ravel()].astype(float)
+            rep = np.repeat(todo, idx.shape[1])
+            d = _segment_box_distance(pa[rep], pb[rep], lo, lo + 1.0).reshape(len(todo), -1).min(axis=1)
+            piece[todo] = d
+            done = (dist[:, -1] - np.sqrt(0.5) - half[todo] > d) | (k >= len(cells))
+            todo = todo[~done]
+            k = min(2 * k, len(cells))
+        np.minimum.at(out, owner, piece)
     return out
 
 
@@ -497,12 +564,21 @@ def validate_path(world, path, clearance: float = 0.0) -> PathCheck:
         bad = np.nonzero(~np.isfinite(P).all(axis=1))[0]
         return PathCheck(False, bad_points=bad, reason=f"path has non-finite coordinates at point {bad[0]}")
     pts_ok = np.asarray(world.is_free(P, c), dtype=bool)
+    if getattr(world, "is_grid", False) and len(P) > 2:
+        # an inner vertex on a diagonal meeting of two blocked cells is passed through
+        # (DESIGN.md), so joined legs are judged like one straight segment through it
+        pts_ok[1:-1] &= ~double_corner_points(world, P[1:-1])
     seg_ok = np.asarray(world.segments_free(P[:-1], P[1:], c), dtype=bool) if len(P) > 1 else np.ones(0, bool)
     bad_pts = np.nonzero(~pts_ok)[0]
     bad_segs = np.nonzero(~seg_ok)[0]
     if bad_pts.size:
         i = bad_pts[0]
-        reason = f"point {i} ({P[i, 0]:.6g}, {P[i, 1]:.6g}) is not free" + (f" with clearance {c:g} m" if c else "")
+        if getattr(world, "is_grid", False) and 0 < i < len(P) - 1 and double_corner_points(world, P[i])[0]:
+            reason = (f"point {i} ({P[i, 0]:.6g}, {P[i, 1]:.6g}) is a point where two blocked cells meet "
+                      "diagonally; a point robot cannot pass it")
+        else:
+            reason = (f"point {i} ({P[i, 0]:.6g}, {P[i, 1]:.6g}) is not free"
+                      + (f" with clearance {c:g} m" if c else ""))
     elif bad_segs.size:
         i = bad_segs[0]
         reason = (f"segment {i} ({P[i, 0]:.6g}, {P[i, 1]:.6g}) -> ({P[i + 1, 0]:.6g}, {P[i + 1, 1]:.6g}) "

@@ -18,6 +18,11 @@ from ..errors import InfeasibleQueryError, MapFormatError, ParameterError
 
 MAX_GRID_CELLS = 50_000_000  # about 7000 x 7000; the loaders refuse larger files before reading them
 MAX_EXTENT_M = 1e9
+# a grid coordinate within this many cells of a multiple of 1/2 (a grid line or a cell's
+# mid-line) is snapped onto it where metres enter the grid (GridMap.to_grid): corners and
+# centres computed in metres as ``origin + k * resolution`` come back exactly, so no exact
+# test depends on the resolution or the origin (DESIGN.md, "Conventions")
+SNAP_CELLS = 1e-9
 
 
 def _finite(value, what: str) -> float:
@@ -62,7 +67,8 @@ class GridMap:
             if occ.dtype.kind not in "iuf" or not np.all(np.isin(occ, (0, 1))):
                 raise MapFormatError("occupancy values must be 0 (free) or 1 (blocked)")
             occ = occ.astype(bool)
-        self.occ = np.ascontiguousarray(occ)
+        # a copy: the map is read-only, the caller's array stays as it was
+        self.occ = np.array(occ, dtype=bool, order="C", copy=True)
         self.occ.setflags(write=False)
         res = _finite(self.resolution, "resolution")
         if res <= 0:
@@ -117,10 +123,35 @@ class GridMap:
         return float(1.0 - self.occ.mean())
 
     # ----------------------------------------------------------- coordinates
+    @cached_property
+    def snap_tolerance(self) -> float:
+        """Grid units within which :meth:`to_grid` snaps a coordinate to a multiple of 1/2:
+        :data:`SNAP_CELLS`, or the rounding of metres far from (0, 0) (a UTM origin) where
+        that is larger."""
+        reach = max(abs(self.origin[0]), abs(self.origin[1])) + max(self.occ.shape) * self.resolution
+        return max(SNAP_CELLS, 16.0 * np.finfo(float).eps * reach / self.resolution)
+
     def to_grid(self, points) -> np.ndarray:
-        """World metres -> continuous grid units (cell ``(ix, iy)`` spans ``[ix, ix+1)``)."""
-        p = np.asarray(points, dtype=float)
-        return (p - np.asarray(self.origin)) / self.resolution
+        """World metres -> continuous grid units (cell ``(ix, iy)`` spans ``[ix, ix+1)``).
+
+        The one place where metres enter the exact geometry: a coordinate within
+        :attr:`snap_tolerance` of a grid line or a cell's mid-line is put on it, so a corner
+        or a centre given in metres is the same lattice point at every resolution and origin.
+        """
+        g = (np.asarray(points, dtype=float) - np.asarray(self.origin)) / self.resolution
+        half = np.round(2.0 * g) / 2.0
+        return np.where(np.abs(g - half) <= self.snap_tolerance, half, g)
+
+    def point_to_grid(self, x: float, y: float) -> tuple[float, float]:
+        """:meth:`to_grid` of one point on Python floats (numpy scalars cost more than a
+        small search): the same snapping, the same numbers."""
+        tol = self.snap_tolerance
+        out = []
+        for v, o in ((x, self.origin[0]), (y, self.origin[1])):
+            g = (float(v) - o) / self.resolution
+            half = round(2.0 * g) / 2.0
+            out.append(half if abs(g - half) <= tol else g)
+        return out[0], out[1]
 
     def to_world(self, grid_points) -> np.ndarray:
         """Continuous grid units -> world metres."""

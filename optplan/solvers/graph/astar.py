@@ -34,7 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...errors import InfeasibleQueryError
-from ..gridpath.moves import move_table
+from ..gridpath.moves import WINDOW_CELLS, move_table
 from ...world.derived import DerivedStore
 
 _DERIVED = DerivedStore("solvers.graph.astar")  # this module's data derived from worlds
@@ -62,6 +62,24 @@ def _unreachable(corner_cutting: bool) -> InfeasibleQueryError:
 TIE = 1e-9
 
 
+class _TouchedOctile(dict):
+    """The heuristic of a big map, computed for the cells the search touches (the same
+    float operations as the octile window), so memory follows the search, not the map."""
+
+    def __init__(self, width: int, ax: int, ay: int, slack: float, virtual_goal: int):
+        super().__init__({virtual_goal: 0.0})
+        self.width, self.ax, self.ay, self.slack = width, ax, ay, slack
+
+    def __missing__(self, c: int) -> float:
+        dy, dx = divmod(c, self.width)
+        dx, dy = abs(dx - self.ax), abs(dy - self.ay)
+        v = (dx + dy) + (SQRT2 - 2.0) * min(dx, dy)
+        if self.slack > 0:
+            v = max(v - self.slack, 0.0)
+        self[c] = v
+        return v
+
+
 def astar_cells(table, sources, targets, source_bias=None, target_bias=None):
     """A*: shortest move sequence from any of ``sources`` to any of ``targets`` (flat cell indices).
 
@@ -82,14 +100,17 @@ def astar_cells(table, sources, targets, source_bias=None, target_bias=None):
     single = len(targets) == 1
     ay, ax = divmod(targets[0], W)
     slack = 0.0 if single else max(octile(t % W - ax, t // W - ay) for t in targets)
-    # the heuristic of every cell: a slice of the table's octile window (the same float
-    # operations as the scalar formula), copied into an array('d'), not n Python floats
-    Ht = table.height
-    h = table.octile_window[Ht - 1 - ay:2 * Ht - 1 - ay, W - 1 - ax:2 * W - 1 - ax]
-    if slack > 0:
-        h = np.maximum(h - slack, 0.0)
-    H = array("d", h.tobytes())
-    H.append(0.0)  # the virtual goal, flat index n
+    if n <= WINDOW_CELLS:
+        # the heuristic of every cell: a slice of the table's octile window (the same float
+        # operations as the scalar formula), copied into an array('d'), not n Python floats
+        Ht = table.height
+        h = table.octile_window[Ht - 1 - ay:2 * Ht - 1 - ay, W - 1 - ax:2 * W - 1 - ax]
+        if slack > 0:
+            h = np.maximum(h - slack, 0.0)
+        H = array("d", h.tobytes())
+        H.append(0.0)  # the virtual goal, flat index n
+    else:
+        H = _TouchedOctile(W, ax, ay, slack, n)
     # dist[c] is -1 once c is expanded (closed): no heap entry matches it. bar[c] is
     # dist[c] - 1e-12, the value a move must beat (-inf once closed: nothing beats it),
     # kept next to dist so that the test of every move is one comparison
@@ -274,10 +295,10 @@ def cell_path(grid, start, goal, *, method: str = "astar", corner_cutting: bool 
     """
     table = move_table(grid, corner_cutting, clearance)
     s, g = np.asarray(start, float), np.asarray(goal, float)
-    res, (ox, oy) = grid.resolution, grid.origin
+    res = grid.resolution
     # the per-query arithmetic on Python floats: numpy scalars cost more than the small searches
     sx, sy, gx, gy = float(s[0]), float(s[1]), float(g[0]), float(g[1])
-    qs, qg = ((sx - ox) / res, (sy - oy) / res), ((gx - ox) / res, (gy - oy) / res)  # grid units, as to_grid
+    qs, qg = grid.point_to_grid(sx, sy), grid.point_to_grid(gx, gy)
     ends = []
     for p, q, what in ((s, qs, "start"), (g, qg, "goal")):
         cells, join, bias = _end_cells(grid, q, clearance)
@@ -306,7 +327,10 @@ def cell_path(grid, start, goal, *, method: str = "astar", corner_cutting: bool 
     # an end at a cell centre is that centre: no repeated point
     first, last = int(sj != 0), int(gj != 0)
     P = np.empty((len(flat) + first + last, 2))
-    cell_centres(grid).take(flat, axis=0, out=P[first:len(P) - last])
+    if table.width * table.height <= WINDOW_CELLS:
+        cell_centres(grid).take(flat, axis=0, out=P[first:len(P) - last])
+    else:  # the centres of the path's cells only: a big map's table of all centres is 16 bytes a cell
+        P[first:len(P) - last] = grid.cell_center(table.xy(np.asarray(flat, dtype=np.int64)))
     if first:
         P[0] = sx, sy
     if last:

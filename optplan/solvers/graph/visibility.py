@@ -18,11 +18,10 @@ points. ``points="centres"`` / ``"corners"`` only check that the points follow
 that convention (cell centres, as the metaheuristics produce; lattice vertices,
 as the Anya / GPPC benchmarks use); nothing is moved.
 
-Memory: every ``segments_free`` call gets a batch of segments whose total
-length is bounded (:data:`SPAN_BUDGET` cells), and the samples of the cheap
-rejection come in blocks (:data:`SAMPLE_BUDGET`), so memory is linear in the
-number of corners; no allocation grows with the product of the number of
-corners and the map size.
+Memory: ``segments_free`` checks its segments in blocks of bounded total length
+(``geometry.SPAN_BUDGET`` cells), and the samples of the cheap rejection come in
+blocks (:data:`SAMPLE_BUDGET`), so memory is linear in the number of corners; no
+allocation grows with the product of the number of corners and the map size.
 
 Speed: at an expanded corner only taut continuations are candidates (the
 blocked cell inside the turn, :func:`_taut`), and candidates that a sample
@@ -38,9 +37,6 @@ import numpy as np
 from ...errors import InfeasibleQueryError, ParameterError
 from ...world.geometry import convex_corners, segments_free
 
-# cells of segment length (|dx| + |dy| + 2 per segment) checked per segments_free call: the
-# rule's work arrays hold about that many entries, so this bounds them (~10 int64 arrays)
-SPAN_BUDGET = 1_000_000
 POINT_MODES = ("exact", "centres", "corners")
 
 
@@ -52,30 +48,6 @@ def _tangent(d: np.ndarray, quadrant: np.ndarray) -> np.ndarray:
     same = (s[:, 0] == quadrant[:, 0]) & (s[:, 1] == quadrant[:, 1])
     opposite = (s[:, 0] == -quadrant[:, 0]) & (s[:, 1] == -quadrant[:, 1])
     return axis | ~(same | opposite)
-
-
-def segments_free_chunked(grid, A: np.ndarray, B: np.ndarray, clearance: float = 0.0) -> np.ndarray:
-    """``segments_free(grid, A, B, clearance)`` (metres) in batches of at most
-    :data:`SPAN_BUDGET` cells of total segment length, so memory stays bounded."""
-    n = len(A)
-    ok = np.zeros(n, dtype=bool)
-    if n == 0:
-        return ok
-    # no segment spans more than the map (plus the clearance's growth): a batch that fits
-    # the budget even so is one call, which is what the split below would make of it
-    widest = grid.width + grid.height + 2.0
-    if clearance > 0:
-        widest += 4.0 * clearance / grid.resolution * (1.0 + max(grid.width, grid.height))
-    if n * widest <= SPAN_BUDGET:
-        return np.asarray(segments_free(grid, A, B, clearance), dtype=bool)
-    span = np.abs(grid.to_grid(B) - grid.to_grid(A)).sum(axis=1) + 2.0
-    if clearance > 0:
-        span += 4.0 * clearance / grid.resolution * (1.0 + np.abs(grid.to_grid(B) - grid.to_grid(A)).max(axis=1))
-    edges = np.searchsorted(np.cumsum(span), np.arange(1, int(span.sum() // SPAN_BUDGET) + 1) * SPAN_BUDGET)
-    for lo, hi in zip(np.concatenate([[0], edges]), np.concatenate([edges, [n]])):
-        if hi > lo:
-            ok[lo:hi] = segments_free(grid, A[lo:hi], B[lo:hi], clearance)
-    return ok
 
 
 class _EdgeRule:
@@ -97,7 +69,7 @@ class _EdgeRule:
             at_end[:] = False
         if (~at_end).any():
             A = self.grid.to_world(np.broadcast_to(P[u], (int((~at_end).sum()), 2)))
-            ok[~at_end] = segments_free_chunked(self.grid, A, self.grid.to_world(P[J[~at_end]]), self.clearance)
+            ok[~at_end] = segments_free(self.grid, A, self.grid.to_world(P[J[~at_end]]), self.clearance)
         if at_end.any():
             sel = np.nonzero(at_end)[0]
             end = np.where(J[sel] < 2, J[sel], u)
@@ -120,14 +92,14 @@ class _EdgeRule:
         split = np.all(V == np.round(V), axis=1) & np.all(d != 0, axis=1) & ~np.all(2 * E == np.round(2 * E), axis=1)
         ok = np.zeros(len(E), dtype=bool)
         if (~split).any():
-            ok[~split] = segments_free_chunked(self.grid, A[~split], B[~split])
+            ok[~split] = segments_free(self.grid, A[~split], B[~split])
         if split.any():
             k = np.nonzero(split)[0]
             dk, vk = d[k], V[k]
             t = 0.5 * np.minimum(1.0, 1.0 / np.abs(dk).max(axis=1))   # half way to the first lattice line
             cell = (vk + np.where(dk > 0, 0, -1)).astype(np.int64)     # the cell next to v towards the end
             mid = self.grid.to_world(vk + t[:, None] * dk)
-            ok[k] = ~self.grid.blocked_cells(cell) & segments_free_chunked(self.grid, A[k], mid)
+            ok[k] = ~self.grid.blocked_cells(cell) & segments_free(self.grid, A[k], mid)
         return ok
 
 
@@ -305,12 +277,15 @@ def _upper_bound(grid, s, g, clearance: float) -> float:
     if clearance > 0:
         return np.inf
     from .astar import cell_path
+    from ..gridpath.moves import WINDOW_CELLS
 
     from ...world.postprocess import prune_direct
 
+    # scipy's compiled Dijkstra: the same optimal length as the scalar A* loop, 10x faster on
+    # large maps; beyond WINDOW_CELLS its sparse matrix (~20 bytes a cell) is left to A*
+    method = "dijkstra" if grid.width * grid.height <= WINDOW_CELLS else "astar"
     try:
-        # scipy's compiled Dijkstra: the same optimal length as the scalar A* loop, 10x faster on large maps
-        P = cell_path(grid, s, g, method="dijkstra").path
+        P = cell_path(grid, s, g, method=method).path
     except InfeasibleQueryError:
         return np.inf
     # direct-connection pruning keeps it free (the exact rule) and shortens it towards the
