@@ -136,3 +136,24 @@ def test_general_encoding_on_a_circle_world():
     exact = op.shortest_path(world, s, g, method="visibility").length
     assert r.feasible and r.encoding == "general"
     assert exact - 1e-6 <= r.length <= exact * (1 / np.cos(np.pi / 32)) + 1e-6   # polygon sides, not arcs
+
+
+def test_legs_between_roadmap_parts_run_through_the_start():
+    """The start sees corners of two parts of the roadmap that see no corner of each other
+    (seeded random map): the legs between them run through the start instead of raising
+    'roadmap leg between unconnected nodes', and the planner reaches the exact optimum."""
+    from optplan.formulations.encodings import GeneralPath
+    from optplan.world.roadmap import walk_legs
+    from optplan.worldgen.maps import generate_map
+
+    grid = generate_map("random", 32, 1030)
+    s, g = np.array([2.389801788440688, 30.18134265615101]), np.array([20.412691713480836, 2.09220741242778])
+    enc = GeneralPath(grid, s, g)
+    r = enc.reachable
+    legs = walk_legs(enc.succ, np.repeat(r, len(r)), np.tile(r, len(r)))
+    P = enc.points[legs]
+    length = np.hypot(*np.diff(P, axis=1).transpose(2, 0, 1)).sum(axis=1)
+    np.testing.assert_allclose(length, enc.table[np.repeat(r, len(r)), np.tile(r, len(r))], rtol=1e-12)
+    res = op.plan(grid, s, g, algorithm="pso", encoding="general", max_evals=3000, iters=None, pop=20, seed=0)
+    best = op.shortest_path(grid, s, g, method="visibility").length
+    assert res.feasible and res.length == pytest.approx(best, rel=1e-9)

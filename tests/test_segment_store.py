@@ -100,3 +100,42 @@ def test_path_gas_decide_segments_on_demand_not_in_full_tables(algorithm):
 
     assert not any(isinstance(k, tuple) and k[0] in ("column_tables", "column_transitions")
                    for _, k in derived_keys(world))
+
+
+def test_hashed_slots_give_the_same_scores_as_the_flat_layout(monkeypatch):
+    """Beyond DENSE_SEGMENTS possible segments the values live in hashed slots (a 1000-column
+    map has 10^9 segments): scores, moves and the planned path are the same numbers."""
+    from optplan.formulations import segment_store as S
+    from optplan.formulations.problem import PathProblem
+
+    def run():
+        world, s, g = paper_map("hou2024_env1")    # a new map: nothing cached from the other run
+        enc = ColumnNodes(world, np.asarray(s, float), np.asarray(g, float))
+        prob = PathProblem(enc, "hou2024", clearance=0.2, constraint="penalty")
+        rng = np.random.default_rng(9)
+        X = np.vstack([rng.uniform(enc.lower, enc.upper, (400, enc.dim)), enc.sample_feasible(40, rng, 0.2)])
+        f, v = prob.evaluate(X)
+        f2, v2 = prob.evaluate(X[::-1])            # a second pass reads what the first stored
+        store = column_segments(enc, 0.2)
+        assert store.index.dense == (S.DENSE_SEGMENTS > 0)
+        return f, v, f2, v2, store.moves(3, np.arange(world.height))
+
+    dense = run()
+    monkeypatch.setattr(S, "DENSE_SEGMENTS", 0)
+    hashed = run()
+    for a, b in zip(dense, hashed):
+        np.testing.assert_array_equal(a, b)
+
+
+def test_slot_index_hands_out_one_slot_per_key():
+    from optplan.formulations.segment_store import SlotIndex
+
+    index = SlotIndex(10 ** 12)
+    assert not index.dense
+    rng = np.random.default_rng(1)
+    keys = rng.integers(0, 10 ** 12, 50_000)
+    first = index.slots(keys)
+    again = index.slots(keys[::-1])[::-1]
+    np.testing.assert_array_equal(first, again)
+    assert index.used == len(np.unique(keys)) and set(np.unique(first)) == set(range(index.used))
+    np.testing.assert_array_equal(index.keys(first), keys)

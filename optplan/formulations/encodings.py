@@ -449,6 +449,37 @@ class SplinePath(FreeWaypoints):
         return self.decode(np.asarray(x, dtype=float)[None, :])[0]
 
 
+def _join_through_ends(D: np.ndarray, succ: np.ndarray, M: int) -> None:
+    """Complete the geodesics of roadmap nodes ``0..M-1`` through the end points ``S = M``
+    and ``G = M + 1`` in place: a start (or goal) can see corners of two parts of the
+    roadmap that see no corner of each other, and a leg between those parts runs through
+    it. Only pairs the roadmap does not join change; the first hop is the first hop
+    towards that end, so each step of a walk shortens what is left."""
+    S, G = M, M + 1
+    sg = D[S, G]
+    # the nodes whose own way to an end avoids the other end: a walk towards that end
+    # from them reaches it without passing through the other
+    own_s, own_g = np.isfinite(D[:M, S]), np.isfinite(D[:M, G])
+    # a node to one end through the other end
+    for end, other in ((G, S), (S, G)):
+        via = D[:M, other] + sg
+        i = np.nonzero(~np.isfinite(D[:M, end]) & np.isfinite(via))[0]
+        D[i, end] = D[end, i] = via[i]
+        succ[i, end] = succ[i, other]
+        succ[end, i] = succ[end, other]
+    apart = ~np.isfinite(D[:M, :M])
+    if not apart.any():
+        return
+    i, j = np.nonzero(apart)
+    through_s = np.where(own_s[i], D[i, S] + D[S, j], np.inf)
+    through_g = np.where(own_g[i], D[i, G] + D[G, j], np.inf)
+    ok = np.isfinite(np.minimum(through_s, through_g))
+    i, j, through_s, through_g = i[ok], j[ok], through_s[ok], through_g[ok]
+    by_s = through_s <= through_g
+    D[i, j] = np.where(by_s, through_s, through_g)
+    succ[i, j] = np.where(by_s, succ[i, S], succ[i, G])
+
+
 @dataclass
 class GeneralPath(PathEncoding):
     """Any path class on any map: ``m`` via points joined by geodesic legs through the roadmap.
@@ -518,6 +549,7 @@ class GeneralPath(PathEncoding):
         succ[S, S], succ[G, G] = S, G
         succ[S, G] = G if direct else es[k]
         succ[G, S] = S if direct else eg[k]
+        _join_through_ends(D, succ, M)
         self.table, self.succ = D, succ
         self.points = np.vstack([rm.nodes, self.start[None], self.goal[None]]) if M else np.stack([self.start, self.goal])
         # via points snap only to nodes the start reaches

@@ -174,14 +174,13 @@ class PathProblem:
             enc = self.encoding
             X = X.reshape(-1, enc.dim)
             self.nfev += len(X)
-            idx = enc.segment_index(enc.rows_of(X))
-            fused.fill(idx)
+            slots = fused.fill(enc.segment_index(enc.rows_of(X)))
             # method calls and ufunc reductions: no Python wrappers in this hot path
-            f = np.add.reduce(fused.cost.take(idx), axis=1)
-            v = np.add.reduce(fused.violation.take(idx), axis=1)
+            f = np.add.reduce(fused.cost.take(slots), axis=1)
+            v = np.add.reduce(fused.violation.take(slots), axis=1)
             if self.has_turn_terms:
                 # segment headings are kept too: turn terms without decoding paths
-                f = f + self.weighted_turns(terms.heading_changes_deg(fused.headings(idx)))
+                f = f + self.weighted_turns(terms.heading_changes_deg(fused.headings(slots)))
             return f, v
         enc = self.encoding
         if hasattr(enc, "leg_length") and not self.has_turn_terms:

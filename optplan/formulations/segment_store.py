@@ -16,6 +16,12 @@ The flat layout is the encoding's (``segment_index``): ``[first (H) | inner
 coordinates, in batches of one kind (first, inner, last) as the full tables were, so
 they are the same numbers.
 
+Where values live: by flat index in arrays of one entry per possible segment (pages the
+run never touches are never mapped) while the map has at most :data:`DENSE_SEGMENTS`
+possible segments; beyond that (a 1000-column map has 10^9), in slots handed out on first
+use by :class:`SlotIndex`, a vectorised open-addressing hash table, so memory follows the
+segments a run asks for, not the map.
+
 A necessary condition prunes inner segments before the exact rule: between the centres
 of rows ``r1`` and ``r2`` of neighbouring columns, the segment runs through the open
 interior of the cells of the first column from ``r1`` to half way and of the second from
@@ -30,6 +36,107 @@ from ..world.derived import DerivedStore
 _DERIVED = DerivedStore("formulations.segment_store")  # this module's data derived from worlds
 
 FREE, BLOCKED = 1, 2
+# up to this many possible segments values are kept by flat index (one byte of state and
+# eight of each value per possible segment, reserved but mapped only where touched)
+DENSE_SEGMENTS = 1 << 26
+# the band of BAND rows is decided up front only while it holds at most this many segments
+BAND_SEGMENTS = 1 << 23
+_GOLDEN = np.uint64(0x9E3779B97F4A7C15)  # Fibonacci hashing's multiplier (2^64 / golden ratio)
+
+
+def grown(values: np.ndarray, n: int) -> np.ndarray:
+    """``values`` with room for at least ``n`` entries (new ones zero), doubling as it grows."""
+    if len(values) >= n:
+        return values
+    out = np.zeros(max(n, 2 * len(values)), dtype=values.dtype)
+    out[:len(values)] = values
+    return out
+
+
+class SlotIndex:
+    """Where the value of flat segment index ``k`` is kept: ``k`` itself for a small index
+    space (``dense``), otherwise a slot number handed out on first use, in order.
+
+    The slots of a big index space come from an open-addressing hash table with linear
+    probing, searched for a whole batch of keys at once (one numpy pass per probe step);
+    it doubles when half full."""
+
+    def __init__(self, size: int) -> None:
+        self.size = int(size)
+        self.dense = self.size <= DENSE_SEGMENTS
+        if not self.dense:
+            self._keys = np.full(1 << 12, -1, dtype=np.int64)
+            self._slot = np.zeros(1 << 12, dtype=np.int64)
+            self._key_of = np.zeros(1 << 10, dtype=np.int64)
+            self.used = 0
+
+    @property
+    def n_slots(self) -> int:
+        """How many slots value arrays need."""
+        return self.size if self.dense else self.used
+
+    def slots(self, idx: np.ndarray) -> np.ndarray:
+        """The slots of flat indices ``idx`` (any shape), new keys given new slots."""
+        idx = np.asarray(idx, dtype=np.int64)
+        if self.dense:
+            return idx
+        u, inv = np.unique(idx, return_inverse=True)
+        found = self._probe(u)
+        new = found < 0
+        if new.any():
+            fresh = np.arange(self.used, self.used + int(new.sum()), dtype=np.int64)
+            self.used += len(fresh)
+            if 2 * self.used > len(self._keys):
+                self._rehash(2 * self.used)
+            self._place(u[new], fresh)
+            self._key_of = grown(self._key_of, self.used)
+            self._key_of[fresh] = u[new]
+            found[new] = fresh
+        return found[inv].reshape(idx.shape)
+
+    def keys(self, slots: np.ndarray) -> np.ndarray:
+        """The flat indices held in ``slots``."""
+        return np.asarray(slots, dtype=np.int64) if self.dense else self._key_of[slots]
+
+    def _home(self, keys: np.ndarray) -> np.ndarray:
+        bits = len(self._keys).bit_length() - 1
+        return ((keys.astype(np.uint64) * _GOLDEN) >> np.uint64(64 - bits)).astype(np.int64)
+
+    def _probe(self, keys: np.ndarray) -> np.ndarray:
+        out = np.full(len(keys), -1, dtype=np.int64)
+        pos, todo, mask = self._home(keys), np.arange(len(keys)), len(self._keys) - 1
+        while todo.size:
+            held = self._keys[pos[todo]]
+            hit = held == keys[todo]
+            out[todo[hit]] = self._slot[pos[todo[hit]]]
+            todo = todo[~hit & (held != -1)]          # an empty place ends the search: absent
+            pos[todo] = (pos[todo] + 1) & mask
+        return out
+
+    def _place(self, keys: np.ndarray, slots: np.ndarray) -> None:
+        """Insert keys known to be absent."""
+        pos, todo, mask = self._home(keys), np.arange(len(keys)), len(self._keys) - 1
+        while todo.size:
+            p = pos[todo]
+            empty = self._keys[p] == -1
+            # the first key waiting for an empty place takes it; the others probe on
+            _, first = np.unique(np.where(empty, p, -1), return_index=True)
+            first = first[empty[first]]
+            self._keys[p[first]], self._slot[p[first]] = keys[todo[first]], slots[todo[first]]
+            moved = np.ones(len(todo), dtype=bool)
+            moved[first] = False
+            todo = todo[moved]
+            pos[todo] = (pos[todo] + 1) & mask
+
+    def _rehash(self, at_least: int) -> None:
+        size = len(self._keys)
+        while size < at_least:
+            size *= 2
+        held = self._keys != -1
+        keys, slots = self._keys[held], self._slot[held]
+        self._keys = np.full(size, -1, dtype=np.int64)
+        self._slot = np.zeros(size, dtype=np.int64)
+        self._place(keys, slots)
 # inner segments changing row by at most this many rows are decided in one batch on first
 # use (ColumnSegments.prefetch_band): a run asks for most of them, one at a time otherwise
 BAND = 8
@@ -62,8 +169,9 @@ class ColumnSegments:
         H, d = self.H, self.d
         self.n_inner = (d - 1) * H * H
         self.size = 2 * H + self.n_inner
+        self.index = SlotIndex(self.size)
         # np.zeros maps untouched pages lazily: memory grows with the segments computed
-        self.state = np.zeros(self.size, dtype=np.int8)
+        self.state = np.zeros(self.index.n_slots if self.index.dense else 1 << 10, dtype=np.int8)
         self.penetration_fn, self.pen, self.pen_known = None, None, None
         if penetration_fn is not None:
             self.attach_penetration(penetration_fn)
@@ -78,8 +186,19 @@ class ColumnSegments:
         demand for segments known before); the first function attached stays."""
         if self.penetration_fn is None:
             self.penetration_fn = penetration_fn
-            self.pen = np.zeros(self.size)
-            self.pen_known = np.zeros(self.size, dtype=bool)
+            self.pen = np.zeros(len(self.state))
+            self.pen_known = np.zeros(len(self.state), dtype=bool)
+
+    def slots(self, idx) -> np.ndarray:
+        """The slots of flat indices ``idx`` (:class:`SlotIndex`), the value arrays grown to
+        hold them."""
+        s = self.index.slots(idx)
+        n = self.index.n_slots
+        if len(self.state) < n:
+            self.state = grown(self.state, n)
+            if self.pen is not None:
+                self.pen, self.pen_known = grown(self.pen, len(self.state)), grown(self.pen_known, len(self.state))
+        return s
 
     # ------------------------------------------------------------ segments
     def _ends(self, idx: np.ndarray, kind: str) -> tuple[np.ndarray, np.ndarray]:
@@ -117,7 +236,8 @@ class ColumnSegments:
         idx = np.asarray(idx, dtype=np.int64).ravel()
         if not self._band_done:
             self.prefetch_band()
-        todo = idx[self.state[idx] == 0]
+        at = self.slots(idx)            # first: it may grow the value arrays
+        todo = idx[self.state[at] == 0]
         if todo.size == 0:
             return
         todo = np.unique(todo)
@@ -137,10 +257,11 @@ class ColumnSegments:
                 maybe = self.may_be_free(j, *np.divmod(rest, H))
             if maybe.any():
                 free[maybe] = np.asarray(grid.segments_free(A[maybe], B[maybe], self.clearance))
-            self.state[k] = np.where(free, FREE, BLOCKED)
+            ks = self.index.slots(k)
+            self.state[ks] = np.where(free, FREE, BLOCKED)
             if self.pen is not None:
-                self.pen[k] = self.penetration_fn(np.stack([A, B], axis=1))
-                self.pen_known[k] = True
+                self.pen[ks] = self.penetration_fn(np.stack([A, B], axis=1))
+                self.pen_known[ks] = True
 
     def prefetch_band(self, rows: int = BAND, chunk: int = 200_000) -> None:
         """Decide at once every inner segment that changes row by at most ``rows`` and
@@ -149,8 +270,8 @@ class ColumnSegments:
         check per chunk instead of one per evaluation that meets a new segment."""
         self._band_done = True
         H, d = self.H, self.d
-        if d < 2:
-            return
+        if d < 2 or (d - 1) * H * (2 * rows + 1) > BAND_SEGMENTS:
+            return   # a big map's band is more than a run asks for: decided on demand
         j, r1, off = np.meshgrid(np.arange(d - 1), np.arange(H), np.arange(-rows, rows + 1), indexing="ij")
         r2 = r1 + off
         inside = (r2 >= 0) & (r2 < H)
@@ -163,13 +284,15 @@ class ColumnSegments:
     def collisions(self, idx: np.ndarray) -> np.ndarray:
         """1.0 for blocked, 0.0 for free segments ``idx`` (computed when unknown)."""
         self.fill(idx)
-        return (self.state.take(idx) == BLOCKED).astype(float)
+        at = self.slots(idx)
+        return (self.state.take(at) == BLOCKED).astype(float)
 
     def penetration(self, idx: np.ndarray) -> np.ndarray:
         """Penetration values of the segments ``idx`` (computed when unknown; needs
         :meth:`attach_penetration`)."""
         self.fill(idx)
-        missing = idx[~self.pen_known.take(idx)]
+        at = self.slots(idx)
+        missing = idx[~self.pen_known.take(at)]
         if missing.size:
             missing = np.unique(missing)
             H = self.H
@@ -179,9 +302,10 @@ class ColumnSegments:
                 if k.size:
                     a, b = self._ends(k, kind)
                     grid = self.enc.world
-                    self.pen[k] = self.penetration_fn(np.stack([grid.to_world(a), grid.to_world(b)], axis=1))
-                    self.pen_known[k] = True
-        return self.pen.take(idx)
+                    ks = self.index.slots(k)
+                    self.pen[ks] = self.penetration_fn(np.stack([grid.to_world(a), grid.to_world(b)], axis=1))
+                    self.pen_known[ks] = True
+        return self.pen.take(self.slots(idx))  # the slots are known: nothing grows here
 
     def deltas(self, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``(dx, dy)`` in metres of the segments ``idx``, the same numbers as the
@@ -312,18 +436,26 @@ class SegmentCosts:
                  penetration_weight: float = 0.0, penalised: bool = False, penetration: bool = False) -> None:
         self.store, self.uses_penetration = store, penetration
         self.weights = (length_weight, collision_weight, penetration_weight, penalised)
-        self.cost = np.zeros(store.size)
-        self.violation = np.zeros(store.size)
+        n = len(store.state)
+        self.cost = np.zeros(n)
+        self.violation = np.zeros(n)
         self._heading = None
-        self.known = np.zeros(store.size, dtype=bool)
+        self.known = np.zeros(n, dtype=bool)
 
-    def fill(self, idx: np.ndarray) -> None:
-        """Make ``cost``, ``violation`` (and ``heading`` once asked for) hold the segments ``idx``."""
-        need = ~self.known.take(idx)
-        if not need.any():
-            return
-        new = np.unique(idx[need])
+    def fill(self, idx: np.ndarray) -> np.ndarray:
+        """Make ``cost``, ``violation`` (and ``heading`` once asked for) hold the segments
+        ``idx`` (flat indices); returns their slots, where those arrays hold them."""
         store = self.store
+        slots = store.slots(idx)
+        if len(self.known) < store.index.n_slots:
+            n = len(store.state)
+            self.cost, self.violation, self.known = grown(self.cost, n), grown(self.violation, n), grown(self.known, n)
+            if self._heading is not None:
+                self._heading = grown(self._heading, n)
+        need = ~self.known.take(slots)
+        if not need.any():
+            return slots
+        new = np.unique(idx[need])
         coll = store.collisions(new)
         pen = store.penetration(new) if self.uses_penetration else np.zeros(len(new))
         dx, dy = store.deltas(new)
@@ -331,18 +463,20 @@ class SegmentCosts:
         cost = w_len * np.hypot(dx, dy)
         if penalised:
             cost = cost + w_coll * coll + w_pen * pen
-        self.cost[new] = cost
-        self.violation[new] = coll + pen
+        at = store.index.slots(new)
+        self.cost[at] = cost
+        self.violation[at] = coll + pen
         if self._heading is not None:
-            self._heading[new] = np.arctan2(dy, dx)
-        self.known[new] = True
+            self._heading[at] = np.arctan2(dy, dx)
+        self.known[at] = True
+        return slots
 
-    def headings(self, idx: np.ndarray) -> np.ndarray:
-        """Headings (radians) of the segments ``idx`` (after :meth:`fill`)."""
+    def headings(self, slots: np.ndarray) -> np.ndarray:
+        """Headings (radians) of the segments in ``slots`` (as :meth:`fill` returned them)."""
         if self._heading is None:
             # first use: headings of the segments known so far, then kept up by fill
-            self._heading = np.zeros(self.store.size)
+            self._heading = np.zeros(len(self.known))
             known = np.nonzero(self.known)[0]
-            dx, dy = self.store.deltas(known)
+            dx, dy = self.store.deltas(self.store.index.keys(known))
             self._heading[known] = np.arctan2(dy, dx)
-        return self._heading.take(idx)
+        return self._heading.take(slots)
