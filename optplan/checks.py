@@ -31,7 +31,10 @@ def number(minimum: float = -math.inf, maximum: float = math.inf, optional: bool
         if value is None and optional:
             return None
         ok = not isinstance(value, bool) and isinstance(value, (int, float, np.integer, np.floating))
-        v = float(value) if ok else math.nan
+        try:
+            v = float(value) if ok else math.nan
+        except OverflowError:  # an int of hundreds of digits
+            v = math.nan
         if not ok or not math.isfinite(v) or v < minimum or v > maximum or (strict_minimum and v <= minimum):
             rel = ">" if strict_minimum else ">="
             lo = f" {rel} {minimum:g}" if math.isfinite(minimum) else ""
@@ -50,7 +53,7 @@ def metres(name: str, value, none_means: str | None = None) -> float | None:
         return None
     try:
         r = float(value)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         r = math.nan
     if isinstance(value, bool) or not math.isfinite(r) or r < 0:
         alt = f" or None for {none_means}" if none_means is not None else ""

@@ -66,6 +66,10 @@ class OptimizeResult(_ToDict):
         archive: with ``optimize(..., archive_every=k)``: ``(X, f, violation)``, the
             distinct points of the population snapshots (initial, every ``k``
             iterations, final), best first; ``None`` otherwise. Not in ``to_dict``.
+        success: a finite objective value was found at a point with no violation
+            (scipy's ``success``); ``False`` when every value was NaN or infinite, or no
+            point was feasible, and ``message`` says which.
+        fun: the same as ``f`` (scipy's name).
     """
 
     x: np.ndarray
@@ -80,8 +84,14 @@ class OptimizeResult(_ToDict):
     algorithm: str
     seed: int | None = None
     archive: tuple[np.ndarray, np.ndarray, np.ndarray] | None = field(default=None, repr=False)
+    success: bool = True
 
     NOT_IN_DICT = ("archive",)
+
+    @property
+    def fun(self) -> float:
+        """The objective value at ``x`` (scipy's name for ``f``)."""
+        return self.f
 
 
 @dataclass

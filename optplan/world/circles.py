@@ -66,9 +66,12 @@ class CircleWorld:
         import json
         from pathlib import Path
 
+        from .files import read_file
+
+        raw = read_file(path, "circle world", 64 * 1024 * 1024)
         try:
-            data = json.loads(Path(path).read_text())
-        except (OSError, ValueError, RecursionError) as exc:
+            data = json.loads(raw.decode("utf-8"))
+        except (ValueError, RecursionError) as exc:
             raise MapFormatError(f"cannot read circle world {path}: {type(exc).__name__}: {exc}") from None
         try:
             if variant is not None:

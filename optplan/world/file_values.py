@@ -13,7 +13,10 @@ def file_number(value, key: str, *, positive: bool = False, non_negative: bool =
     """A finite number (``positive``: > 0, ``non_negative``: >= 0) as a float."""
     if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
         raise ScenarioError(f"{key} must be a number, got {value!r}")
-    v = float(value)
+    try:
+        v = float(value)
+    except OverflowError:  # an integer of hundreds of digits
+        raise ScenarioError(f"{key} must be a finite number, got an integer of {len(str(value))} digits") from None
     if not math.isfinite(v):
         raise ScenarioError(f"{key} must be a finite number, got {value!r}")
     if positive and v <= 0:

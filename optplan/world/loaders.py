@@ -21,6 +21,7 @@ Supported by :func:`load_map` (dispatch on the suffix):
 """
 from __future__ import annotations
 
+import io
 import os
 import re
 from dataclasses import dataclass
@@ -30,6 +31,7 @@ import numpy as np
 
 from ..checks import file_path
 from ..errors import MapFormatError, ParameterError
+from .files import read_file, regular_file
 from .grid import MAX_GRID_CELLS, GridMap
 
 MAX_CELLS = MAX_GRID_CELLS  # refuse maps larger than this (about 7000 x 7000) before reading them
@@ -37,15 +39,9 @@ MAX_FILE_BYTES = 512 * 1024 * 1024
 
 
 def _read_text(path: Path) -> str:
-    try:
-        size = path.stat().st_size
-    except OSError as exc:
-        raise MapFormatError(f"cannot read map file {path}: {exc.strerror or exc}") from None
-    if size == 0:
+    data = read_file(path, "map file", MAX_FILE_BYTES)
+    if not data:
         raise MapFormatError(f"map file {path} is empty")
-    if size > MAX_FILE_BYTES:
-        raise MapFormatError(f"map file {path} is {size} bytes; the limit is {MAX_FILE_BYTES}")
-    data = path.read_bytes()
     if b"\x00" in data:
         raise MapFormatError(f"map file {path} contains binary data; expected a text map")
     try:
@@ -110,6 +106,30 @@ def _expanded_size(root) -> int:
     return sizes[id(root)]
 
 
+def _first_duplicate_key(root):
+    """The first key written twice in one mapping of the document (YAML keeps the last and
+    drops the others silently), as ``(key, line)``; ``None`` without one."""
+    import yaml
+
+    seen_nodes, stack = set(), [root]
+    while stack:
+        node = stack.pop()
+        if id(node) in seen_nodes:
+            continue
+        seen_nodes.add(id(node))
+        if isinstance(node, yaml.SequenceNode):
+            stack.extend(node.value)
+        elif isinstance(node, yaml.MappingNode):
+            keys = set()
+            for k, v in node.value:
+                if isinstance(k, yaml.ScalarNode) and k.tag != "tag:yaml.org,2002:merge":
+                    if k.value in keys:
+                        return k.value, k.start_mark.line + 1
+                    keys.add(k.value)
+                stack.extend((k, v))
+    return None
+
+
 def read_yaml(path: str | os.PathLike, what: str = "YAML file", error=MapFormatError):
     """Parse a YAML file safely and within bounds, raising ``error`` with one line.
 
@@ -121,13 +141,7 @@ def read_yaml(path: str | os.PathLike, what: str = "YAML file", error=MapFormatE
     import yaml
 
     p = Path(path)
-    try:
-        size = p.stat().st_size
-        if size > MAX_YAML_BYTES:
-            raise error(f"{what} {p} is {size} bytes; the limit is {MAX_YAML_BYTES} bytes")
-        data = p.read_bytes()
-    except OSError as exc:
-        raise error(f"cannot read {what} {p}: {exc.strerror or exc}") from None
+    data = read_file(p, what, MAX_YAML_BYTES, error)
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError as exc:
@@ -142,6 +156,10 @@ def read_yaml(path: str | os.PathLike, what: str = "YAML file", error=MapFormatE
         if n > MAX_YAML_NODES:
             raise error(f"{what} {p} expands to {n:.3g} values through YAML aliases; the limit is "
                         f"{MAX_YAML_NODES} (a file like this exhausts memory; write the values out)")
+        twice = _first_duplicate_key(node)
+        if twice is not None:
+            raise error(f"{p}: line {twice[1]}: the key {twice[0]!r} is given twice in one mapping; "
+                        "YAML would keep only the last, so write it once")
         return loader.construct_document(node)
     except yaml.YAMLError as exc:
         raise error(_yaml_error_line(p, exc)) from None
@@ -182,9 +200,9 @@ def _load_movingai(path: Path) -> GridMap:
     _check_size(h, w, path)
     rows = [ln.strip() for ln in lines[i:]]
     rows = [r for r in rows if r]
-    if len(rows) < h:
-        raise MapFormatError(f"{path}: truncated map: header says {h} rows, file has {len(rows)}")
-    rows = rows[:h]
+    if len(rows) != h:
+        raise MapFormatError(f"{path}: the header says {h} rows, the file has {len(rows)}"
+                             + (" (truncated)" if len(rows) < h else "; fix the height line"))
     bad = [k for k, r in enumerate(rows) if len(r) != w]
     if bad:
         raise MapFormatError(f"{path}: row {bad[0] + 1} has {len(rows[bad[0]])} characters, header says width {w}")
@@ -291,8 +309,9 @@ def _load_matrix_text(path: Path) -> GridMap:
 
 
 def _load_npy(path: Path) -> GridMap:
+    data = read_file(path, "map file", MAX_FILE_BYTES)
     try:
-        arr = np.load(path, allow_pickle=False)
+        arr = np.load(io.BytesIO(data), allow_pickle=False)
     except Exception as exc:  # numpy raises several types for corrupt files
         raise MapFormatError(f"{path}: not a readable .npy array ({exc})") from None
     if arr.ndim != 2:
@@ -306,10 +325,7 @@ def _load_npy(path: Path) -> GridMap:
 # ------------------------------------------------------------------ ROS map_server
 def _read_pgm(path: Path) -> np.ndarray:
     """Read a P2 (ASCII) or P5 (binary) PGM; returns uint values, top row first."""
-    try:
-        data = path.read_bytes()
-    except OSError as exc:
-        raise MapFormatError(f"cannot read image {path}: {exc.strerror or exc}") from None
+    data = read_file(path, "image", MAX_FILE_BYTES)
     if not data:
         raise MapFormatError(f"image {path} is empty")
     magic = data[:2]
@@ -376,8 +392,9 @@ def _read_image(path: Path) -> tuple[np.ndarray, int]:
     except ImportError:
         raise MapFormatError(f"{path}: reading {path.suffix} images needs Pillow; install it with "
                              "pip install 'optplan[images]' (or pip install pillow), or convert the image to .pgm") from None
+    data = read_file(path, "image", MAX_FILE_BYTES)
     try:
-        with Image.open(path) as im:
+        with Image.open(io.BytesIO(data)) as im:
             w, h = im.size
             _check_size(h, w, path)  # before decoding: a small file may declare a huge raster
             rgba = np.asarray(im.convert("RGBA"), dtype=np.int64)
@@ -419,6 +436,10 @@ def _load_ros_yaml(path: Path) -> GridMap:
     meta = _safe_yaml(path)
     if not isinstance(meta, dict) or "image" not in meta:
         raise MapFormatError(f"{path}: a ROS map YAML needs keys image, resolution, origin")
+    numbers = [meta.get("resolution", 1.0), meta.get("occupied_thresh", 0.65), meta.get("free_thresh", 0.196),
+               *(meta.get("origin") if isinstance(meta.get("origin"), (list, tuple)) else [])]
+    if any(isinstance(v, bool) for v in numbers):
+        raise MapFormatError(f"{path}: resolution, origin and thresholds must be numbers, not true/false")
     try:
         res = float(meta.get("resolution", 1.0))
         origin = meta.get("origin", [0.0, 0.0, 0.0])
@@ -498,8 +519,7 @@ def load_map(path: str | os.PathLike) -> GridMap:
             raise MapFormatError(f"map file {path} does not exist (shipped maps: {', '.join(maps.names())}; "
                                  f"paper maps: see optplan/data/maps/paper_maps.yaml)")
         p = shipped
-    if p.is_dir():
-        raise MapFormatError(f"{p} is a folder, not a map file")
+    regular_file(p, "map file")
     loader = _LOADERS.get(p.suffix.lower())
     if loader is None:
         raise MapFormatError(f"{p}: unknown map format {p.suffix!r}; use one of {', '.join(sorted(_LOADERS))}")

@@ -17,7 +17,7 @@ from ...checks import seed as checked_seed
 from ...errors import ParameterError, UnknownAlgorithmError
 from ...results import OptimizeResult
 from ..budget import Budget
-from .engine import Algorithm, Problem, pooled_archive, run, run_batched
+from .engine import Algorithm, Problem, pooled_archive, real_values, run, run_batched
 
 # registry: name -> class (filled from the family modules)
 ALGORITHMS: dict[str, type[Algorithm]] = {}
@@ -61,19 +61,102 @@ def _positive_int(name: str, value, minimum: int) -> int:
     return int(value)
 
 
+BOUNDS_FORMS = ("a (d, 2) array or list of (lower, upper) rows, scipy.optimize.Bounds(lb, ub), "
+                "a tuple (lb, ub) of two length-d arrays (d != 2), or one (lower, upper) pair with dim=d")
+
+
 def _bounds(bounds, dim: int | None) -> tuple[np.ndarray, np.ndarray]:
-    b = float_array("bounds", bounds, "a (d, 2) array of (lower, upper) rows")
+    """``(lower, upper)`` arrays from any of :data:`BOUNDS_FORMS`."""
+    if hasattr(bounds, "lb") and hasattr(bounds, "ub"):          # scipy.optimize.Bounds
+        lb = float_array("bounds.lb", bounds.lb).reshape(-1)
+        ub = float_array("bounds.ub", bounds.ub).reshape(-1)
+        if lb.size == 1 and dim is not None:
+            lb, ub = np.full(dim, lb[0]), np.full(dim, ub[0])
+        if lb.shape != ub.shape:
+            raise ParameterError(f"bounds.lb and bounds.ub differ in length: {lb.size} and {ub.size}")
+        b = np.stack([lb, ub], axis=1)
+    else:
+        b = float_array("bounds", bounds, BOUNDS_FORMS)
+        if isinstance(bounds, tuple) and b.ndim == 2 and b.shape[0] == 2 and b.shape[1] != 2:
+            b = b.T                                              # (lb, ub), as scipy's least_squares takes
     if b.ndim == 1 and b.size == 2 and dim is not None:
         b = np.tile(b, (dim, 1))
     if b.ndim != 2 or b.shape[1] != 2 or b.shape[0] == 0:
-        raise ParameterError(f"bounds must be a (d, 2) array of (lower, upper) rows, got shape {b.shape}")
+        raise ParameterError(f"bounds must be {BOUNDS_FORMS}; got shape {b.shape}")
+    if dim is not None and b.shape[0] != dim:
+        raise ParameterError(f"bounds have {b.shape[0]} rows but dim={dim}")
     lo, hi = b[:, 0].copy(), b[:, 1].copy()
     if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
-        raise ParameterError("bounds must be finite numbers")
+        raise ParameterError("bounds must be finite numbers (a metaheuristic samples the whole box)")
     if np.any(lo >= hi):
         j = int(np.argmax(lo >= hi))
         raise ParameterError(f"lower bound must be below upper bound; dimension {j} has {lo[j]} >= {hi[j]}")
+    with np.errstate(over="ignore"):
+        span = hi - lo
+    if not np.all(np.isfinite(span)) or np.any(np.abs(lo) > 1e300) or np.any(np.abs(hi) > 1e300):
+        j = int(np.argmax(~np.isfinite(span) | (np.abs(lo) > 1e300) | (np.abs(hi) > 1e300)))
+        raise ParameterError(f"bounds of dimension {j}, [{lo[j]:g}, {hi[j]:g}], are too wide for float64 "
+                             "arithmetic (their span overflows); scale the variable")
     return lo, hi
+
+
+class _Vectorised:
+    """The objective as a batched call: ``f`` itself when it is batched (``f(X)`` of ``(n, d)``
+    rows gives ``(n,)`` values), or a per-row loop around it when it takes one point of
+    shape ``(d,)`` and returns one number, as scipy.optimize's objectives do (slower: one
+    Python call per row). Told apart on the first batch the run evaluates, so no call is
+    made that the run does not count; only when the batch is square (``n == d``, where a
+    function of one point indexing ``x[0]`` gets a row of the right length) is its first
+    row also evaluated alone to check."""
+
+    def __init__(self, f: Callable) -> None:
+        self.f, self.mode = f, None
+
+    def __call__(self, X: np.ndarray):
+        if self.mode == "batched":
+            return self.f(X)
+        if self.mode == "rows":
+            return self._rows(X)
+        try:
+            out, error = self.f(X), None
+        except Exception as exc:  # noqa: BLE001 - a function of one point may fail on rows
+            out, error = None, exc
+        if error is None and (isinstance(out, tuple) or (np.shape(out) in ((len(X),), (len(X), 1))
+                                                         and self._consistent(X, out))):
+            self.mode = "batched"
+            return out
+        if error is None:
+            real_values(out, "values")      # strings or objects: say so, whatever the shape
+        try:
+            rows = self._rows(X)
+        except Exception:  # noqa: BLE001 - neither reading works: report the batched call's problem
+            if error is not None:
+                raise error
+            self.mode = "batched"
+            return out                       # the shape check then names what came back
+        self.mode = "rows"
+        return rows
+
+    def _consistent(self, X: np.ndarray, out) -> bool:
+        if X.ndim != 2 or X.shape[0] != X.shape[1] or len(X) < 2:
+            return True
+        try:
+            alone = np.asarray(self.f(X[:1].copy()))
+        except Exception:  # noqa: BLE001
+            return False
+        return alone.size == 1 and bool(np.allclose(np.asarray(out).reshape(-1)[:1].astype(complex),
+                                                    alone.reshape(-1).astype(complex), equal_nan=True))
+
+    def _rows(self, X: np.ndarray):
+        values = [self.f(x) for x in X]
+        if values and isinstance(values[0], tuple):
+            return np.array([v[0] for v in values]), np.array([v[1] for v in values])
+        out = [np.asarray(v) for v in values]
+        if any(v.size != 1 for v in out):
+            bad = next(v for v in out if v.size != 1)
+            raise ParameterError(f"the objective returned shape {bad.shape} for one point of shape ({X.shape[1]},); "
+                                 "return one number per point, or (n,) values for (n, d) rows")
+        return np.array([v.reshape(()) for v in out]) if out else np.zeros(0)
 
 
 def optimize(f: Callable, bounds, algorithm: str = "gwo", pop: int = 30, iters: int | None = 500,
@@ -122,6 +205,8 @@ def optimize(f: Callable, bounds, algorithm: str = "gwo", pop: int = 30, iters: 
     repair, callback = function(optional=True)("repair", repair), function(optional=True)("callback", callback)
     if init is not None and not callable(init):
         init = float_array("init", init, "an initial population (pop, d) of numbers or a function (n, rng) -> X")
+        if not np.all(np.isfinite(init)):
+            raise ParameterError("init holds NaN or infinite values; give finite points inside the bounds")
     pop = _positive_int("pop", pop, max(cls.min_pop, 1))
     if budget is None:
         budget = Budget(iterations=iters, evaluations=max_evals, stagnation=stagnation, target=target)
@@ -132,6 +217,7 @@ def optimize(f: Callable, bounds, algorithm: str = "gwo", pop: int = 30, iters: 
     if archive_every is not None:
         archive_every = _positive_int("archive_every", archive_every, 1)
     lo, hi = _bounds(bounds, integer(1, optional=True)("dim", dim))
+    f = _Vectorised(f)
     if seeds is not None:
         return _optimize_seeds(cls, f, lo, hi, pop, budget, seeds, init=init, repair=repair, callback=callback,
                                progress=progress, archive_every=archive_every, params=params)
@@ -140,11 +226,23 @@ def optimize(f: Callable, bounds, algorithm: str = "gwo", pop: int = 30, iters: 
     state, hist, hist_nfev, status, message, nit = run(
         algo, Problem(f, lo, hi, repair), pop=pop, seed=seed, init=init, callback=callback, progress=progress,
         archive_every=archive_every, budget=budget)
+    best_f, best_v = float(state.best_f), float(state.best_v)
     return OptimizeResult(
-        x=state.best_x, f=float(state.best_f), history=hist, history_nfev=hist_nfev, nfev=state.nfev, nit=nit,
-        runtime_s=time.perf_counter() - t0, status=status, message=message, algorithm=cls.name,
-        seed=int(seed) if isinstance(seed, (int, np.integer)) else None,
-        archive=pooled_archive(state.snapshots) if archive_every else None)
+        x=state.best_x, f=best_f, history=hist, history_nfev=hist_nfev, nfev=state.nfev, nit=nit,
+        runtime_s=time.perf_counter() - t0, status=status, message=message + _no_answer(best_f, best_v),
+        algorithm=cls.name, seed=int(seed) if isinstance(seed, (int, np.integer)) else None,
+        archive=pooled_archive(state.snapshots) if archive_every else None, success=_success(best_f, best_v))
+
+
+def _success(best_f: float, best_v: float) -> bool:
+    return bool(np.isfinite(best_f) and best_v == 0)
+
+
+def _no_answer(best_f: float, best_v: float) -> str:
+    """What a run without an answer adds to its message (nothing for one with an answer)."""
+    if not np.isfinite(best_f):
+        return "; no point gave a finite objective value (every value was NaN or infinite): the run has no answer"
+    return ""
 
 
 # optimize's own keywords: offered as the spelling meant when an algorithm parameter is unknown
@@ -177,11 +275,13 @@ def _optimize_seeds(cls, f, lo, hi, pop, budget, seeds, *, init, repair, callbac
     for r, s in enumerate(seeds):
         note = message
         if state.nan_seen[r]:
-            note += "; the objective returned NaN for some points (treated as +inf)"
-        if state.best_v[r] > 0 and np.isfinite(state.best_v[r]):
-            note += f"; no feasible point found (least violation {state.best_v[r]:.3g})"
+            note += "; the objective returned NaN or -inf for some points (treated as +inf)"
+        best_f, best_v = float(state.best_f[r]), float(state.best_v[r])
+        if best_v > 0 and np.isfinite(best_v):
+            note += f"; no feasible point found (least violation {best_v:.3g})"
         results.append(OptimizeResult(
-            x=state.best_x[r].copy(), f=float(state.best_f[r]), history=hist[:, r].copy(), history_nfev=hist_nfev.copy(),
-            nfev=state.nfev, nit=nit, runtime_s=runtime, status=status, message=note, algorithm=cls.name,
-            seed=int(s) if isinstance(s, (int, np.integer)) else None, archive=None))
+            x=state.best_x[r].copy(), f=best_f, history=hist[:, r].copy(), history_nfev=hist_nfev.copy(),
+            nfev=state.nfev, nit=nit, runtime_s=runtime, status=status, message=note + _no_answer(best_f, best_v),
+            algorithm=cls.name, seed=int(s) if isinstance(s, (int, np.integer)) else None, archive=None,
+            success=_success(best_f, best_v)))
     return results

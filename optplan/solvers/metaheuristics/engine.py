@@ -62,6 +62,36 @@ class Problem:
         return self.upper - self.lower
 
 
+def real_values(out, what: str) -> np.ndarray:
+    """What the objective returned as a float array, or a ParameterError that says why not
+    (complex values would lose their imaginary part, strings or objects are no values)."""
+    a = out if isinstance(out, np.ndarray) else np.asarray(out)
+    if a.dtype.kind in "biuf":
+        return a.astype(float, copy=False)
+    if a.dtype.kind == "c":
+        raise ParameterError(f"the objective returned complex {what}; return real numbers (e.g. abs(z) or z.real)")
+    try:
+        return a.astype(float)
+    except (TypeError, ValueError):
+        raise ParameterError(f"the objective must return numbers, got {what} of type {a.dtype} "
+                             f"({np.ravel(a)[:1].tolist()!r:.60})") from None
+
+
+def objective_values(out, k: int) -> tuple[np.ndarray, np.ndarray]:
+    """``(f, violation)``, shape ``(k,)`` each, from what ``f(X)`` returned for ``k`` rows:
+    values, or a tuple ``(values, violations)``. A NaN violation counts as infinite."""
+    if isinstance(out, tuple):
+        fk = real_values(out[0], "values").reshape(-1)
+        vk = real_values(out[1], "violations").reshape(-1)
+        if math.isnan(np.add.reduce(vk)):          # one reduction instead of a mask on every call
+            vk = np.where(np.isnan(vk), np.inf, vk)
+    else:
+        fk, vk = real_values(out, "values").reshape(-1), np.zeros(k)
+    if fk.shape != (k,) or vk.shape != (k,):
+        raise ParameterError(f"the objective must return shape ({k},) for {k} rows, got {fk.shape}")
+    return fk, vk
+
+
 def better(f1, v1, f2, v2) -> np.ndarray:
     """Feasibility rule: is (f1, v1) strictly better than (f2, v2)? (``v == 0`` is feasible)."""
     return (v1 < v2) | ((v1 == v2) & (f1 < f2))
@@ -171,18 +201,9 @@ class State:
         n = len(X)
         k = self.budget.allowed(n, self.nfev)
         Xk = X if k == n else X[:k]
-        out = self.problem.f(Xk)
-        if isinstance(out, tuple):
-            fk = np.asarray(out[0], dtype=float).reshape(-1)
-            vk = np.asarray(out[1], dtype=float).reshape(-1)
-            if math.isnan(np.add.reduce(vk)):          # one reduction instead of a mask on every call
-                vk = np.where(np.isnan(vk), np.inf, vk)
-        else:
-            fk, vk = np.asarray(out, dtype=float).reshape(-1), np.zeros(k)
-        if fk.shape != (k,) or vk.shape != (k,):
-            raise ParameterError(f"the objective must return shape ({k},) for {k} rows, got {fk.shape}")
+        fk, vk = objective_values(self.problem.f(Xk), k)
         if not math.isfinite(np.add.reduce(fk)) and not np.isfinite(fk).all():
-            self.nan_seen |= bool(np.isnan(fk).any())
+            self.nan_seen |= bool(np.isnan(fk).any() or np.isneginf(fk).any())
             fk = np.where(np.isfinite(fk), fk, np.inf)
         self.nfev += k
         self._offer(Xk, fk, vk)
@@ -311,7 +332,7 @@ def run(algorithm: Algorithm, problem: Problem, *, pop: int, iters: int | None =
     out = _loop(algorithm, state, X0, callback=callback, progress=progress, archive_every=archive_every)
     message = out[4]
     if state.nan_seen:
-        message += "; the objective returned NaN for some points (treated as +inf)"
+        message += "; the objective returned NaN or -inf for some points (treated as +inf)"
     if state.best_v > 0 and np.isfinite(state.best_v):
         message += f"; no feasible point found (least violation {state.best_v:.3g})"
     return out[:4] + (message, out[5])
@@ -496,19 +517,10 @@ class BatchState(State):
         R, n, d = X.shape
         k = self.budget.allowed(n, self.nfev)
         Xk = X if k == n else X[:, :k]
-        out = self.problem.f(Xk.reshape(R * k, d))
-        if isinstance(out, tuple):
-            fk = np.asarray(out[0], dtype=float).reshape(-1)
-            vk = np.asarray(out[1], dtype=float).reshape(-1)
-            if math.isnan(np.add.reduce(vk)):
-                vk = np.where(np.isnan(vk), np.inf, vk)
-        else:
-            fk, vk = np.asarray(out, dtype=float).reshape(-1), np.zeros(R * k)
-        if fk.shape != (R * k,) or vk.shape != (R * k,):
-            raise ParameterError(f"the objective must return shape ({R * k},) for {R * k} rows, got {fk.shape}")
+        fk, vk = objective_values(self.problem.f(Xk.reshape(R * k, d)), R * k)
         fk, vk = fk.reshape(R, k), vk.reshape(R, k)
         if not math.isfinite(np.add.reduce(fk, axis=None)) and not np.isfinite(fk).all():
-            self.nan_seen = self.nan_seen | np.isnan(fk).any(axis=1)   # per run
+            self.nan_seen = self.nan_seen | (np.isnan(fk) | np.isneginf(fk)).any(axis=1)   # per run
             fk = np.where(np.isfinite(fk), fk, np.inf)
         self.nfev += k
         self._offer(Xk, fk, vk)
