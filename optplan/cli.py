@@ -411,10 +411,21 @@ def _check_outputs(args) -> None:
             from .viz.plots import figure_format
 
             figure_format(target)
+        if name == "gif" and target.suffix.lower() != ".gif":
+            raise OptplanError(f"--gif {value}: the animation is written as a GIF; give a .gif file name"
+                               + (" (MP4 and other video formats are not written)" if target.suffix else ""))
+        if name == "csv" and target.suffix.lower() != ".csv":
+            raise OptplanError(f"--csv {value}: give a .csv file name")
         parent = target if folder else target.parent
         existing = next((d for d in (parent, *parent.parents) if d.exists()), None)
         if existing is None or not existing.is_dir() or not os.access(existing, os.W_OK):
             raise OptplanError(f"--{flag} {value}: cannot write there ({existing or parent} is not a writable folder)")
+    layout = getattr(args, "layout", None)
+    if layout is not None:
+        from .bench.reports import LAYOUTS
+
+        if layout not in LAYOUTS:
+            raise OptplanError(f"--layout {layout!r} is not a table layout; known: {', '.join(LAYOUTS)}")
 
 
 MAX_MESSAGE_CHARS = 2000  # an error names what was wrong; it never echoes a whole input back

@@ -135,3 +135,37 @@ def test_scipy_style_objectives_and_bounds():
     # a function of one point that indexes its coordinates (d = 2, so X[0] has the batch's shape)
     r = op.optimize(lambda x: (x[0] - 1) ** 2 + (x[1] + 2) ** 2, [(-5, 5)] * 2, algorithm="pso", seed=0)
     assert r.success and np.allclose(r.x, [1, -2], atol=1e-3)
+
+
+# ------------------------------------------------------------------ outputs whole or not at all
+def test_a_full_disk_leaves_no_partial_export_and_names_the_file(tmp_path, monkeypatch):
+    import numpy as np_
+
+    target = tmp_path / "path.csv"
+    target.write_text("old contents\n")
+
+    def savetxt(fname, *a, **k):
+        with open(fname, "w") as fh:
+            fh.write("x,y\n0.5,")          # half a file, then the disk is full
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(np_, "savetxt", savetxt)
+    with pytest.raises(op.OptplanError, match=f"{target}.*No space left"):
+        op.export_path(np.array([[0.5, 0.5], [1.5, 1.5]]), target)
+    assert target.read_text() == "old contents\n"          # the old file is untouched
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["path.csv"]   # no temporary left
+
+
+def test_the_cli_reports_a_write_failure_in_one_line_with_the_path(tmp_path, monkeypatch):
+    from optplan.cli import main
+    import matplotlib.figure
+
+    def savefig(self, fname, *a, **k):
+        with open(fname, "wb") as fh:
+            fh.write(b"\x89PNG")
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(matplotlib.figure.Figure, "savefig", savefig)
+    out = tmp_path / "p.png"
+    code = main(["plan", "chen2025_20", "--algo", "astar", "--plot", str(out)])
+    assert code == 2 and not out.exists() and list(tmp_path.iterdir()) == []

@@ -23,6 +23,7 @@ from pathlib import Path
 from typing import Any, Iterable, Mapping
 
 from ..errors import ParameterError
+from ..world.files import written_whole
 
 # OMPL's standard names: (property, type, function of a stored row)
 _SOLVED = {
@@ -154,6 +155,7 @@ def export_ompl(store, out_dir: str | os.PathLike, keys: Iterable[str] | None = 
     written = []
     for (experiment, target), group in sorted(groups.items()):
         path = out / f"{_safe_token(experiment)}__{_safe_token(target)}.log"
-        path.write_text(ompl_log(experiment, target, group, host))
+        with written_whole(path, "OMPL log") as tmp:
+            tmp.write_text(ompl_log(experiment, target, group, host))
         written.append(path)
     return written

@@ -181,10 +181,13 @@ class RunReport:
     failed: int = 0
     wall_s: float = 0.0
     interrupted: bool = False
+    elsewhere: int = 0  # runs another process sharing the database computed meanwhile
 
     def describe(self) -> str:
         s = (f"{self.total} runs: {self.skipped} already in the database, {self.ran} ran "
              f"({self.failed} failed) in {self.wall_s:.1f} s")
+        if self.elsewhere:
+            s += f", {self.elsewhere} computed by another process sharing the database"
         if self.other_code:
             s += (f"; {self.other_code} of the runs already stored were made by other optplan code (its sources "
                   "differ) and are reported as they are: pass a fresh --db to measure this code")
@@ -252,24 +255,73 @@ def run_records(records: Iterable, store, executor: Any = "local", workers: int 
         if on_result is not None:
             on_result(rec, outcome)
 
-    try:
+    queue = ClaimQueue(todo, store, include_failed=not retry_failed)
+
+    def execute() -> None:
         if kind == "local":
             n = workers or os.cpu_count() or 1
-            if n == 1 or len(todo) == 1:
+            if n == 1 or len(queue) == 1:
                 warm_up(warm_modules(todo))
-                for rec in todo:
+                while (rec := queue.pop()) is not None:
                     record(rec, execute_run(rec))
             else:
-                _run_process_pool(todo, min(n, len(todo)), record)
+                _run_process_pool(queue, min(n, len(queue)), record)
         else:
-            _run_dask(todo, kind, target, workers, record)
+            _run_dask(queue, kind, target, workers, record)
+
+    try:
+        execute()
+        # runs another process claimed: wait for them, taking over those whose owner is gone,
+        # so the report is the one a single process would give
+        while queue.elsewhere:
+            waiting, queue.elsewhere = queue.elsewhere, []
+            stored = store.done_keys([r["key"] for r in waiting], include_failed=not retry_failed)
+            report.elsewhere += sum(r["key"] in stored for r in waiting)
+            rest = [r for r in waiting if r["key"] not in stored]
+            mine = [r for r in rest if store.claim(r["key"], not retry_failed)]
+            queue.elsewhere = [r for r in rest if r not in mine]
+            if mine:                    # their owner is gone: this process runs them
+                queue.refill(mine)
+                execute()
+            elif queue.elsewhere:
+                time.sleep(CLAIM_POLL_S)
     except KeyboardInterrupt:
         report.interrupted = True
         raise
     finally:
+        store.release_claims()
         bar.close()
         report.wall_s = time.perf_counter() - t0
     return report
+
+
+CLAIM_POLL_S = 0.5  # how often a process looks whether runs another process holds are stored
+
+
+class ClaimQueue:
+    """The runs still to do, in order. :meth:`pop` hands out the next run this process
+    could claim in the database (:meth:`ResultStore.claim`); runs another live process
+    holds are set aside in ``elsewhere``."""
+
+    def __init__(self, todo: list[dict], store, include_failed: bool = True) -> None:
+        self.store, self.include_failed = store, include_failed
+        self.items: list[dict] = []
+        self.elsewhere: list[dict] = []
+        self.refill(todo)
+
+    def refill(self, todo: list[dict]) -> None:
+        self.items = list(reversed(todo))
+
+    def __len__(self) -> int:
+        return len(self.items)
+
+    def pop(self) -> dict | None:
+        while self.items:
+            rec = self.items.pop()
+            if self.store.claim(rec["key"], self.include_failed):
+                return rec
+            self.elsewhere.append(rec)
+        return None
 
 
 def _failed(rec: Mapping, message: str) -> dict[str, Any]:
@@ -313,14 +365,14 @@ def _main_script_not_reimported(todo: list[dict]):
         main.__dict__.update(saved)
 
 
-def _run_process_pool(todo: list[dict], workers: int, record: Callable) -> None:
-    """Run ``todo`` on a process pool (see :func:`_pool_loop`), never re-running the
-    caller's script in the workers (:func:`_main_script_not_reimported`)."""
-    with _main_script_not_reimported(todo):
-        _pool_loop(todo, workers, record)
+def _run_process_pool(queue: ClaimQueue, workers: int, record: Callable) -> None:
+    """Run the runs of ``queue`` on a process pool (see :func:`_pool_loop`), never re-running
+    the caller's script in the workers (:func:`_main_script_not_reimported`)."""
+    with _main_script_not_reimported(queue.items):
+        _pool_loop(queue, workers, record)
 
 
-def _pool_loop(todo: list[dict], workers: int, record: Callable) -> None:
+def _pool_loop(queue: ClaimQueue, workers: int, record: Callable) -> None:
     """A process pool with at most ``2 * workers`` runs in flight.
 
     A worker that dies hard (segfault, out of memory) breaks the pool; the runs
@@ -330,25 +382,26 @@ def _pool_loop(todo: list[dict], workers: int, record: Callable) -> None:
     from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
     from concurrent.futures.process import BrokenProcessPool
 
-    queue = list(reversed(todo))
     suspects: list[dict] = []
-    while queue or suspects:
+    modules = warm_modules(queue.items)
+    while len(queue) or suspects:
         pool = ProcessPoolExecutor(max_workers=workers, mp_context=_pool_context(), initializer=warm_up,
-                                   initargs=(warm_modules(todo), os.getpid()))
+                                   initargs=(modules, os.getpid()))
         in_flight: dict = {}
         broken = alone = False
         try:
-            while in_flight or (not broken and (queue or suspects)):
+            while in_flight or (not broken and (len(queue) or suspects)):
                 if not broken:
                     if suspects and not in_flight:
                         rec = suspects.pop()
                         in_flight[pool.submit(execute_run, rec)] = rec
                         alone = True
                     elif not suspects:
-                        while queue and len(in_flight) < 2 * workers:
-                            rec = queue.pop()
+                        while len(in_flight) < 2 * workers and (rec := queue.pop()) is not None:
                             in_flight[pool.submit(execute_run, rec)] = rec
                         alone = False
+                if not in_flight:
+                    break        # every run left is claimed by another process
                 finished, _ = wait(in_flight, return_when=FIRST_COMPLETED)
                 for fut in finished:
                     rec = in_flight.pop(fut)
@@ -371,7 +424,7 @@ def _pool_loop(todo: list[dict], workers: int, record: Callable) -> None:
         pool.shutdown(wait=not broken, cancel_futures=True)
 
 
-def _run_dask(todo: list[dict], kind: str, target: Any, workers: int | None, record: Callable) -> None:
+def _run_dask(queue: ClaimQueue, kind: str, target: Any, workers: int | None, record: Callable) -> None:
     try:
         from distributed import Client, LocalCluster, as_completed
     except ImportError:
@@ -391,22 +444,23 @@ def _run_dask(todo: list[dict], kind: str, target: Any, workers: int | None, rec
                                  f"'dask scheduler' and 'dask worker {target}', or use --executor local") from None
     try:
         try:
-            client.run(warm_up, warm_modules(todo))
+            client.run(warm_up, warm_modules(queue.items))
         except Exception as exc:  # typically: optplan is not installed where the workers run
             raise ParameterError(f"the Dask workers cannot run optplan ({type(exc).__name__}: {exc}); install the "
                                  f"same optplan version on every worker (pip install optplan[dask])") from None
         n_workers = max(1, len(client.scheduler_info().get("workers", {})) or (workers or 1))
         window = 4 * n_workers
-        queue = list(reversed(todo))
         by_future = {}
 
         def submit():
             rec = queue.pop()
+            if rec is None:
+                return None
             fut = client.submit(execute_run, rec, key=f"optplan-run-{rec['key']}", pure=False)
             by_future[fut] = rec
             return fut
 
-        initial = [submit() for _ in range(min(window, len(queue)))]
+        initial = [f for f in (submit() for _ in range(min(window, len(queue)))) if f is not None]
         ac = as_completed(initial)
         try:
             for fut in ac:
@@ -417,8 +471,9 @@ def _run_dask(todo: list[dict], kind: str, target: Any, workers: int | None, rec
                     outcome = _failed(rec, f"dask: {type(exc).__name__}: {exc}")
                 record(rec, outcome)
                 fut.release()
-                if queue:
-                    ac.add(submit())
+                nxt = submit() if len(queue) else None
+                if nxt is not None:
+                    ac.add(nxt)
         except BaseException:
             client.cancel(list(by_future))
             raise

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Mapping
 
-from ..checks import population_budget
+from ..checks import metres, population_budget
 from ..errors import ParameterError, ScenarioError, UnknownAlgorithmError, named_with_hints
 
 ALGO_KEYS = {"name", "label", "params", "runs"}
@@ -82,6 +82,8 @@ def check_map_target(m: str, start, goal, where: str):
     from ..errors import OptplanError
     from ..world.loaders import load_map
 
+    from ..world.queries import grid_reachable
+
     try:
         world = load_map(m)
         if start is not None:
@@ -89,6 +91,9 @@ def check_map_target(m: str, start, goal, where: str):
             world.check_query_point(goal, "goal")
     except OptplanError as exc:
         raise ScenarioError(f"{where}: {exc}") from None
+    if start is not None and world.is_grid and not grid_reachable(world, start, goal):
+        raise ScenarioError(f"{where}: the goal {tuple(goal)} cannot be reached from the start {tuple(start)} (no free "
+                            "passage joins them); every run would fail, so none is started")
     return world
 
 
@@ -167,6 +172,22 @@ def check_params(params: Mapping, where: str) -> None:
             json.dumps(v)
         except TypeError:
             raise ScenarioError(f"{where}: parameter {k!r} must be plain YAML data, got {v!r}") from None
+        if _holds_nan(v):
+            raise ParameterError(f"{where}: parameter {k!r} is or holds .nan, which no option takes; every run "
+                                 "would fail, so none is started")
+    if "clearance" in params:
+        metres(f"{where}: clearance", params["clearance"])
+
+
+def _holds_nan(value) -> bool:
+    """Whether a YAML value (numbers, lists, mappings) is or holds a NaN."""
+    if isinstance(value, float):
+        return value != value
+    if isinstance(value, dict):
+        return any(_holds_nan(v) for v in value.values())
+    if isinstance(value, (list, tuple)):
+        return any(_holds_nan(v) for v in value)
+    return False
 
 
 

@@ -13,6 +13,13 @@ stays light for queries and CSV export.
 The database runs in WAL mode and each run is committed in its own
 transaction, so a killed process loses at most the runs that were in flight;
 :meth:`ResultStore.done_keys` is what a rerun skips.
+
+Table ``claims`` lets several processes fill one database without computing a run
+twice: a process claims a run (:meth:`ResultStore.claim`) before it starts it, and
+the claim goes when the run is stored. A claim held by a process that is gone (same
+host, its pid no longer alive) or older than :data:`CLAIM_LAPSE_S` may be taken over.
+
+A file that holds tables of something else is refused, never written to.
 """
 from __future__ import annotations
 
@@ -20,9 +27,12 @@ import csv
 import functools
 import hashlib
 import json
+import os
 import re
+import socket
 import sqlite3
 import time
+import uuid
 from pathlib import Path
 from typing import Any, Iterable, Mapping
 
@@ -74,6 +84,35 @@ def _sql_value(value: Any) -> Any:
 
 
 LOCK_TIMEOUT_S = 60.0  # how long a writer waits for another process's lock on the database
+CLAIM_LAPSE_S = 24 * 3600.0  # a claim this old is taken over even if its owner cannot be checked
+OWN_TABLES = ("runs", "traces", "claims")
+
+
+def _pid_alive(pid: int) -> bool:
+    try:
+        os.kill(int(pid), 0)
+    except ProcessLookupError:
+        return False
+    except (PermissionError, OSError, ValueError):
+        return True
+    return True
+
+
+def _foreign_tables(path: str) -> list[str]:
+    """Tables of an existing SQLite file that are not optplan's (empty when none, or when the
+    file is new or empty); a file that is no SQLite database is left to the caller's error."""
+    p = Path(path)
+    if not p.is_file() or p.stat().st_size == 0:
+        return []
+    try:
+        conn = sqlite3.connect(f"file:{p.resolve().as_posix()}?mode=ro", uri=True, timeout=LOCK_TIMEOUT_S)
+        try:
+            names = [r[0] for r in conn.execute("SELECT name FROM sqlite_master WHERE type = 'table'")]
+        finally:
+            conn.close()
+    except sqlite3.DatabaseError:
+        return []
+    return [n for n in names if n not in OWN_TABLES and not n.startswith("sqlite_")]
 
 
 class ResultStore:
@@ -85,11 +124,16 @@ class ResultStore:
 
     def __init__(self, path: str | Path = ":memory:"):
         self.path = str(path)
+        self.owner = f"{socket.gethostname()}:{os.getpid()}:{uuid.uuid4().hex[:8]}"
         if self.path != ":memory:":
             parent = Path(self.path).parent
             if not parent.is_dir():
                 raise ParameterError(f"results database folder {parent} does not exist; create it or pick another "
                                      f"--db path")
+            foreign = _foreign_tables(self.path)
+            if foreign:
+                raise ParameterError(f"{self.path} is not an optplan results database (it holds the table(s) "
+                                     f"{', '.join(foreign[:5])}); nothing was written to it; pass another --db file")
         try:
             self.conn = sqlite3.connect(self.path, timeout=LOCK_TIMEOUT_S, isolation_level=None)
             self.conn.row_factory = sqlite3.Row
@@ -115,6 +159,8 @@ class ResultStore:
                 self.conn.execute(f"CREATE TABLE IF NOT EXISTS runs ({cols})")
                 tcols = ", ".join(f"{c} TEXT" for c in TRACE_COLUMNS)
                 self.conn.execute(f"CREATE TABLE IF NOT EXISTS traces (key TEXT PRIMARY KEY, {tcols})")
+                self.conn.execute("CREATE TABLE IF NOT EXISTS claims (key TEXT PRIMARY KEY, owner TEXT, host TEXT, "
+                                  "pid INTEGER, at REAL)")
                 return
             except sqlite3.OperationalError as exc:
                 if "locked" not in str(exc) or time.monotonic() > deadline:
@@ -182,6 +228,7 @@ class ResultStore:
             tmarks = ", ".join("?" for _ in range(len(traces) + 1))
             self.conn.execute(f"INSERT OR REPLACE INTO traces ({tnames}) VALUES ({tmarks})",
                               [key, *traces.values()])
+            self.conn.execute("DELETE FROM claims WHERE key = ?", (key,))
             self.conn.execute("COMMIT")
         except BaseException:
             if self.conn.in_transaction:  # SQLite may already have rolled back (disk full): no second error
@@ -190,6 +237,34 @@ class ResultStore:
                 except sqlite3.Error:
                     pass
             raise
+
+    # ------------------------------------------------------------------ sharing the work
+    def claim(self, key: str, include_failed: bool = True) -> bool:
+        """Take run ``key`` for this process: ``False`` when it is stored already (a failed
+        run counts unless ``include_failed`` is False) or another live process holds it."""
+        if self.path == ":memory:":
+            return True
+        host = socket.gethostname()
+        self.conn.execute("BEGIN IMMEDIATE")
+        try:
+            cond = "" if include_failed else " AND status = 'ok'"
+            if self.conn.execute(f"SELECT 1 FROM runs WHERE key = ?{cond}", (key,)).fetchone():
+                return False
+            held = self.conn.execute("SELECT owner, host, pid, at FROM claims WHERE key = ?", (key,)).fetchone()
+            free = (held is None or held["owner"] == self.owner
+                    or (held["host"] == host and not _pid_alive(held["pid"]))
+                    or time.time() - float(held["at"] or 0.0) > CLAIM_LAPSE_S)
+            if free:
+                self.conn.execute("INSERT OR REPLACE INTO claims (key, owner, host, pid, at) VALUES (?, ?, ?, ?, ?)",
+                                  (key, self.owner, host, os.getpid(), time.time()))
+            return free
+        finally:
+            self.conn.execute("COMMIT")
+
+    def release_claims(self) -> None:
+        """Give back the claims this process still holds (runs it did not finish)."""
+        if self.path != ":memory:":
+            self.conn.execute("DELETE FROM claims WHERE owner = ?", (self.owner,))
 
     # ------------------------------------------------------------------ reading
     def done_keys(self, keys: Iterable[str] | None = None, include_failed: bool = True) -> set[str]:
@@ -233,7 +308,9 @@ class ResultStore:
         """Write the ``runs`` rows (no arrays) to ``filename``; returns the number of rows."""
         rows = self.rows(keys)
         cols = [c for c in (r["name"] for r in self.conn.execute("PRAGMA table_info(runs)"))]
-        with open(filename, "w", newline="") as fh:
+        from ..world.files import written_whole
+
+        with written_whole(filename, "CSV file") as tmp, open(tmp, "w", newline="") as fh:
             w = csv.writer(fh)
             w.writerow(cols)
             for r in rows.values():

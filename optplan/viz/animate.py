@@ -11,6 +11,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..world.files import written_whole
+
 
 def animate_run(scenario, result, filename: str | Path, fps: int = 10, max_frames: int = 150,
                 title: str | None = None) -> Path:
@@ -121,7 +123,8 @@ def animate_run(scenario, result, filename: str | Path, fps: int = 10, max_frame
         images.append(frame.quantize(palette=palette, dither=Image.Dither.NONE))
     # hold the last frame for two seconds, so the outcome can be read
     durations = [int(1000 / fps)] * (len(images) - 1) + [2000]
-    images[0].save(filename, save_all=True, append_images=images[1:], duration=durations, loop=0)
+    with written_whole(filename, "animation") as tmp:
+        images[0].save(tmp, format="GIF", save_all=True, append_images=images[1:], duration=durations, loop=0)
     return filename
 
 

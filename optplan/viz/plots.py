@@ -13,6 +13,7 @@ from typing import Mapping
 import numpy as np
 
 from ..errors import ParameterError
+from ..world.files import written_whole
 
 
 def _figure_class():
@@ -54,7 +55,8 @@ def save_figure(fig, filename: str | Path, dpi: int = 110) -> Path:
     filename = Path(filename)
     figure_format(filename)
     filename.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(filename, dpi=dpi)
+    with written_whole(filename, "picture") as tmp:
+        fig.savefig(tmp, dpi=dpi, format=figure_format(filename) or None)
     return filename
 
 

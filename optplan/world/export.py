@@ -23,6 +23,7 @@ import numpy as np
 
 from ..checks import file_path
 from ..errors import ParameterError
+from .files import written_whole
 
 EXPORT_SUFFIXES = (".csv", ".yaml", ".yml")
 
@@ -69,7 +70,8 @@ def path_headings(path) -> np.ndarray:
 
 
 def _write_csv(p: Path, header: str, rows: np.ndarray) -> Path:
-    np.savetxt(p, rows, delimiter=",", header=header, comments="", fmt="%.17g")
+    with written_whole(p) as tmp:
+        np.savetxt(tmp, rows, delimiter=",", header=header, comments="", fmt="%.17g")
     return p
 
 
@@ -89,7 +91,8 @@ def _write_ros_path(p: Path, xy: np.ndarray, theta: np.ndarray, times: np.ndarra
                   "    pose:",
                   f"      position: {{x: {float(xy[i, 0])!r}, y: {float(xy[i, 1])!r}, z: 0.0}}",
                   f"      orientation: {{x: 0.0, y: 0.0, z: {float(qz[i])!r}, w: {float(qw[i])!r}}}"]
-    p.write_text("\n".join(lines) + "\n")
+    with written_whole(p) as tmp:
+        tmp.write_text("\n".join(lines) + "\n")
     return p
 
 

@@ -1,4 +1,4 @@
-"""Reading a user's file at the door: regular files only, within a size limit.
+"""Files at the door: reading only regular files within a size limit, writing whole or not at all.
 
 Every loader of a map, an image, a scenario, a spec or a circle world reads through
 :func:`read_file`. A FIFO would block the reader forever, ``/dev/zero`` or
@@ -11,9 +11,11 @@ from __future__ import annotations
 
 import os
 import stat
+import tempfile
+from contextlib import contextmanager
 from pathlib import Path
 
-from ..errors import MapFormatError
+from ..errors import MapFormatError, OptplanError
 
 
 def regular_file(path, what: str, error=MapFormatError) -> Path:
@@ -56,3 +58,23 @@ def read_file(path, what: str, limit: int, error=MapFormatError) -> bytes:
     if len(data) > limit:
         raise error(f"{what} {p} grew past {limit} bytes while it was read")
     return data
+
+
+@contextmanager
+def written_whole(path, what: str = "output"):
+    """Write a file whole or not at all: yields a temporary path in the same folder; when
+    the block ends without an error it replaces ``path`` in one step, otherwise it is
+    removed and an :class:`OptplanError` names ``path`` (a full disk, a read-only folder).
+    A reader never sees a half-written file, and no 0-byte or truncated file is left."""
+    target = Path(path)
+    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".part" + target.suffix, dir=target.parent or ".")
+    os.close(fd)
+    tmp_path = Path(tmp)
+    try:
+        yield tmp_path
+        os.replace(tmp_path, target)
+    except OSError as exc:
+        raise OptplanError(f"cannot write {what} {target}: {exc.strerror or exc}; nothing was written") from None
+    finally:
+        if tmp_path.exists():
+            tmp_path.unlink()

@@ -31,7 +31,7 @@ import numpy as np
 
 from ..checks import file_path
 from ..errors import MapFormatError, ParameterError
-from .files import read_file, regular_file
+from .files import read_file, regular_file, written_whole
 from .grid import MAX_GRID_CELLS, GridMap
 
 MAX_CELLS = MAX_GRID_CELLS  # refuse maps larger than this (about 7000 x 7000) before reading them
@@ -544,17 +544,22 @@ def save_map(grid: GridMap, path: str | os.PathLike) -> Path:
     suffix = p.suffix.lower()
     if suffix == ".map":
         body = "\n".join("".join("@" if v else "." for v in r) for r in rows)
-        p.write_text(f"type octile\nheight {grid.height}\nwidth {grid.width}\nmap\n{body}\n")
+        with written_whole(p, "map") as tmp:
+            tmp.write_text(f"type octile\nheight {grid.height}\nwidth {grid.width}\nmap\n{body}\n")
     elif suffix in (".txt", ".csv"):
         sep = "," if suffix == ".csv" else " "
-        p.write_text("\n".join(sep.join(str(int(v)) for v in r) for r in rows) + "\n")
+        with written_whole(p, "map") as tmp:
+            tmp.write_text("\n".join(sep.join(str(int(v)) for v in r) for r in rows) + "\n")
     elif suffix == ".npy":
-        np.save(p, rows.astype(bool))
+        with written_whole(p, "map") as tmp:
+            np.save(tmp, rows.astype(bool))
     elif suffix in (".yaml", ".yml"):
         pgm = p.with_suffix(".pgm")
         img = np.where(rows, 0, 254).astype(np.uint8)
-        pgm.write_bytes(f"P5\n{grid.width} {grid.height}\n255\n".encode() + img.tobytes())
-        p.write_text(
+        with written_whole(pgm, "map image") as tmp:
+            tmp.write_bytes(f"P5\n{grid.width} {grid.height}\n255\n".encode() + img.tobytes())
+        with written_whole(p, "map") as tmp:
+            tmp.write_text(
             f"image: {pgm.name}\nresolution: {grid.resolution!r}\norigin: [{grid.origin[0]!r}, {grid.origin[1]!r}, 0.0]\n"
             "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n"
         )
