@@ -175,3 +175,24 @@ def settings_key(settings: Mapping[str, Any]) -> tuple[tuple[str, str], ...]:
     the settings they were built with (values compared by their text, so ``1e-6`` and
     ``0.000001`` are the same setting)."""
     return tuple(sorted((str(k), str(v)) for k, v in settings.items()))
+
+
+MEMORY_BUDGET_GB = 8.0  # default bound on one method's own tables (the machines here have 24 GB)
+
+
+def memory_budget(what: str, estimate_bytes: float, instead: str) -> None:
+    """Refuse, before any work, a method whose own tables would take more memory than the
+    budget (``OPTPLAN_MEMORY_GB``, default :data:`MEMORY_BUDGET_GB`): the message gives the
+    estimate and what to use ``instead``. For costs inherent to a method only."""
+    import os
+
+    try:
+        budget = float(os.environ.get("OPTPLAN_MEMORY_GB", MEMORY_BUDGET_GB))
+    except ValueError:
+        raise ParameterError(f"OPTPLAN_MEMORY_GB must be a number of gigabytes, got "
+                             f"{os.environ.get('OPTPLAN_MEMORY_GB')!r}") from None
+    if estimate_bytes > budget * 2 ** 30:
+        need = (f"{estimate_bytes / 2 ** 30:.1f} GB" if estimate_bytes >= 2 ** 30
+                else f"{estimate_bytes / 2 ** 20:.0f} MB")
+        raise ParameterError(f"{what} needs about {need} of memory on this map, over the {budget:g} GB budget "
+                             f"(OPTPLAN_MEMORY_GB); {instead}")

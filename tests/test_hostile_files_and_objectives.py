@@ -169,3 +169,15 @@ def test_the_cli_reports_a_write_failure_in_one_line_with_the_path(tmp_path, mon
     out = tmp_path / "p.png"
     code = main(["plan", "chen2025_20", "--algo", "astar", "--plot", str(out)])
     assert code == 2 and not out.exists() and list(tmp_path.iterdir()) == []
+
+
+# ------------------------------------------------------------------ inherent costs: refused up front
+def test_a_method_whose_own_tables_exceed_the_memory_budget_is_refused_with_the_figure(monkeypatch):
+    monkeypatch.setenv("OPTPLAN_MEMORY_GB", "0.01")
+    grid = op.GridMap(np.zeros((400, 400), bool))
+    with pytest.raises(op.ParameterError, match=r"about \d+ MB .* 0.01 GB budget.*astar"):
+        op.shortest_path(grid, (0.5, 0.5), (399.5, 399.5), method="dijkstra")
+    with pytest.raises(op.ParameterError, match="ACO with"):
+        op.plan(grid, (0.5, 0.5), (399.5, 399.5), algorithm="aco", iters=2)
+    # A* keeps one byte a cell: it plans under the same budget
+    assert op.shortest_path(grid, (0.5, 0.5), (399.5, 399.5), method="astar").feasible

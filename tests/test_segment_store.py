@@ -139,3 +139,26 @@ def test_slot_index_hands_out_one_slot_per_key():
     np.testing.assert_array_equal(first, again)
     assert index.used == len(np.unique(keys)) and set(np.unique(first)) == set(range(index.used))
     np.testing.assert_array_equal(index.keys(first), keys)
+
+
+def test_a_tall_maps_sampler_decides_only_moves_near_its_aim(monkeypatch):
+    """On a map taller than SAMPLE_WINDOW_ROWS the sampler decides the moves within
+    SAMPLE_WINDOW rows of its aim (all H rows per column filled the store with millions of
+    segments on a 1000 x 1000 map); the paths it draws stay collision-free."""
+    from optplan.formulations import encodings as E
+
+    def decided():
+        occ = np.zeros((300, 40), bool)
+        occ[100:200, 10:12] = True
+        world = op.GridMap(occ)                       # a new map: a store of its own
+        enc = ColumnNodes(world, np.array([0.5, 150.5]), np.array([39.5, 150.5]))
+        X = enc.sample_feasible(20, np.random.default_rng(0))
+        for x in X:
+            assert op.validate_path(world, enc.decode(x[None])[0])
+        return int((column_segments(enc, 0.0).state != 0).sum())
+
+    windowed = decided()
+    monkeypatch.setattr(E, "SAMPLE_WINDOW_ROWS", 10 ** 9)
+    every_row = decided()
+    # every row: up to 20 walkers x 39 steps x 300 rows beyond the band; the window: x 129
+    assert every_row - windowed > 20 * 39 * (300 - 2 * E.SAMPLE_WINDOW - 1) // 4

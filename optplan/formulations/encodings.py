@@ -33,6 +33,12 @@ _SHARED_TABLES: OrderedDict = OrderedDict()
 _SHARED_TABLES_MAX = 8
 
 
+# the feasible sampler of maps taller than SAMPLE_WINDOW_ROWS decides the moves within
+# SAMPLE_WINDOW rows of where each move aims (ColumnSegments.moves)
+SAMPLE_WINDOW_ROWS = 256
+SAMPLE_WINDOW = 64
+
+
 def clear_shared_tables() -> None:
     """Forget the segment tables kept across map objects (for cold-start timings)."""
     _SHARED_TABLES.clear()
@@ -383,11 +389,13 @@ class ColumnNodes(PathEncoding):
         start_row = np.floor(self.world.to_grid(self.start)[1])
         goal_row = np.floor(self.world.to_grid(self.goal)[1])
         d = self.dim
+        # a tall map decides only the moves near the aim (far ones weigh < exp(-64 / spread))
+        window = SAMPLE_WINDOW if H > SAMPLE_WINDOW_ROWS else None
         # aim each move at the straight line from the current row to the goal row
         rows[:, 0] = pick(np.broadcast_to(first, (n, H)), np.full(n, start_row + (goal_row - start_row) / (d + 1)))
         for j in range(d - 1):
             aim = rows[:, j] + (goal_row - rows[:, j]) / (d - j)
-            rows[:, j + 1] = pick(moves.moves(j, rows[:, j]), aim)
+            rows[:, j + 1] = pick(moves.moves(j, rows[:, j], aim, window), aim)
         return rows + 0.5
 
 

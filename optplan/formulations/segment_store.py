@@ -376,13 +376,23 @@ class ColumnSegments:
         row is alive (``feasible_transitions()[0]``)."""
         return (self.collisions(np.arange(self.H)) == 0) & self.alive()[0]
 
-    def moves(self, j: int, r1: np.ndarray) -> np.ndarray:
+    def moves(self, j: int, r1: np.ndarray, centre: np.ndarray | None = None, window: int | None = None) -> np.ndarray:
         """``(len(r1), H)``: the free moves from rows ``r1`` of column ``j`` to alive rows of
-        column ``j + 1`` (rows ``r1`` of ``feasible_transitions()[1][j]``)."""
+        column ``j + 1`` (rows ``r1`` of ``feasible_transitions()[1][j]``).
+
+        With ``centre`` (one per row of ``r1``, a function of that row) and ``window``, only
+        the rows within ``window`` of the centre are decided, unless none of them is free
+        (then every row is): a big map's sampler weighs far rows by less than
+        ``exp(-window / spread)``, and deciding all ``H`` moves of every row of every column
+        filled the store with millions of segments no run uses."""
         H = self.H
         rows = np.arange(H)
-        u, inv = np.unique(np.asarray(r1, dtype=np.int64), return_inverse=True)
+        u, first, inv = np.unique(np.asarray(r1, dtype=np.int64), return_index=True, return_inverse=True)
         cand = self.may_be_free(j, u[:, None], rows[None, :]) & self.alive()[j + 1][None, :]
+        if window is not None and centre is not None:
+            near = np.abs(rows[None, :] - np.asarray(centre, float)[first][:, None]) <= window
+            has = (cand & near).any(axis=1)
+            cand &= near | ~has[:, None]      # a row with no free move in its window keeps every row
         a, b = np.nonzero(cand)
         mask = np.zeros((len(u), H), dtype=bool)
         mask[a, b] = self.collisions(self._inner_index(j, u[a], b)) == 0

@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..checks import memory_budget
 from ..errors import ParameterError
 from .geometry import convex_corners
 from .derived import DerivedStore
@@ -212,6 +213,10 @@ class Roadmap:
         if M == 0:
             self._dist, self._succ = np.zeros((0, 0)), np.zeros((0, 0), dtype=np.int64)
             return
+        # distances, predecessors and next hops: ~28 bytes per node pair
+        memory_budget(f"the general encoding's all-pairs geodesics over {M} obstacle corners", 28.0 * M * M,
+                      "use encoding='columns' or 'waypoints', a graph planner (astar, visibility), "
+                      "or a smaller crop of the map")
         w = np.hypot(*(self.nodes[self.edges[:, 1]] - self.nodes[self.edges[:, 0]]).T)
         # a zero-length edge would vanish from the sparse matrix: give it a tiny weight
         w = np.maximum(w, 1e-12)

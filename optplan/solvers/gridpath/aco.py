@@ -18,7 +18,7 @@ import time
 
 import numpy as np
 
-from ...checks import integer
+from ...checks import integer, memory_budget
 from ...errors import ParameterError
 from ...rng import as_generator
 from ..budget import Budget
@@ -61,6 +61,11 @@ def aco_path(grid, start, goal, *, ants: int = 60, iters: int | None = 300, alph
     s, g = int(s_cell[1] * W + s_cell[0]), int(g_cell[1] * W + g_cell[0])
     n_cells = grid.width * grid.height
     max_steps = max_steps or n_cells
+    # per cell: neighbours, pheromone and heuristic per move (8 x 24 bytes), and a visited
+    # flag and a step per ant
+    memory_budget(f"ACO with {ants} ants on {grid.width} x {grid.height} cells",
+                  n_cells * (200.0 + ants * 9.0) + ants * max_steps * 8.0,
+                  "use astar or visibility, or a metaheuristic (they keep no table per cell)")
     nb = table.neighbours
     valid = nb >= 0
     xy = table.xy(np.arange(n_cells)).astype(float)

@@ -19,6 +19,8 @@ from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
+
+from ...checks import memory_budget
 from ...world.derived import DerivedStore
 
 _DERIVED = DerivedStore("solvers.gridpath.moves")  # this module's data derived from worlds
@@ -86,9 +88,12 @@ class MoveTable:
         """``(n_cells, n_cells)`` scipy CSR matrix of the allowed moves, weights in cells."""
         from scipy.sparse import csr_matrix
 
+        n = self.width * self.height
+        # the (n, 8) neighbour table and the matrix's indices and weights: ~100 bytes a cell
+        memory_budget(f"the sparse move matrix of a {self.width} x {self.height} map (Dijkstra, ACO, the cell GA)",
+                      100.0 * n, "use method='astar', which keeps one byte a cell")
         nb = self.neighbours
         src, k = np.nonzero(nb >= 0)
-        n = self.width * self.height
         return csr_matrix((self.step_length[k], (src, nb[src, k])), shape=(n, n))
 
 
