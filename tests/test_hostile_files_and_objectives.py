@@ -181,3 +181,15 @@ def test_a_method_whose_own_tables_exceed_the_memory_budget_is_refused_with_the_
         op.plan(grid, (0.5, 0.5), (399.5, 399.5), algorithm="aco", iters=2)
     # A* keeps one byte a cell: it plans under the same budget
     assert op.shortest_path(grid, (0.5, 0.5), (399.5, 399.5), method="astar").feasible
+
+
+def test_every_case_of_the_hostile_input_script_ends_in_one_line():
+    """benchmarks/hostile_inputs.py: 50 hostile command lines, each handled (no traceback,
+    hang or partial output)."""
+    from pathlib import Path
+
+    script = Path(__file__).resolve().parents[1] / "benchmarks" / "hostile_inputs.py"
+    done = subprocess.run([sys.executable, str(script), "--timeout", "60"], capture_output=True, text=True,
+                          timeout=900)
+    assert done.returncode == 0, done.stdout[-3000:]
+    assert " 0 traceback, 0 hang, 0 partial, 0 other" in done.stdout

@@ -39,6 +39,7 @@ from __future__ import annotations
 import copy
 import hashlib
 import json
+import os
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Mapping
@@ -192,6 +193,10 @@ def spec_path(name_or_path: str | Path) -> Path:
     p = Path(name_or_path)
     if p.is_file():
         return p
+    if os.path.lexists(p):
+        from ..world.files import regular_file
+
+        regular_file(p, "spec file", ScenarioError)   # says what it is (a FIFO, a device, a folder)
     for cand in (SPECS_DIR / f"{name_or_path}.yaml", SPECS_DIR / str(name_or_path)):
         if cand.is_file():
             return cand

@@ -67,7 +67,11 @@ def written_whole(path, what: str = "output"):
     removed and an :class:`OptplanError` names ``path`` (a full disk, a read-only folder).
     A reader never sees a half-written file, and no 0-byte or truncated file is left."""
     target = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".part" + target.suffix, dir=target.parent or ".")
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".part" + target.suffix,
+                                   dir=target.parent or ".")
+    except OSError as exc:
+        raise OptplanError(f"cannot write {what} {target}: {exc.strerror or exc}; nothing was written") from None
     os.close(fd)
     tmp_path = Path(tmp)
     try:

@@ -330,6 +330,10 @@ def load_scenario(path_or_dict) -> Scenario:
     if not isinstance(path_or_dict, (str, os.PathLike)):
         raise ScenarioError(f"load_scenario needs a file path, a shipped name or a dict, got {type(path_or_dict).__name__}")
     p = Path(path_or_dict)
+    if os.path.lexists(p) and not p.is_file():
+        from .files import regular_file
+
+        regular_file(p, "scenario file", ScenarioError)   # says what it is (a FIFO, a device, a folder)
     if not p.is_file():
         shipped = SCENARIOS_DIR / f"{p.name}" if p.suffix == ".yaml" else SCENARIOS_DIR / f"{p.name}.yaml"
         if not shipped.is_file():
