@@ -38,6 +38,7 @@ _LAZY = {
     "load_scenario": "optplan.world.scenario",
     "simulate": "optplan.sim",
     "PathProgram": "optplan.programs",
+    "LocalProgram": "optplan.formulations.local_program",
     "Waypoints": "optplan.programs",
     "Points": "optplan.programs",
     "BSpline": "optplan.programs",

@@ -70,6 +70,7 @@ LENGTH = PaperMethod("length", "shortest path (no paper)", (), postprocess="coll
 LOCAL_GUIDANCE = {
     "dwa": ("goal", "ignore"),          # Fox et al. 1997: no global guidance
     "qp-dwa": ("key_points", "replan"),  # optplan's own: key points + exact re-plan
+    "mpc": ("key_points", "replan"),     # optplan's own NMPC, guided like qp-dwa
 }
 DEFAULT_GUIDANCE = ("key_points", "replan")
 

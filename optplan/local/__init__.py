@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..errors import UnknownAlgorithmError
+from ..errors import ParameterError, UnknownAlgorithmError
 from ..world.robot import RobotSpec
 from .base import LocalContext, LocalPlanner
 from .dwa import DWAPlanner, Preset, Term
@@ -26,9 +26,13 @@ __all__ = ["make_local_planner", "algorithm_names", "LocalContext", "LocalPlanne
            "Term", "PRESETS"]
 
 
+# solvers of a window program (optplan.formulations.local_program) other than the presets
+PROGRAM_SOLVERS = ("mpc",)
+
+
 def algorithm_names() -> list[str]:
     """Names of the local planners."""
-    return list(PRESETS)
+    return [*PRESETS, *PROGRAM_SOLVERS]
 
 
 def make_local_planner(name: str, robot: RobotSpec, dt: float, **params: Any) -> LocalPlanner:
@@ -42,11 +46,38 @@ def make_local_planner(name: str, robot: RobotSpec, dt: float, **params: Any) ->
         ParameterError: a parameter is unknown or out of range.
     """
     key = str(name).lower()
+    program = params.pop("local_program", None)
+    if key == "mpc":
+        from .program_planners import MPCPlanner
+
+        return _built(MPCPlanner, key, robot, dt, program=program, **params)
+    if program is not None:
+        if key != "dwa":
+            raise ParameterError(f"local_program= is solved by 'dwa' (sampling) and 'mpc' (NMPC); {name!r} runs "
+                                 "its own critics (a window program for qp-dwa and the paper presets is not "
+                                 "built yet)")
+        from .program_planners import ProgramSampler
+
+        return _built(ProgramSampler, key, robot, dt, program=program, **params)
     preset = PRESETS.get(key)
     if preset is None:
-        raise UnknownAlgorithmError(f"unknown local planner {name!r}; choose one of {', '.join(PRESETS)}")
+        raise UnknownAlgorithmError(f"unknown local planner {name!r}; choose one of {', '.join(algorithm_names())}")
     if preset.refine == "qp":
         from .qp_dwa import QPDWAPlanner
 
         return QPDWAPlanner(preset, robot, dt, **params)
     return DWAPlanner(preset, robot, dt, **params)
+
+
+def _built(cls, name: str, robot: RobotSpec, dt: float, **params: Any):
+    """``cls(robot, dt, **params)``, an unknown parameter named with the known ones."""
+    import inspect
+
+    from ..errors import named_with_hints
+
+    known = [p for p in inspect.signature(cls).parameters if p not in ("robot", "dt")]
+    unknown = sorted(set(params) - set(known))
+    if unknown:
+        raise ParameterError(f"unknown parameter {named_with_hints(unknown, known)} for local planner {name!r}; "
+                             f"known: {', '.join(known)}")
+    return cls(robot, dt, **params)

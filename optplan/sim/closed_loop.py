@@ -45,7 +45,7 @@ from .kinematics import step_pose
 
 OPTIONS = ("subgoals", "on_blocked", "stuck_time", "stuck_distance", "max_replans", "sweep_detour", "stop_on_collision",
            "actuator_limits", "planner_params", "global_options", "subgoal_options", "progress", "time_limit", "global_plan",
-           "mover_motion")
+           "mover_motion", "local_program")
 
 
 def make_planner(local_planner, robot, dt: float, params: dict):
@@ -106,7 +106,8 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
             ``visibility`` on circle worlds). The robot radius is the clearance
             (zero if no valid path keeps it; ``SimResult.message`` says so).
         local_planner: a preset name (``dwa``, ``missa-dwa``, ``idwa``, ``ba-dwa``,
-            ``iga-dwa``, ``qp-dwa``) or a planner object with ``reset``/``command``.
+            ``iga-dwa``, ``qp-dwa``), ``mpc`` (NMPC of a window program) or a planner object
+            with ``reset``/``command``.
         refine: ``None``, ``"casadi"`` or ``"qp"`` refinement of the global path.
         seed: drives the global planner and the scenario's random obstacles.
         **options:
@@ -131,6 +132,8 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
                 random movers is a ``ParameterError``.
             global_plan: a PlanResult to follow instead of planning (e.g. one global plan
                 shared by several local planners; it must be for the same map, start and goal).
+            local_program: an :class:`~optplan.formulations.local_program.LocalProgram` solved
+                every period by ``local_planner="dwa"`` (sampling) or ``"mpc"`` (NMPC).
 
     Returns:
         A :class:`SimResult` (``to_json_dict()`` gives the ``optplan simulate --json`` keys).
@@ -159,7 +162,10 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
                     max_replans=options.get("max_replans", 5), global_options=options.get("global_options"),
                     subgoal_options=options.get("subgoal_options"), sweep_detour=options.get("sweep_detour", 1.5))
     params = local_params.get(str(local_name).lower(), {}) if isinstance(local_planner, str) else {}
-    planner = make_planner(local_planner, robot, dt, {**params, **(options.get("planner_params") or {})})
+    planner_params = {**params, **(options.get("planner_params") or {})}
+    if options.get("local_program") is not None:
+        planner_params["local_program"] = options["local_program"]
+    planner = make_planner(local_planner, robot, dt, planner_params)
     # the global plan comes first: random obstacles are placed on the path the robot is given
     nav.plan_initial(options.get("global_plan"))
     sc = realize(sc, seed, path=nav.path)

@@ -1,0 +1,603 @@
+"""The window program: one control period's local planning problem, written once.
+
+The local twin of :class:`~optplan.formulations.program.PathProgram` (DESIGN.md, "Local
+programs"). Its decision variables are the commands ``U`` of ``K`` control intervals over
+the horizon, piecewise constant: ``(v, w)`` for a unicycle, ``(v, w, vy)`` for an omni
+robot (``K = 1`` is DWA's one constant command). The states ``Z`` (``(N + 1, 3)`` rows
+``x, y, theta``, ``m`` Euler steps per interval, the simulator's motion model) follow
+from them. Terms and constraints are written once, each with
+
+* a **batched** view over many command sequences at once (``(S, K, nu)``), what a
+  sampling solver evaluates (numpy, no loop over samples), and
+* a **symbolic** view (CasADi), what the NMPC solver differentiates.
+
+Both views see the same :class:`Situation`: the robot's state, the subgoal, the global
+path, the static distance field and the movers. Where the symbolic view cannot hold the
+exact function (the static distance field is a sampled table), it holds its first-order
+model around a reference trajectory (the warm start); every solver's answer is then
+judged by :meth:`LocalProgram.evaluate`, the batched view, exactly as a sample is.
+
+    lp = LocalProgram(robot, horizon=2.0, intervals=10)
+    lp.minimize(1.0 * LT.goal_distance() + 0.5 * LT.path_distance() - 0.2 * LT.speed()
+                + LT.custom(lambda Z, U, m: ..., name="prefer_left"))
+    lp.subject_to(LT.clearance() >= 0.05)
+    lp.subject_to(LT.can_stop())
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..world.robot import RobotSpec
+from .namespaces import Batch, BatchNamespace, Sym, SymbolicNamespace
+
+_SMOOTH = 1e-9  # under square roots of the symbolic view: differentiable at 0
+
+
+@dataclass
+class Situation:
+    """What a window program is solved for at one control step.
+
+    Attributes:
+        state: ``(x, y, theta, v, w, vy)`` now.
+        subgoal: ``(2,)`` target point, metres.
+        path: ``(N, 2)`` global path, metres.
+        static_distance: ``(..., 2) -> (...)`` signed distance from a point to the static
+            obstacles known now (robot radius not subtracted).
+        movers: ``(k, 5)`` rows ``(x, y, vx, vy, radius)``, predicted at constant velocity.
+    """
+
+    state: np.ndarray
+    subgoal: np.ndarray
+    path: np.ndarray
+    static_distance: Callable[[np.ndarray], np.ndarray]
+    movers: np.ndarray = field(default_factory=lambda: np.zeros((0, 5)))
+
+
+# ----------------------------------------------------------------------------- expressions
+class LocalTerm:
+    """One scalar term of the objective: ``batched(Z, U, sit, prog) -> (S,)`` and
+    ``symbolic(Z, U, ps, prog) -> casadi scalar``, ``ps`` the :class:`SymbolicSituation`
+    (the situation as solver parameters, so a solver is built once)."""
+
+    name = "term"
+
+    def batched(self, Z, U, sit: Situation, prog: "LocalProgram") -> np.ndarray:
+        raise NotImplementedError
+
+    def symbolic(self, Z, U, ps: "SymbolicSituation", prog: "LocalProgram"):
+        raise NotImplementedError
+
+    def __mul__(self, w) -> "LocalObjective":
+        return LocalObjective([(float(w), self)])
+
+    __rmul__ = __mul__
+
+    def __add__(self, other) -> "LocalObjective":
+        return LocalObjective([(1.0, self)]) + other
+
+    def __sub__(self, other) -> "LocalObjective":
+        return LocalObjective([(1.0, self)]) + (-1.0) * other
+
+    def __neg__(self) -> "LocalObjective":
+        return LocalObjective([(-1.0, self)])
+
+
+class LocalObjective:
+    """A weighted sum of :class:`LocalTerm`."""
+
+    def __init__(self, parts: list[tuple[float, LocalTerm]]) -> None:
+        self.parts = list(parts)
+
+    def __add__(self, other) -> "LocalObjective":
+        other = other if isinstance(other, LocalObjective) else LocalObjective([(1.0, other)])
+        return LocalObjective(self.parts + other.parts)
+
+    __radd__ = __add__
+
+    def __sub__(self, other) -> "LocalObjective":
+        return self + (-1.0) * (other if isinstance(other, LocalObjective) else LocalObjective([(1.0, other)]))
+
+    def __mul__(self, w) -> "LocalObjective":
+        return LocalObjective([(float(w) * a, t) for a, t in self.parts])
+
+    __rmul__ = __mul__
+
+    def __neg__(self) -> "LocalObjective":
+        return self * -1.0
+
+
+class LocalConstraint:
+    """A constraint: ``batched(...) -> (S,)`` violation (0 when it holds) and
+    ``symbolic(...) -> list of (expression, lower bound)`` rows ``expression >= lower``."""
+
+    name = "constraint"
+
+    def batched(self, Z, U, sit: Situation, prog: "LocalProgram") -> np.ndarray:
+        raise NotImplementedError
+
+    def symbolic(self, Z, U, ps: "SymbolicSituation", prog: "LocalProgram") -> list:
+        raise NotImplementedError
+
+
+def _point_segment_distance(P: np.ndarray, A: np.ndarray, B: np.ndarray) -> np.ndarray:
+    """Distance from points ``(..., 2)`` to the nearest of segments ``A[i] -> B[i]``."""
+    d = B - A
+    L2 = np.maximum((d * d).sum(axis=1), 1e-18)
+    rel = P[..., None, :] - A
+    t = np.clip((rel * d).sum(axis=-1) / L2, 0.0, 1.0)
+    q = A + t[..., None] * d
+    return np.sqrt(((P[..., None, :] - q) ** 2).sum(axis=-1)).min(axis=-1)
+
+
+def _near_path(sit: Situation, reach: float) -> tuple[np.ndarray, np.ndarray]:
+    """The global path's segments within ``reach`` of the robot (all when none is)."""
+    P = np.asarray(sit.path, float)
+    if len(P) < 2:
+        P = np.vstack([sit.state[:2], sit.subgoal])
+    A, B = P[:-1], P[1:]
+    d = B - A
+    L2 = np.maximum((d * d).sum(axis=1), 1e-18)
+    t = np.clip(((sit.state[:2] - A) * d).sum(axis=1) / L2, 0.0, 1.0)
+    gap = np.hypot(*(A + t[:, None] * d - sit.state[:2]).T)
+    keep = gap <= reach
+    if not keep.any():
+        keep[np.argmin(gap)] = True
+    return A[keep], B[keep]
+
+
+class GoalDistance(LocalTerm):
+    """Distance from the last predicted position to the subgoal, metres."""
+
+    name = "goal_distance"
+
+    def batched(self, Z, U, sit, prog):
+        return np.hypot(Z[:, -1, 0] - sit.subgoal[0], Z[:, -1, 1] - sit.subgoal[1])
+
+    def symbolic(self, Z, U, ps, prog):
+        import casadi as ca
+
+        return ca.sqrt((Z[-1, 0] - ps.subgoal[0]) ** 2 + (Z[-1, 1] - ps.subgoal[1]) ** 2 + _SMOOTH)
+
+
+class GoalHeading(LocalTerm):
+    """``1 - cos`` of the angle between the last predicted heading and the bearing from the
+    last predicted position to the subgoal (0 facing it, 2 facing away)."""
+
+    name = "goal_heading"
+
+    def batched(self, Z, U, sit, prog):
+        bearing = np.arctan2(sit.subgoal[1] - Z[:, -1, 1], sit.subgoal[0] - Z[:, -1, 0])
+        return 1.0 - np.cos(Z[:, -1, 2] - bearing)
+
+    def symbolic(self, Z, U, ps, prog):
+        import casadi as ca
+
+        bearing = ca.atan2(ps.subgoal[1] - Z[-1, 1], ps.subgoal[0] - Z[-1, 0])
+        return 1.0 - ca.cos(Z[-1, 2] - bearing)
+
+
+class PathDistance(LocalTerm):
+    """Mean distance of the predicted positions to the global path, metres. The symbolic
+    view measures each position against the segment its reference position is nearest to:
+    its line, or its end point where the reference lies beyond it."""
+
+    name = "path_distance"
+
+    def batched(self, Z, U, sit, prog):
+        A, B = _near_path(sit, prog.reach)
+        return _point_segment_distance(Z[:, 1:, :2], A, B).mean(axis=1)
+
+    def symbolic(self, Z, U, ps, prog):
+        import casadi as ca
+
+        total = 0
+        for j in range(1, Z.shape[0]):
+            nx, ny, c, end, ex, ey = (ps.lines[j - 1, i] for i in range(6))
+            line = ca.sqrt((nx * Z[j, 0] + ny * Z[j, 1] - c) ** 2 + _SMOOTH)
+            point = ca.sqrt((Z[j, 0] - ex) ** 2 + (Z[j, 1] - ey) ** 2 + _SMOOTH)
+            total += (1 - end) * line + end * point
+        return total / (Z.shape[0] - 1)
+
+
+class Speed(LocalTerm):
+    """Mean forward speed over the intervals, m/s (reward it with a negative weight)."""
+
+    name = "speed"
+
+    def batched(self, Z, U, sit, prog):
+        return U[:, :, 0].mean(axis=1)
+
+    def symbolic(self, Z, U, ps, prog):
+        import casadi as ca
+
+        return ca.sum1(U[:, 0]) / U.shape[0]
+
+
+class Smoothness(LocalTerm):
+    """Sum of squared command changes from the current command on, per interval
+    (``(m/s)^2`` and ``(rad/s)^2``)."""
+
+    name = "smoothness"
+
+    def batched(self, Z, U, sit, prog):
+        now = prog.current_command(sit)
+        D = np.diff(np.concatenate([np.broadcast_to(now, (len(U), 1, U.shape[2])), U], axis=1), axis=1)
+        return (D ** 2).sum(axis=(1, 2))
+
+    def symbolic(self, Z, U, ps, prog):
+        import casadi as ca
+
+        prev = ps.command.T
+        total = 0
+        for k in range(U.shape[0]):
+            total += ca.sumsqr(U[k, :] - prev)
+            prev = U[k, :]
+        return total
+
+
+class Custom(LocalTerm):
+    """``fn(Z, U, m)`` over the predicted states ``Z`` ``(N + 1, 3)`` and commands ``U``
+    ``(K, nu)``, with ``m`` a numpy-like namespace (``sum``, ``sqrt``, ``exp``, ``atan2``,
+    ...): written once, evaluated batched and symbolically."""
+
+    def __init__(self, fn: Callable, name: str = "custom") -> None:
+        if not callable(fn):
+            raise ParameterError(f"custom needs a function fn(Z, U, m), got {fn!r:.60}")
+        self.fn, self.name = fn, str(name)
+
+    def batched(self, Z, U, sit, prog):
+        out = self.fn(Batch(Z), Batch(U), BatchNamespace)
+        a = out.a if isinstance(out, Batch) else np.broadcast_to(np.asarray(out, float), (len(Z),))
+        if a.shape != (len(Z),):
+            raise ParameterError(f"custom term {self.name!r} must return one number per trajectory, got shape "
+                                 f"{a.shape[1:]} per trajectory")
+        return np.asarray(a, float)
+
+    def symbolic(self, Z, U, ps, prog):
+        out = self.fn(Sym(Z, tuple(Z.shape)), Sym(U, tuple(U.shape)), SymbolicNamespace)
+        if isinstance(out, Sym):
+            if out.shape != ():
+                raise ParameterError(f"custom term {self.name!r} must return a scalar, got shape {out.shape}")
+            return out.m
+        return float(out)
+
+
+class ObstacleCost(LocalTerm):
+    """Mean over the predicted positions of ``exp(-gap / scale)`` summed over the static
+    obstacles' gap and each predicted mover's (edge to edge, metres); the symbolic view
+    holds the solver's mover slots, the nearest movers."""
+
+    name = "obstacle_cost"
+
+    def __init__(self, scale: float = 0.3) -> None:
+        self.scale = float(scale)
+
+    def batched(self, Z, U, sit, prog):
+        total = np.exp(-prog.static_gap(Z, sit) / self.scale)
+        for gap in prog.mover_gaps(Z, sit):
+            total += np.exp(-gap / self.scale)
+        return total.mean(axis=1)
+
+    def symbolic(self, Z, U, ps, prog):
+        import casadi as ca
+
+        rows = prog.static_rows(Z, ps) + prog.mover_rows(Z, ps, squared=False)
+        total = 0
+        for expr in rows:
+            total += ca.exp(-expr / self.scale)
+        return total / max(Z.shape[0] - 1, 1)
+
+
+class Clearance(LocalConstraint):
+    """Every predicted position keeps ``margin`` metres between the robot's edge and the
+    static obstacles, and between the robot and every predicted mover."""
+
+    name = "clearance"
+
+    def __init__(self, margin: float = 0.0) -> None:
+        self.margin = float(margin)
+
+    def __ge__(self, margin: float) -> "Clearance":
+        return Clearance(margin)
+
+    def batched(self, Z, U, sit, prog):
+        gap = np.minimum(prog.static_gap(Z, sit), prog.mover_gap(Z, sit))
+        return np.maximum(self.margin - gap, 0.0).max(axis=1)   # the deepest shortfall along the window
+
+    def symbolic(self, Z, U, ps, prog):
+        rows = [(e, self.margin) for e in prog.static_rows(Z, ps)]
+        rows += [(e, 0.0) for e in prog.mover_rows(Z, ps, squared=True, margin=self.margin)]
+        return rows
+
+
+class CanStop(LocalConstraint):
+    """Recursive feasibility: at the end of the horizon the robot can brake to a stop, at
+    its acceleration limit, before the static obstacles ahead: ``v_K^2 <= 2 a (gap - margin)``."""
+
+    name = "can_stop"
+
+    def __init__(self, margin: float = 0.0) -> None:
+        self.margin = float(margin)
+
+    def batched(self, Z, U, sit, prog):
+        gap = prog.static_gap(Z[:, -1:], sit)[:, 0]
+        v = np.abs(U[:, -1, 0])
+        return np.maximum(v * v - 2.0 * prog.robot.a_max * np.maximum(gap - self.margin, 0.0), 0.0)
+
+    def symbolic(self, Z, U, ps, prog):
+        gap = prog.static_rows(Z, ps)[-1]
+        return [(2.0 * prog.robot.a_max * (gap - self.margin) - U[-1, 0] ** 2, 0.0)]
+
+
+class SymbolicSituation:
+    """The situation as CasADi parameters of one built solver (``opti.parameter``): the
+    state ``(6,)``, the subgoal ``(2,)``, the current command ``(nu,)``, each predicted
+    position's path line ``(N, 6)`` (unit normal, offset, and whether the reference lies
+    beyond the segment, with that end point), the static field's model
+    ``(N, 5)`` (value, gradient, reference point) and ``(max_movers, 5)`` mover slots."""
+
+    def __init__(self, opti, prog: "LocalProgram", max_movers: int) -> None:
+        self.state = opti.parameter(6)
+        self.subgoal = opti.parameter(2)
+        self.command = opti.parameter(prog.nu)
+        self.lines = opti.parameter(prog.N, 6)
+        self.static = opti.parameter(prog.N, 5)
+        self.movers = opti.parameter(max_movers, 5)
+        self.opti = opti
+
+    def set(self, values: dict) -> None:
+        for name, value in values.items():
+            self.opti.set_value(getattr(self, name), value)
+
+
+# ----------------------------------------------------------------------------- the program
+class LocalProgram:
+    """The window program of one robot: commands over ``intervals`` intervals of a
+    ``horizon``-second window, ``step``-second Euler steps (the simulator's model).
+
+    Args:
+        robot: the :class:`RobotSpec` (model, limits, radius).
+        horizon: seconds predicted.
+        intervals: piecewise-constant command intervals ``K`` (1 = DWA's constant command).
+        step: Euler step of the prediction, seconds (rounded so that each interval holds a
+            whole number of steps).
+    """
+
+    def __init__(self, robot: RobotSpec, horizon: float = 2.0, intervals: int = 10, step: float = 0.1,
+                 name: str = "window") -> None:
+        if not isinstance(robot, RobotSpec):
+            raise ParameterError(f"robot must be an op.RobotSpec, got {type(robot).__name__}")
+        for what, v in (("horizon", horizon), ("step", step)):
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
+                raise ParameterError(f"{what} must be a positive number of seconds, got {v!r}")
+        if isinstance(intervals, bool) or not isinstance(intervals, (int, np.integer)) or intervals < 1:
+            raise ParameterError(f"intervals must be an integer >= 1, got {intervals!r}")
+        self.robot, self.name = robot, str(name)
+        self.K = int(intervals)
+        self.m = max(1, int(round(horizon / self.K / step)))
+        self.h = float(horizon) / (self.K * self.m)
+        self.horizon = float(horizon)
+        self.omni = robot.model == "omni" and robot.vy_max > 0
+        self.nu = 3 if self.omni else 2
+        self.objective: list[tuple[float, LocalTerm]] = []
+        self.constraints: list[LocalConstraint] = []
+        # path segments farther than this from the robot do not matter to the window
+        self.reach = self.horizon * max(robot.v_max, 1e-3) + 1.0
+
+    @property
+    def N(self) -> int:
+        """Predicted states after the start."""
+        return self.K * self.m
+
+    def minimize(self, objective) -> "LocalProgram":
+        objective = objective if isinstance(objective, LocalObjective) else LocalObjective([(1.0, objective)])
+        for w, t in objective.parts:
+            if not isinstance(t, LocalTerm) or not math.isfinite(w):
+                raise ParameterError(f"an objective is a weighted sum of local terms, got {t!r:.60}")
+        self.objective = list(objective.parts)
+        return self
+
+    def subject_to(self, constraint: LocalConstraint) -> "LocalProgram":
+        if not isinstance(constraint, LocalConstraint):
+            raise ParameterError(f"subject_to takes a local constraint (clearance() >= d, can_stop()), "
+                                 f"got {constraint!r:.60}")
+        self.constraints.append(constraint)
+        return self
+
+    # ------------------------------------------------------------------ dynamics
+    def current_command(self, sit: Situation) -> np.ndarray:
+        s = np.asarray(sit.state, float)
+        return np.array([s[3], s[4], s[5]][:self.nu])
+
+    def rollout(self, sit: Situation, U: np.ndarray) -> np.ndarray:
+        """States ``(S, N + 1, 3)`` of command sequences ``U`` ``(S, K, nu)`` (batched view)."""
+        U = np.asarray(U, float)
+        S = len(U)
+        Uf = np.repeat(U, self.m, axis=1)                          # (S, N, nu)
+        theta = sit.state[2] + np.concatenate([np.zeros((S, 1)), np.cumsum(Uf[:, :, 1] * self.h, axis=1)], axis=1)
+        c, s = np.cos(theta[:, :-1]), np.sin(theta[:, :-1])
+        vy = Uf[:, :, 2] if self.nu == 3 else 0.0
+        dx = (Uf[:, :, 0] * c - vy * s) * self.h
+        dy = (Uf[:, :, 0] * s + vy * c) * self.h
+        Z = np.empty((S, self.N + 1, 3))
+        Z[:, 0, 0], Z[:, 0, 1] = sit.state[0], sit.state[1]
+        Z[:, 1:, 0] = sit.state[0] + np.cumsum(dx, axis=1)
+        Z[:, 1:, 1] = sit.state[1] + np.cumsum(dy, axis=1)
+        Z[:, :, 2] = theta
+        return Z
+
+    def step_symbolic(self, z, u):
+        """One Euler step of the symbolic view (``z`` a 1x3 row, ``u`` a 1 x nu row)."""
+        import casadi as ca
+
+        c, s = ca.cos(z[2]), ca.sin(z[2])
+        vy = u[2] if self.nu == 3 else 0.0
+        return ca.horzcat(z[0] + (u[0] * c - vy * s) * self.h, z[1] + (u[0] * s + vy * c) * self.h,
+                          z[2] + u[1] * self.h)
+
+    # ------------------------------------------------------------------ obstacles, both views
+    def static_gap(self, Z: np.ndarray, sit: Situation) -> np.ndarray:
+        """``(S, n)``: distance from the robot's edge to the static obstacles at the states
+        ``Z[:, :]`` except the start (the start is where the robot is)."""
+        P = Z[:, 1:, :2] if Z.shape[1] > 1 else Z[:, :, :2]
+        return np.asarray(sit.static_distance(P), float) - self.robot.radius
+
+    def mover_gaps(self, Z: np.ndarray, sit: Situation):
+        """``(S, n)`` per mover: distance from the robot's edge to that predicted mover's edge."""
+        P = Z[:, 1:, :2]
+        t = self.h * np.arange(1, P.shape[1] + 1)
+        for x, y, vx, vy, r in np.asarray(sit.movers, float).reshape(-1, 5):
+            yield np.hypot(P[..., 0] - (x + vx * t), P[..., 1] - (y + vy * t)) - r - self.robot.radius
+
+    def mover_gap(self, Z: np.ndarray, sit: Situation) -> np.ndarray:
+        """``(S, n)``: distance from the robot's edge to the nearest predicted mover's edge."""
+        gap = np.full((Z.shape[0], Z.shape[1] - 1), np.inf)
+        for d in self.mover_gaps(Z, sit):
+            np.minimum(gap, d, out=gap)
+        return gap
+
+    def static_rows(self, Z, ps: "SymbolicSituation") -> list:
+        """Symbolic static gaps, one row per predicted state after the start: the distance
+        field's first-order model at the reference positions (:meth:`symbolic_values`)."""
+        L = ps.static
+        return [L[j - 1, 0] + L[j - 1, 1] * (Z[j, 0] - L[j - 1, 3]) + L[j - 1, 2] * (Z[j, 1] - L[j - 1, 4])
+                - self.robot.radius for j in range(1, Z.shape[0])]
+
+    def mover_rows(self, Z, ps: "SymbolicSituation", squared: bool, margin: float = 0.0) -> list:
+        """Symbolic mover gaps over the parameter slots of the movers: ``|p - m(t)|^2 -
+        (R + r + margin)^2`` when ``squared`` (a constraint row ``>= 0``), else the edge distance."""
+        import casadi as ca
+
+        rows = []
+        for i in range(ps.movers.shape[0]):
+            x, y, vx, vy, r = (ps.movers[i, c] for c in range(5))
+            for j in range(1, Z.shape[0]):
+                t = self.h * j
+                d2 = (Z[j, 0] - (x + vx * t)) ** 2 + (Z[j, 1] - (y + vy * t)) ** 2
+                rows.append(d2 - (self.robot.radius + r + margin) ** 2 if squared
+                            else ca.sqrt(d2 + _SMOOTH) - r - self.robot.radius)
+        return rows
+
+    def symbolic_values(self, sit: Situation, ref: np.ndarray, max_movers: int) -> dict:
+        """The parameter values of :class:`SymbolicSituation` for ``sit``, the symbolic
+        model taken around the reference states ``ref`` ``(N + 1, 3)``: each predicted
+        position's path line (the nearest segment's), the static field's value and gradient
+        (central differences), and the ``max_movers`` nearest movers (the other slots
+        parked far away)."""
+        A, B = _near_path(sit, self.reach)
+        d = B - A
+        L2 = np.maximum((d * d).sum(axis=1), 1e-18)
+        P = ref[1:, :2]
+        t = np.clip(((P[:, None, :] - A) * d).sum(axis=2) / L2, 0.0, 1.0)
+        gap = np.hypot(*(A + t[..., None] * d - P[:, None, :]).transpose(2, 0, 1))
+        k = gap.argmin(axis=1)
+        n = np.stack([-d[k, 1], d[k, 0]], axis=1) / np.sqrt(L2[k])[:, None]
+        tk = t[np.arange(len(k)), k]
+        end = np.where(tk <= 0.0, 1.0, np.where(tk >= 1.0, 1.0, 0.0))
+        e = np.where((tk <= 0.0)[:, None], A[k], B[k])
+        lines = np.column_stack([n, (n * A[k]).sum(axis=1), end, e])
+        eps = 1e-3
+        probe = np.stack([P, P + (eps, 0), P - (eps, 0), P + (0, eps), P - (0, eps)], axis=1)
+        f = np.asarray(sit.static_distance(probe), float)
+        static = np.column_stack([f[:, 0], (f[:, 1] - f[:, 2]) / (2 * eps), (f[:, 3] - f[:, 4]) / (2 * eps), P])
+        movers = np.tile([1e6, 1e6, 0.0, 0.0, 0.0], (max_movers, 1))
+        M = np.asarray(sit.movers, float).reshape(-1, 5)
+        if len(M):
+            near = np.argsort(np.hypot(M[:, 0] - sit.state[0], M[:, 1] - sit.state[1]))[:max_movers]
+            movers[:len(near)] = M[near]
+        return {"state": np.asarray(sit.state, float), "subgoal": np.asarray(sit.subgoal, float),
+                "command": self.current_command(sit), "lines": lines, "static": static, "movers": movers}
+
+    # ------------------------------------------------------------------ the one judgement
+    def evaluate(self, sit: Situation, U: np.ndarray) -> tuple[np.ndarray, np.ndarray, dict]:
+        """``(cost (S,), violation (S,), {constraint name: (S,)})`` of command sequences
+        ``U`` ``(S, K, nu)``: the number every local solver's answer is judged by."""
+        U = np.asarray(U, float)
+        if U.ndim == 2:
+            U = U[None]
+        Z = self.rollout(sit, U)
+        cost = np.zeros(len(U))
+        for w, t in self.objective:
+            cost = cost + w * t.batched(Z, U, sit, self)
+        parts = {c.name: c.batched(Z, U, sit, self) for c in self.constraints}
+        viol = np.zeros(len(U))
+        for v in parts.values():
+            viol = viol + v
+        return cost, viol, parts
+
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        """Per-command lower and upper limits ``(nu,)``: the robot's velocity limits."""
+        r = self.robot
+        lo = [r.v_min, -r.w_max, -r.vy_max][:self.nu]
+        hi = [r.v_max, r.w_max, r.vy_max][:self.nu]
+        return np.array(lo, float), np.array(hi, float)
+
+    def rates(self) -> np.ndarray:
+        """Largest change of each command component per interval (acceleration x interval)."""
+        r = self.robot
+        a_lin = r.a_max / math.sqrt(2) if self.nu == 3 else r.a_max
+        return np.array([a_lin, r.alpha_max, a_lin][:self.nu]) * (self.m * self.h)
+
+
+# ----------------------------------------------------------------------------- public term names
+def goal_distance() -> GoalDistance:
+    """Distance from the end of the window to the subgoal."""
+    return GoalDistance()
+
+
+def goal_heading() -> GoalHeading:
+    """Heading error at the end of the window towards the subgoal (``1 - cos``)."""
+    return GoalHeading()
+
+
+def path_distance() -> PathDistance:
+    """Mean distance of the predicted positions to the global path."""
+    return PathDistance()
+
+
+def speed() -> Speed:
+    """Mean forward speed (use a negative weight to reward it)."""
+    return Speed()
+
+
+def smoothness() -> Smoothness:
+    """Sum of squared command changes."""
+    return Smoothness()
+
+
+def obstacle_cost(scale: float = 0.3) -> ObstacleCost:
+    """Soft cost of being near obstacles and movers: mean ``exp(-gap / scale)``."""
+    return ObstacleCost(scale)
+
+
+def custom(fn: Callable, name: str = "custom") -> Custom:
+    """A term ``fn(Z, U, m)`` of your own (see :class:`Custom`)."""
+    return Custom(fn, name)
+
+
+def clearance() -> Clearance:
+    """Clearance constraint; ``clearance() >= d`` keeps ``d`` metres from obstacles and movers."""
+    return Clearance(0.0)
+
+
+def can_stop(margin: float = 0.0) -> CanStop:
+    """The robot can brake to a stop at the end of the window, ``margin`` metres short of
+    the static obstacles."""
+    return CanStop(margin)
+
+
+def default_local_program(robot: RobotSpec, horizon: float = 2.0, intervals: int = 10, step: float = 0.1,
+                          margin: float = 0.02) -> LocalProgram:
+    """The window program ``mpc`` solves unless given one: reach the subgoal, stay near the
+    global path, keep speed, change commands smoothly; clearance and a stop at the end."""
+    lp = LocalProgram(robot, horizon, intervals, step, name="default")
+    lp.minimize(1.0 * goal_distance() + 0.3 * goal_heading() + 0.5 * path_distance() - 0.5 * speed()
+                + 0.05 * smoothness() + 0.2 * obstacle_cost())
+    lp.subject_to(clearance() >= margin)
+    lp.subject_to(can_stop(margin))
+    return lp

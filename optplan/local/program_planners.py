@@ -1,0 +1,211 @@
+"""Local planners that solve a window program (:mod:`optplan.formulations.local_program`).
+
+* ``dwa`` over a program (:class:`ProgramSampler`): the dynamic window's constant commands,
+  each held over the whole window, scored by the program's own cost and constraints; the
+  admissible sample of least cost is driven (the least violating one when none holds).
+* ``mpc`` (:class:`MPCPlanner`): CasADi NMPC of the same program by multiple shooting
+  (IPOPT), built once with the situation as parameters and solved every period. Its start
+  is the better, under the program, of the previous solution shifted by one period and the
+  best sample. The answer is judged by the program's batched view; when IPOPT fails or its
+  plan violates a constraint there, the best admissible sample is driven instead and the
+  step's info says so. Ruckig limits the first command to the robot's jerk.
+
+Every step's ``Command.info`` carries ``cost`` and ``violation`` under the program, the
+solver's ``status`` and its ``solve_ms``.
+"""
+from __future__ import annotations
+
+import math
+import time
+from typing import Any
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..formulations.local_program import LocalProgram, Situation, SymbolicSituation, default_local_program
+from ..world.robot import Command, RobotSpec, RobotState
+from .base import LocalContext
+from .limiter import RuckigLimiter
+from .window import dynamic_window, sample_grid
+
+FEASIBLE = 1e-6   # a violation below this counts as none (the batched view's round-off)
+
+
+def situation_of(ctx: LocalContext) -> Situation:
+    """The window program's :class:`Situation` of a control step."""
+    s = ctx.state
+    return Situation(state=np.array([s.x, s.y, s.theta, s.v, s.w, s.vy], float),
+                     subgoal=np.asarray(ctx.subgoal, float), path=np.asarray(ctx.global_path, float),
+                     static_distance=ctx.static_distance, movers=np.asarray(ctx.dynamic, float).reshape(-1, 5))
+
+
+class ProgramSampler:
+    """Sampling solver of a window program: the dynamic window's ``n_v x n_w`` constant
+    commands (``n_vy`` sideways speeds too on an omni robot), each held over the window."""
+
+    def __init__(self, robot: RobotSpec, dt: float, program: LocalProgram | None = None, n_v: int = 11,
+                 n_w: int = 21, n_vy: int = 5, name: str = "dwa") -> None:
+        self.robot, self.dt, self.name = robot, float(dt), name
+        self.lp = program if program is not None else default_local_program(robot, step=dt)
+        if not isinstance(self.lp, LocalProgram):
+            raise ParameterError(f"local_program must be an op.LocalProgram, got {type(self.lp).__name__}")
+        if self.lp.robot.model != robot.model:
+            raise ParameterError(f"the local program is for a {self.lp.robot.model} robot, the scenario's is "
+                                 f"{robot.model}")
+        for k, v in (("n_v", n_v), ("n_w", n_w), ("n_vy", n_vy)):
+            if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 1:
+                raise ParameterError(f"{k} must be an integer >= 1, got {v!r}")
+        self.n = (int(n_v), int(n_w), int(n_vy))
+
+    def reset(self, state: RobotState, global_path: np.ndarray) -> None:
+        pass
+
+    def samples(self, ctx: LocalContext) -> np.ndarray:
+        """``(S, K, nu)``: the window's constant commands, each repeated over the intervals."""
+        win = dynamic_window(self.robot, ctx.state, ctx.dt, omni=self.lp.nu == 3)
+        v, vy, w = sample_grid(win, self.n[0], self.n[1], self.n[2] if self.lp.nu == 3 else 1)
+        lin = np.repeat(np.asarray(v, float), len(w))
+        cols = [lin, np.tile(np.asarray(w, float), len(v))]
+        if self.lp.nu == 3:
+            cols.append(np.repeat(np.asarray(vy, float), len(w)))
+        U = np.stack(cols, axis=1)
+        return np.repeat(U[:, None, :], self.lp.K, axis=1)
+
+    def best(self, sit: Situation, U: np.ndarray) -> tuple[int, np.ndarray, np.ndarray]:
+        """Index of the best sample (least cost among the admissible, else least violation),
+        and every sample's cost and violation."""
+        cost, viol, _ = self.lp.evaluate(sit, U)
+        ok = viol <= FEASIBLE
+        i = int(np.argmin(np.where(ok, cost, np.inf))) if ok.any() else int(np.argmin(viol))
+        return i, cost, viol
+
+    def command(self, ctx: LocalContext) -> Command:
+        t0 = time.perf_counter()
+        sit = situation_of(ctx)
+        U = self.samples(ctx)
+        i, cost, viol = self.best(sit, U)
+        u = U[i, 0]
+        info = {"planner": self.name, "mode": "sample" if viol[i] <= FEASIBLE else "least-violation",
+                "cost": float(cost[i]), "violation": float(viol[i]), "status": "sampled",
+                "n_samples": len(U), "solve_ms": (time.perf_counter() - t0) * 1e3}
+        return Command(v=float(u[0]), w=float(u[1]), vy=float(u[2]) if self.lp.nu == 3 else 0.0, info=info)
+
+
+class MPCPlanner:
+    """CasADi NMPC of a window program (see the module docstring).
+
+    Args:
+        robot, dt: the robot and the control period.
+        program: the :class:`LocalProgram` (default :func:`default_local_program` with a
+            2 s horizon in 10 intervals).
+        max_movers: mover slots of the built problem (the nearest are taken).
+        n_v, n_w: the sampled window (warm start and fallback).
+        max_iter: IPOPT's iteration limit per step.
+    """
+
+    name = "mpc"
+
+    def __init__(self, robot: RobotSpec, dt: float, program: LocalProgram | None = None, max_movers: int = 10,
+                 n_v: int = 9, n_w: int = 15, max_iter: int = 40) -> None:
+        import casadi as ca
+
+        self.robot, self.dt = robot, float(dt)
+        self.sampler = ProgramSampler(robot, dt, program, n_v=n_v, n_w=n_w, name="mpc")
+        lp = self.lp = self.sampler.lp
+        if isinstance(max_movers, bool) or not isinstance(max_movers, (int, np.integer)) or max_movers < 0:
+            raise ParameterError(f"max_movers must be an integer >= 0, got {max_movers!r}")
+        if isinstance(max_iter, bool) or not isinstance(max_iter, (int, np.integer)) or max_iter < 1:
+            raise ParameterError(f"max_iter must be an integer >= 1, got {max_iter!r}")
+        self.max_movers = int(max_movers)
+        opti = self.opti = ca.Opti()
+        U = self.U = opti.variable(lp.K, lp.nu)
+        Z = self.Z = opti.variable(lp.N + 1, 3)
+        ps = self.ps = SymbolicSituation(opti, lp, self.max_movers)
+        opti.subject_to(Z[0, :] == ps.state[:3].T)
+        for k in range(lp.K):                       # multiple shooting: every Euler step a constraint
+            for i in range(lp.m):
+                j = k * lp.m + i
+                opti.subject_to(Z[j + 1, :] == lp.step_symbolic(Z[j, :], U[k, :]))
+        lo, hi = lp.bounds()
+        rate = lp.rates()
+        first = rate * min(1.0, self.dt / (lp.m * lp.h))   # the first interval starts one period's reach away
+        for c in range(lp.nu):
+            opti.subject_to(opti.bounded(lo[c], U[:, c], hi[c]))
+            opti.subject_to(opti.bounded(-first[c], U[0, c] - ps.command[c], first[c]))
+            if lp.K > 1:
+                opti.subject_to(opti.bounded(-rate[c], U[1:, c] - U[:-1, c], rate[c]))
+        objective = 0
+        for w, term in lp.objective:
+            objective += w * term.symbolic(Z, U, ps, lp)
+        opti.minimize(objective)
+        for con in lp.constraints:
+            for expr, lower in con.symbolic(Z, U, ps, lp):
+                opti.subject_to(expr >= lower)
+        opti.solver("ipopt", {"print_time": False, "expand": True},
+                    {"print_level": 0, "max_iter": int(max_iter), "tol": 1e-4, "acceptable_tol": 1e-3,
+                     "sb": "yes", "warm_start_init_point": "no"})
+        acc = [lp.rates()[c] / (lp.m * lp.h) for c in range(lp.nu)]
+        jerk = math.inf if robot.jerk_max is None else robot.jerk_max
+        ang_jerk = math.inf if robot.jerk_max is None else robot.jerk_max * robot.alpha_max / robot.a_max
+        self.limiter = RuckigLimiter(self.dt, acc, [jerk, ang_jerk, jerk][:lp.nu])
+        self.previous: np.ndarray | None = None
+
+    def reset(self, state: RobotState, global_path: np.ndarray) -> None:
+        self.previous = None
+        self.limiter.reset([state.v, state.w, state.vy][:self.lp.nu])
+
+    def _start(self, sit: Situation, samples: np.ndarray) -> tuple[np.ndarray, int, np.ndarray, np.ndarray]:
+        """The solver's start: the better of the shifted previous plan and the best sample."""
+        i, cost, viol = self.sampler.best(sit, samples)
+        start = samples[i]
+        if self.previous is not None:
+            shifted = np.concatenate([self.previous[1:], self.previous[-1:]], axis=0)
+            lo, hi = self.lp.bounds()
+            shifted = np.clip(shifted, lo, hi)
+            c, v, _ = self.lp.evaluate(sit, shifted)
+            if (v[0], c[0]) < (viol[i], cost[i]):
+                start = shifted
+        return start, i, cost, viol
+
+    def command(self, ctx: LocalContext) -> Command:
+        t0 = time.perf_counter()
+        lp = self.lp
+        sit = situation_of(ctx)
+        samples = self.sampler.samples(ctx)
+        start, i, cost, viol = self._start(sit, samples)
+        ref = lp.rollout(sit, start[None])[0]
+        self.ps.set(lp.symbolic_values(sit, ref, self.max_movers))
+        self.opti.set_initial(self.U, start)
+        self.opti.set_initial(self.Z, ref)
+        status, plan = "solved", None
+        try:
+            sol = self.opti.solve()
+            plan = np.asarray(sol.value(self.U), float).reshape(lp.K, lp.nu)
+        except RuntimeError:
+            status = str(self.opti.stats().get("return_status", "failed"))
+            try:   # IPOPT's last iterate may still be a good plan: the program judges it
+                plan = np.asarray(self.opti.debug.value(self.U), float).reshape(lp.K, lp.nu)
+            except RuntimeError:
+                plan = None
+        mode = "mpc"
+        if plan is not None and np.all(np.isfinite(plan)):
+            c, v, _ = lp.evaluate(sit, plan)
+            p_cost, p_viol = float(c[0]), float(v[0])
+        else:
+            p_cost, p_viol = math.inf, math.inf
+        if p_viol > FEASIBLE and not p_viol <= viol[i]:
+            plan, p_cost, p_viol = samples[i], float(cost[i]), float(viol[i])
+            mode = "fallback-sample"
+        self.previous = plan
+        # the first command within one period's reach (an iterate IPOPT stopped at may not
+        # hold the rate rows), then jerk-limited
+        win = dynamic_window(self.robot, ctx.state, ctx.dt, omni=lp.nu == 3)
+        v, w, vy = win.clip(plan[0][0], plan[0][1], plan[0][2] if lp.nu == 3 else 0.0)
+        target = np.array([v, w, vy][:lp.nu])
+        u, ruckig = (self.limiter.step(target) if self.robot.jerk_max is not None
+                     else (target, "unlimited"))
+        if self.robot.jerk_max is None:
+            self.limiter.reset(u)
+        info: dict[str, Any] = {"planner": self.name, "mode": mode, "status": status, "cost": p_cost,
+                                "violation": p_viol, "ruckig": ruckig, "solve_ms": (time.perf_counter() - t0) * 1e3}
+        return Command(v=float(u[0]), w=float(u[1]), vy=float(u[2]) if lp.nu == 3 else 0.0, info=info)
