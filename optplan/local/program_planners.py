@@ -106,7 +106,7 @@ class MPCPlanner:
     name = "mpc"
 
     def __init__(self, robot: RobotSpec, dt: float, program: LocalProgram | None = None, max_movers: int = 10,
-                 n_v: int = 9, n_w: int = 15, max_iter: int = 40) -> None:
+                 n_v: int = 9, n_w: int = 15, max_iter: int = 20) -> None:
         import casadi as ca
 
         self.robot, self.dt = robot, float(dt)
@@ -143,15 +143,24 @@ class MPCPlanner:
                 opti.subject_to(expr >= lower)
         opti.solver("ipopt", {"print_time": False, "expand": True},
                     {"print_level": 0, "max_iter": int(max_iter), "tol": 1e-4, "acceptable_tol": 1e-3,
-                     "sb": "yes", "warm_start_init_point": "no"})
+                     "sb": "yes", "warm_start_init_point": "yes", "warm_start_bound_push": 1e-6,
+                     "warm_start_mult_bound_push": 1e-6, "mu_init": 1e-3})
+        # one Function call per step: the situation, the start and the multipliers in; the
+        # plan and the multipliers out (Opti's set_initial/set_value cost more than the solve)
+        self.inputs = ("state", "subgoal", "command", "lines", "static", "movers")
+        self.solve = opti.to_function("mpc", [getattr(ps, k) for k in self.inputs] + [U, Z, opti.lam_g],
+                                      [U, opti.lam_g])
+        self.n_duals = int(opti.lam_g.shape[0])
         acc = [lp.rates()[c] / (lp.m * lp.h) for c in range(lp.nu)]
         jerk = math.inf if robot.jerk_max is None else robot.jerk_max
         ang_jerk = math.inf if robot.jerk_max is None else robot.jerk_max * robot.alpha_max / robot.a_max
         self.limiter = RuckigLimiter(self.dt, acc, [jerk, ang_jerk, jerk][:lp.nu])
         self.previous: np.ndarray | None = None
+        self.duals: np.ndarray | None = None   # the last solve's multipliers: IPOPT's warm start
 
     def reset(self, state: RobotState, global_path: np.ndarray) -> None:
         self.previous = None
+        self.duals = None
         self.limiter.reset([state.v, state.w, state.vy][:self.lp.nu])
 
     def _start(self, sit: Situation, samples: np.ndarray) -> tuple[np.ndarray, int, np.ndarray, np.ndarray]:
@@ -174,19 +183,18 @@ class MPCPlanner:
         samples = self.sampler.samples(ctx)
         start, i, cost, viol = self._start(sit, samples)
         ref = lp.rollout(sit, start[None])[0]
-        self.ps.set(lp.symbolic_values(sit, ref, self.max_movers))
-        self.opti.set_initial(self.U, start)
-        self.opti.set_initial(self.Z, ref)
-        status, plan = "solved", None
+        values = lp.symbolic_values(sit, ref, self.max_movers)
+        duals = self.duals if self.duals is not None else np.zeros(self.n_duals)
+        plan = None
         try:
-            sol = self.opti.solve()
-            plan = np.asarray(sol.value(self.U), float).reshape(lp.K, lp.nu)
-        except RuntimeError:
-            status = str(self.opti.stats().get("return_status", "failed"))
-            try:   # IPOPT's last iterate may still be a good plan: the program judges it
-                plan = np.asarray(self.opti.debug.value(self.U), float).reshape(lp.K, lp.nu)
-            except RuntimeError:
-                plan = None
+            out_u, out_lam = self.solve(*[values[k] for k in self.inputs], start, ref, duals)
+            stats = self.solve.stats()
+            status = "solved" if stats.get("success") else str(stats.get("return_status", "failed"))
+            # a failed solve's last iterate may still be a good plan: the program judges it
+            plan = np.asarray(out_u, float).reshape(lp.K, lp.nu)
+            self.duals = np.asarray(out_lam, float).ravel() if stats.get("success") else None
+        except RuntimeError as exc:
+            status, self.duals = f"error: {str(exc).splitlines()[0][:80]}", None
         mode = "mpc"
         if plan is not None and np.all(np.isfinite(plan)):
             c, v, _ = lp.evaluate(sit, plan)

@@ -1,0 +1,107 @@
+"""Every local solver on the same worlds, like for like (issue 42).
+
+Solvers: ``dwa`` (Fox's sampled preset), ``qp-dwa`` (sampling + OSQP polish + Ruckig) and
+``mpc`` (CasADi NMPC of the default window program, ``optplan.local_terms.default_local_program``).
+Worlds: the BARN-style clutter family (``clutter``: entry corridor, 0.15 m cells, r = 0.2 m,
+0.5 m/s), the same with 2 movers (``clutter-movers``), and the shipped dynamic scenarios. The
+clutter seeds start at 5000 by default: they were not used while the solvers were written.
+
+Columns: success, collisions (runs with any), timeouts, stuck, median time to goal and
+path length over the successes, a BARN-style score (success x t_opt / clip(t, 2 t_opt,
+8 t_opt), t_opt = the global path's length over v_max, averaged over all runs), the local
+planner's step time median and p95 over every step, and how many runs kept the robot's
+acceleration limits (|dv/dt| <= a_max, |dw/dt| <= alpha_max). For mpc, the share of steps
+that fell back to the best sample.
+
+    python benchmarks/local_solvers.py                       # 20 clutter + 20 clutter-movers seeds, 4 scenarios
+    python benchmarks/local_solvers.py --seeds 5 --solvers mpc --worlds clutter-movers
+"""
+from __future__ import annotations
+
+import argparse
+import time
+from collections import defaultdict
+
+import numpy as np
+
+import optplan as op
+from optplan.local import make_local_planner
+from optplan.worldgen.clutter import family_options, family_scenario
+
+SCENARIOS = ("hou2024_dynamic1", "hou2024_dynamic2", "hou2024_dynamic3", "hou2024_dynamic4")
+
+
+def _timed_planner(name: str, world: str, seed: int):
+    """The planner the closed loop would build for ``world`` (family parameters included),
+    its ``command`` timed per step."""
+    sc = family_scenario(world, seed) or op.load_scenario(world)
+    params = family_options(world).get("local_params", {}).get(name, {})
+    planner = make_local_planner(name, sc.robot, sc.dt, **params)
+    times, modes = [], []
+    inner = planner.command
+
+    def command(ctx):
+        t0 = time.perf_counter()
+        cmd = inner(ctx)
+        times.append((time.perf_counter() - t0) * 1e3)
+        modes.append(cmd.info.get("mode"))
+        return cmd
+
+    planner.command = command
+    return planner, sc, times, modes
+
+
+def run(solvers, worlds, seeds, seed0) -> dict:
+    rows = defaultdict(lambda: defaultdict(list))
+    for world in worlds:
+        run_seeds = range(seed0, seed0 + seeds) if family_scenario(world, 0) is not None else range(1)
+        for name in solvers:
+            for seed in run_seeds:
+                planner, sc, times, modes = _timed_planner(name, world, seed)
+                r = op.simulate(world, global_planner="astar", local_planner=planner, seed=seed)
+                row = rows[(world, name)]
+                row["status"].append(r.status)
+                row["collided"].append(r.collisions > 0)
+                row["time"].append(r.time_s)
+                row["length"].append(r.path_length)
+                row["steps_ms"].extend(times)
+                row["fallback"].append(sum(m == "fallback-sample" for m in modes) / max(len(modes), 1))
+                gp = np.asarray(r.global_path, float)
+                t_opt = float(np.hypot(*np.diff(gp, axis=0).T).sum()) / sc.robot.v_max if len(gp) > 1 else 1.0
+                ok = r.reached and r.collisions == 0
+                row["barn"].append(ok * t_opt / float(np.clip(r.time_s, 2 * t_opt, 8 * t_opt)))
+                row["limits"].append(r.max_abs_accel <= sc.robot.a_max * (1 + 1e-6)
+                                     and r.max_abs_ang_accel <= sc.robot.alpha_max * (1 + 1e-6))
+                row["ok"].append(ok)
+                print(f"  {world} {name} seed {seed}: {r.status}, {r.collisions} collisions, {r.time_s:.1f} s, "
+                      f"step median {np.median(times):.1f} ms", flush=True)
+    return rows
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--solvers", nargs="+", default=["dwa", "qp-dwa", "mpc"])
+    ap.add_argument("--worlds", nargs="+", default=["clutter", "clutter-movers", *SCENARIOS])
+    ap.add_argument("--seeds", type=int, default=20, help="seeds per generated family")
+    ap.add_argument("--seed0", type=int, default=5000)
+    args = ap.parse_args(argv)
+    t0 = time.perf_counter()
+    rows = run(args.solvers, args.worlds, args.seeds, args.seed0)
+    print(f"\nfamilies: seeds {args.seed0}..{args.seed0 + args.seeds - 1}; {time.perf_counter() - t0:.0f} s")
+    print("| world | solver | success | collided | timeout | stuck | time to goal s | length m | BARN | "
+          "step ms median | p95 | limits held | mpc fallback steps |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for (world, name), r in rows.items():
+        n = len(r["status"])
+        ok = np.array(r["ok"])
+        med = lambda a: f"{np.median(np.array(a)[ok]):.1f}" if ok.any() else "-"  # noqa: E731
+        steps = np.array(r["steps_ms"])
+        print(f"| {world} | {name} | {ok.sum()}/{n} | {sum(r['collided'])} | {r['status'].count('timeout')} | "
+              f"{r['status'].count('stuck')} | {med(r['time'])} | {med(r['length'])} | {np.mean(r['barn']):.3f} | "
+              f"{np.median(steps):.1f} | {np.percentile(steps, 95):.1f} | {sum(r['limits'])}/{n} | "
+              f"{np.mean(r['fallback']) * 100 if name == 'mpc' else 0:.1f} % |")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
