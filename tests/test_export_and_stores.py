@@ -369,3 +369,31 @@ def test_a_failing_write_is_one_optplan_error_and_keeps_the_stored_runs(tmp_path
     store.conn.execute("PRAGMA query_only = OFF")
     assert set(store.rows()) == {"k1"} and not store.conn.in_transaction
     store.close()
+
+
+@pytest.mark.parametrize("spec,pipelines", [
+    ({"kind": "plan", "maps": ["chen2025_20"], "algorithms": ["astar", "gwo"], "refine": ["none", "qp"],
+      "runs": 2, "params": {"pop": 5, "iters": 5}}, 4),
+    ({"kind": "simulate", "scenarios": ["yuan2021_added_obstacles"], "algorithms": ["astar"],
+      "refine": ["none", "qp"], "local_planners": ["dwa", "qp-dwa"], "runs": 1,
+      "params": {"time_limit": 5}}, 4),
+])
+def test_ompls_own_importer_reads_the_export(tmp_path, spec, pipelines):
+    """ompl.tools.readBenchmarkLog (what ompl_benchmark_statistics.py and Planner Arena run)
+    loads the logs: one OMPL planner per pipeline, every stored run present (issue 47: a
+    duplicated 'seed' column was refused, and refine/local pipelines were merged into one)."""
+    import sqlite3
+
+    ompl_tools = pytest.importorskip("ompl.tools")
+    from optplan.bench import run_experiment
+
+    db = tmp_path / "r.sqlite"
+    run_experiment(spec, db=db, workers=1, progress=False)
+    with ResultStore(db) as store:
+        files = export_ompl(store, tmp_path / "ompl")
+        stored = store.count()
+    out = tmp_path / "benchmark.db"
+    ompl_tools.readBenchmarkLog(str(out), [str(f) for f in files], False)
+    conn = sqlite3.connect(out)
+    assert conn.execute("SELECT COUNT(*) FROM runs").fetchone()[0] == stored
+    assert conn.execute("SELECT COUNT(*) FROM plannerConfigs").fetchone()[0] == pipelines

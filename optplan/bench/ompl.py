@@ -42,7 +42,7 @@ _STANDARD = (
 # columns that are identity or bookkeeping, not measurements of the run
 _NOT_MEASURED = {"key", "experiment", "kind", "target", "algorithm", "label", "refine", "local_planner", "status",
                  "error", "worker", "finished_at", "optplan_version", "params", "target_spec", "program",
-                 "runtime_s", "wall_s", "length", "path_length", "min_clearance", "feasible"}
+                 "runtime_s", "wall_s", "length", "path_length", "min_clearance", "feasible", "seed", "code"}
 
 
 def _safe_token(text: str) -> str:
@@ -98,9 +98,17 @@ def ompl_log(experiment: str, target: str, rows: Iterable[Mapping[str, Any]], ho
     extra = _extra_properties(rows)
     props = [("solved", "BOOLEAN", solved)] + list(_STANDARD) + \
         [(name, typ, (lambda c: lambda r: r.get(c))(col)) for col, name, typ in extra]
+    from .summary import pipeline_name
+
+    # one OMPL planner per pipeline (algorithm x refine x local planner), named as the tables name it
+    vary_refine = len({r.get("refine") for r in rows}) > 1
+    vary_local = len({r.get("local_planner") for r in rows}) > 1
     by_planner: dict[str, list[dict]] = defaultdict(list)
-    for r in sorted(rows, key=lambda r: (str(r.get("label") or r.get("algorithm")), r.get("seed") or 0)):
-        by_planner[_one_line(r.get("label") or r.get("algorithm") or "planner")].append(r)
+    for r in sorted(rows, key=lambda r: (str(r.get("label") or r.get("algorithm")), str(r.get("refine")),
+                                         str(r.get("local_planner")), r.get("seed") or 0)):
+        name = pipeline_name(str(r.get("label") or r.get("algorithm") or "planner"), r.get("refine"),
+                             r.get("local_planner"), vary_refine, vary_local)
+        by_planner[_one_line(name)].append(r)
     times = [float(r["wall_s"]) for r in rows if isinstance(r.get("wall_s"), (int, float))]
     dates = sorted(str(r["finished_at"]) for r in rows if r.get("finished_at"))
     lines = [f"optplan version {__version__}",

@@ -27,6 +27,17 @@ from .tables import Table
 GroupKey = tuple  # (label, refine, local_planner)
 
 
+def pipeline_name(label: str, refine: str | None, local: str | None, vary_refine: bool, vary_local: bool) -> str:
+    """The name of one pipeline (algorithm x refine x local planner) in tables and exports:
+    ``label``, plus ``+refine`` / ``/local`` where the experiment varies them."""
+    name = label
+    if vary_refine:
+        name += f"+{refine or 'none'}"
+    if vary_local:
+        name += f"/{local}"
+    return name
+
+
 @dataclass
 class ExperimentResults:
     """The stored rows of one spec, with helpers to group them."""
@@ -50,12 +61,7 @@ class ExperimentResults:
 
     def group_name(self, label: str, refine: str | None, local: str | None) -> str:
         """``label``, plus ``+refine`` / ``/local`` when the spec varies them."""
-        name = label
-        if len(self.spec.refine) > 1:
-            name += f"+{refine or 'none'}"
-        if len(self.spec.local_planners) > 1:
-            name += f"/{local}"
-        return name
+        return pipeline_name(label, refine, local, len(self.spec.refine) > 1, len(self.spec.local_planners) > 1)
 
     def groups(self, target: str) -> dict[GroupKey, list[RunRecord]]:
         """Records of one target by (label, refine, local planner), in spec order."""
