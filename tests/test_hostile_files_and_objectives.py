@@ -193,3 +193,15 @@ def test_every_case_of_the_hostile_input_script_ends_in_one_line():
                           timeout=900)
     assert done.returncode == 0, done.stdout[-3000:]
     assert " 0 traceback, 0 hang, 0 partial, 0 other" in done.stdout
+
+
+def test_every_listed_map_name_loads_and_the_readmes_scenario_ships():
+    """Issue 47: 'paper_maps' (the catalogue) was offered as a map and failed; the README's
+    `--scen arena.map.scen` named a file that did not ship."""
+    from optplan.world import maps
+    from optplan.cli import main
+
+    assert "paper_maps" not in maps.names()
+    for name in maps.names():
+        op.load_map(name)
+    assert main(["plan", "arena.map", "--scen", "arena.map.scen", "--query", "40", "--json"]) == 0

@@ -245,7 +245,17 @@ def load_scen(path: str | os.PathLike) -> list[ScenEntry]:
     """Read a Moving AI scenario file (``version 1`` or ``version 1.0``; tab or space separated)."""
     _check_path_arg(path, "load_scen")
     path = Path(path)
-    lines = [ln for ln in _read_text(path).replace("\r", "").split("\n") if ln.strip()]
+    if not os.path.lexists(path):
+        from . import maps
+
+        shipped = maps.find(str(path))        # a scenario shipped beside its map (arena.map.scen)
+        if shipped is None or shipped.suffix != ".scen":
+            raise MapFormatError(f"scenario file {path} does not exist (shipped: arena.map.scen, beside the arena map)")
+        path = shipped
+    data = read_file(path, "scenario file", MAX_FILE_BYTES)
+    if b"\x00" in data:
+        raise MapFormatError(f"scenario file {path} contains binary data; expected a Moving AI .scen text file")
+    lines = [ln for ln in data.decode("latin-1").replace("\r", "").split("\n") if ln.strip()]
     if not lines or not re.fullmatch(r"version\s+1(\.0+)?", lines[0].strip(), flags=re.I):
         raise MapFormatError(f"{path}: first line must be 'version 1' or 'version 1.0'")
     out = []

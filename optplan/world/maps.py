@@ -7,24 +7,24 @@ MAPS_DIR = Path(__file__).resolve().parent.parent / "data" / "maps"
 _SUFFIXES = (".map", ".txt", ".csv", ".npy", ".yaml", ".json")
 
 
+PAPER_CATALOGUE = MAPS_DIR / "paper_maps.yaml"
+
+
 def names() -> list[str]:
-    """Names of the shipped maps (file stems)."""
-    return sorted(p.stem for p in MAPS_DIR.iterdir() if p.suffix in _SUFFIXES)
+    """Names of the shipped maps (file stems; the paper-map catalogue is not a map)."""
+    return sorted(p.stem for p in MAPS_DIR.iterdir() if p.suffix in _SUFFIXES and p != PAPER_CATALOGUE)
 
 
 def find(name: str) -> Path | None:
     """Path of a shipped map given its stem or file name, or ``None``."""
     direct = MAPS_DIR / name
-    if direct.is_file():
+    if direct.is_file() and direct != PAPER_CATALOGUE:
         return direct
     for suffix in _SUFFIXES:
         cand = MAPS_DIR / f"{name}{suffix}"
-        if cand.is_file():
+        if cand.is_file() and cand != PAPER_CATALOGUE:
             return cand
     return None
-
-
-PAPER_CATALOGUE = MAPS_DIR / "paper_maps.yaml"
 
 
 def paper_map_file(name: str) -> Path | None:
