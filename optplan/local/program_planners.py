@@ -107,8 +107,6 @@ class MPCPlanner:
 
     def __init__(self, robot: RobotSpec, dt: float, program: LocalProgram | None = None, max_movers: int = 10,
                  n_v: int = 9, n_w: int = 15, max_iter: int = 20) -> None:
-        import casadi as ca
-
         self.robot, self.dt = robot, float(dt)
         self.sampler = ProgramSampler(robot, dt, program, n_v=n_v, n_w=n_w, name="mpc")
         lp = self.lp = self.sampler.lp
@@ -117,46 +115,65 @@ class MPCPlanner:
         if isinstance(max_iter, bool) or not isinstance(max_iter, (int, np.integer)) or max_iter < 1:
             raise ParameterError(f"max_iter must be an integer >= 1, got {max_iter!r}")
         self.max_movers = int(max_movers)
-        opti = self.opti = ca.Opti()
-        U = self.U = opti.variable(lp.K, lp.nu)
-        Z = self.Z = opti.variable(lp.N + 1, 3)
-        ps = self.ps = SymbolicSituation(opti, lp, self.max_movers)
-        opti.subject_to(Z[0, :] == ps.state[:3].T)
-        for k in range(lp.K):                       # multiple shooting: every Euler step a constraint
-            for i in range(lp.m):
-                j = k * lp.m + i
-                opti.subject_to(Z[j + 1, :] == lp.step_symbolic(Z[j, :], U[k, :]))
-        lo, hi = lp.bounds()
-        rate = lp.rates()
-        first = rate * min(1.0, self.dt / (lp.m * lp.h))   # the first interval starts one period's reach away
-        for c in range(lp.nu):
-            opti.subject_to(opti.bounded(lo[c], U[:, c], hi[c]))
-            opti.subject_to(opti.bounded(-first[c], U[0, c] - ps.command[c], first[c]))
-            if lp.K > 1:
-                opti.subject_to(opti.bounded(-rate[c], U[1:, c] - U[:-1, c], rate[c]))
-        objective = 0
-        for w, term in lp.objective:
-            objective += w * term.symbolic(Z, U, ps, lp)
-        opti.minimize(objective)
-        for con in lp.constraints:
-            for expr, lower in con.symbolic(Z, U, ps, lp):
-                opti.subject_to(expr >= lower)
-        opti.solver("ipopt", {"print_time": False, "expand": True},
-                    {"print_level": 0, "max_iter": int(max_iter), "tol": 1e-4, "acceptable_tol": 1e-3,
-                     "sb": "yes", "warm_start_init_point": "yes", "warm_start_bound_push": 1e-6,
-                     "warm_start_mult_bound_push": 1e-6, "mu_init": 1e-3})
-        # one Function call per step: the situation, the start and the multipliers in; the
-        # plan and the multipliers out (Opti's set_initial/set_value cost more than the solve)
+        self.max_iter = int(max_iter)
         self.inputs = ("state", "subgoal", "command", "lines", "static", "movers")
-        self.solve = opti.to_function("mpc", [getattr(ps, k) for k in self.inputs] + [U, Z, opti.lam_g],
-                                      [U, opti.lam_g])
-        self.n_duals = int(opti.lam_g.shape[0])
+        self._solvers: dict[int, tuple[Any, int]] = {}
+        self._slots = self._solver_slots()
         acc = [lp.rates()[c] / (lp.m * lp.h) for c in range(lp.nu)]
         jerk = math.inf if robot.jerk_max is None else robot.jerk_max
         ang_jerk = math.inf if robot.jerk_max is None else robot.jerk_max * robot.alpha_max / robot.a_max
         self.limiter = RuckigLimiter(self.dt, acc, [jerk, ang_jerk, jerk][:lp.nu])
         self.previous: np.ndarray | None = None
         self.duals: np.ndarray | None = None   # the last solve's multipliers: IPOPT's warm start
+
+    def _solver_slots(self) -> tuple[int, ...]:
+        """The mover slot counts solvers are built for: a step uses the smallest that holds
+        the movers in view (each slot adds a row per predicted state, parked or not)."""
+        return tuple(sorted({n for n in (0, 2, 5, self.max_movers) if n <= self.max_movers}))
+
+    def _solver(self, movers: int) -> tuple[Any, int, int]:
+        """``(casadi Function, its mover slots, its number of multipliers)`` for ``movers``
+        movers in view, built on first use: one Function call per step takes the situation,
+        the start and the multipliers in and gives the plan and the multipliers out (Opti's
+        set_initial/set_value cost more than the solve)."""
+        slots = next((n for n in self._slots if n >= movers), self._slots[-1])
+        if slots not in self._solvers:
+            import casadi as ca
+
+            lp = self.lp
+            opti = ca.Opti()
+            U = opti.variable(lp.K, lp.nu)
+            Z = opti.variable(lp.N + 1, 3)
+            ps = SymbolicSituation(opti, lp, slots)
+            opti.subject_to(Z[0, :] == ps.state[:3].T)
+            for k in range(lp.K):                       # multiple shooting: every Euler step a constraint
+                for i in range(lp.m):
+                    j = k * lp.m + i
+                    opti.subject_to(Z[j + 1, :] == lp.step_symbolic(Z[j, :], U[k, :]))
+            lo, hi = lp.bounds()
+            rate = lp.rates()
+            first = rate * min(1.0, self.dt / (lp.m * lp.h))   # the first interval: one period's reach
+            for c in range(lp.nu):
+                opti.subject_to(opti.bounded(lo[c], U[:, c], hi[c]))
+                opti.subject_to(opti.bounded(-first[c], U[0, c] - ps.command[c], first[c]))
+                if lp.K > 1:
+                    opti.subject_to(opti.bounded(-rate[c], U[1:, c] - U[:-1, c], rate[c]))
+            objective = 0
+            for w, term in lp.objective:
+                objective += w * term.symbolic(Z, U, ps, lp)
+            opti.minimize(objective)
+            for con in lp.constraints:
+                for expr, lower in con.symbolic(Z, U, ps, lp):
+                    opti.subject_to(expr >= lower)
+            opti.solver("ipopt", {"print_time": False, "expand": True},
+                        {"print_level": 0, "max_iter": self.max_iter, "tol": 1e-4, "acceptable_tol": 1e-3,
+                         "sb": "yes", "warm_start_init_point": "yes", "warm_start_bound_push": 1e-6,
+                         "warm_start_mult_bound_push": 1e-6, "mu_init": 1e-3})
+            fn = opti.to_function(f"mpc{slots}", [getattr(ps, k) for k in self.inputs] + [U, Z, opti.lam_g],
+                                  [U, opti.lam_g])
+            self._solvers[slots] = (fn, int(opti.lam_g.shape[0]))
+        fn, n_duals = self._solvers[slots]
+        return fn, slots, n_duals
 
     def reset(self, state: RobotState, global_path: np.ndarray) -> None:
         self.previous = None
@@ -183,12 +200,14 @@ class MPCPlanner:
         samples = self.sampler.samples(ctx)
         start, i, cost, viol = self._start(sit, samples)
         ref = lp.rollout(sit, start[None])[0]
-        values = lp.symbolic_values(sit, ref, self.max_movers)
-        duals = self.duals if self.duals is not None else np.zeros(self.n_duals)
+        solve, slots, n_duals = self._solver(len(sit.movers))
+        values = lp.symbolic_values(sit, ref, slots)
+        # the last multipliers fit only the same problem (the same slots)
+        duals = self.duals if self.duals is not None and len(self.duals) == n_duals else np.zeros(n_duals)
         plan = None
         try:
-            out_u, out_lam = self.solve(*[values[k] for k in self.inputs], start, ref, duals)
-            stats = self.solve.stats()
+            out_u, out_lam = solve(*[values[k] for k in self.inputs], start, ref, duals)
+            stats = solve.stats()
             status = "solved" if stats.get("success") else str(stats.get("return_status", "failed"))
             # a failed solve's last iterate may still be a good plan: the program judges it
             plan = np.asarray(out_u, float).reshape(lp.K, lp.nu)
