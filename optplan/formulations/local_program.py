@@ -295,23 +295,35 @@ class ObstacleCost(LocalTerm):
 
 class Clearance(LocalConstraint):
     """Every predicted position keeps ``margin`` metres between the robot's edge and the
-    static obstacles, and between the robot and every predicted mover."""
+    static obstacles, and ``margin + mover_margin + mover_growth * t`` from every mover
+    predicted at constant velocity (``t`` seconds ahead: a prediction errs more the farther
+    it looks)."""
 
     name = "clearance"
 
-    def __init__(self, margin: float = 0.0) -> None:
-        self.margin = float(margin)
+    def __init__(self, margin: float = 0.0, mover_margin: float = 0.0, mover_growth: float = 0.0) -> None:
+        for what, v in (("margin", margin), ("mover_margin", mover_margin), ("mover_growth", mover_growth)):
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v < 0:
+                raise ParameterError(f"clearance {what} must be a finite number >= 0, got {v!r}")
+        self.margin, self.mover_margin, self.mover_growth = float(margin), float(mover_margin), float(mover_growth)
 
     def __ge__(self, margin: float) -> "Clearance":
-        return Clearance(margin)
+        return Clearance(margin, self.mover_margin, self.mover_growth)
+
+    def _mover_need(self, prog, n: int) -> np.ndarray:
+        return self.margin + self.mover_margin + self.mover_growth * prog.h * np.arange(1, n + 1)
 
     def batched(self, Z, U, sit, prog):
-        gap = np.minimum(prog.static_gap(Z, sit), prog.mover_gap(Z, sit))
-        return np.maximum(self.margin - gap, 0.0).max(axis=1)   # the deepest shortfall along the window
+        short = np.maximum(self.margin - prog.static_gap(Z, sit), 0.0)
+        need = self._mover_need(prog, Z.shape[1] - 1)
+        for gap in prog.mover_gaps(Z, sit):
+            short = np.maximum(short, need - gap)
+        return short.max(axis=1)   # the deepest shortfall along the window
 
     def symbolic(self, Z, U, ps, prog):
         rows = [(e, self.margin) for e in prog.static_rows(Z, ps)]
-        rows += [(e, 0.0) for e in prog.mover_rows(Z, ps, squared=True, margin=self.margin)]
+        need = self._mover_need(prog, Z.shape[0] - 1)
+        rows += [(e, 0.0) for e in prog.mover_rows(Z, ps, squared=True, margin=need)]
         return rows
 
 
@@ -468,18 +480,20 @@ class LocalProgram:
         return [L[j - 1, 0] + L[j - 1, 1] * (Z[j, 0] - L[j - 1, 3]) + L[j - 1, 2] * (Z[j, 1] - L[j - 1, 4])
                 - self.robot.radius for j in range(1, Z.shape[0])]
 
-    def mover_rows(self, Z, ps: "SymbolicSituation", squared: bool, margin: float = 0.0) -> list:
+    def mover_rows(self, Z, ps: "SymbolicSituation", squared: bool, margin=0.0) -> list:
         """Symbolic mover gaps over the parameter slots of the movers: ``|p - m(t)|^2 -
-        (R + r + margin)^2`` when ``squared`` (a constraint row ``>= 0``), else the edge distance."""
+        (R + r + margin_j)^2`` when ``squared`` (a constraint row ``>= 0``; ``margin`` a number
+        or one per predicted state), else the edge distance."""
         import casadi as ca
 
+        margins = np.broadcast_to(np.asarray(margin, float), (Z.shape[0] - 1,))
         rows = []
         for i in range(ps.movers.shape[0]):
             x, y, vx, vy, r = (ps.movers[i, c] for c in range(5))
             for j in range(1, Z.shape[0]):
                 t = self.h * j
                 d2 = (Z[j, 0] - (x + vx * t)) ** 2 + (Z[j, 1] - (y + vy * t)) ** 2
-                rows.append(d2 - (self.robot.radius + r + margin) ** 2 if squared
+                rows.append(d2 - (self.robot.radius + r + margins[j - 1]) ** 2 if squared
                             else ca.sqrt(d2 + _SMOOTH) - r - self.robot.radius)
         return rows
 
@@ -580,9 +594,10 @@ def custom(fn: Callable, name: str = "custom") -> Custom:
     return Custom(fn, name)
 
 
-def clearance() -> Clearance:
-    """Clearance constraint; ``clearance() >= d`` keeps ``d`` metres from obstacles and movers."""
-    return Clearance(0.0)
+def clearance(mover_margin: float = 0.0, mover_growth: float = 0.0) -> Clearance:
+    """Clearance constraint; ``clearance() >= d`` keeps ``d`` metres from obstacles and movers,
+    and ``mover_margin + mover_growth * t`` more from movers predicted ``t`` seconds ahead."""
+    return Clearance(0.0, mover_margin, mover_growth)
 
 
 def can_stop(margin: float = 0.0) -> CanStop:
@@ -598,6 +613,6 @@ def default_local_program(robot: RobotSpec, horizon: float = 2.0, intervals: int
     lp = LocalProgram(robot, horizon, intervals, step, name="default")
     lp.minimize(1.0 * goal_distance() + 0.3 * goal_heading() + 0.5 * path_distance() - 0.5 * speed()
                 + 0.05 * smoothness() + 0.2 * obstacle_cost())
-    lp.subject_to(clearance() >= margin)
+    lp.subject_to(clearance(mover_margin=0.1, mover_growth=0.1) >= margin)
     lp.subject_to(can_stop(margin))
     return lp

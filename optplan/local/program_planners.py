@@ -29,6 +29,7 @@ from .limiter import RuckigLimiter
 from .window import dynamic_window, sample_grid
 
 FEASIBLE = 1e-6   # a violation below this counts as none (the batched view's round-off)
+SLACK_WEIGHT = 1e3  # cost of a metre (or m^2 for mover rows) of constraint shortfall in mpc
 
 
 def situation_of(ctx: LocalContext) -> Situation:
@@ -161,10 +162,15 @@ class MPCPlanner:
             objective = 0
             for w, term in lp.objective:
                 objective += w * term.symbolic(Z, U, ps, lp)
-            opti.minimize(objective)
+            # the program's constraints with one shared slack at an exact-penalty weight: zero
+            # whenever the constraints can hold (they are then hard), the least shortfall when a
+            # mover leaves no way out, so IPOPT still converges to the plan that violates least
+            slack = opti.variable()
+            opti.subject_to(slack >= 0)
+            opti.minimize(objective + SLACK_WEIGHT * slack)
             for con in lp.constraints:
                 for expr, lower in con.symbolic(Z, U, ps, lp):
-                    opti.subject_to(expr >= lower)
+                    opti.subject_to(expr + slack >= lower)
             opti.solver("ipopt", {"print_time": False, "expand": True},
                         {"print_level": 0, "max_iter": self.max_iter, "tol": 1e-4, "acceptable_tol": 1e-3,
                          "sb": "yes", "warm_start_init_point": "yes", "warm_start_bound_push": 1e-6,
