@@ -30,6 +30,7 @@ from .window import dynamic_window, sample_grid
 
 FEASIBLE = 1e-6   # a violation below this counts as none (the batched view's round-off)
 SLACK_WEIGHT = 1e3  # cost of a metre (or m^2 for mover rows) of constraint shortfall in mpc
+TRUST_RADIUS = 0.3  # m: how far a planned position may move from where the field's model was taken
 
 
 def situation_of(ctx: LocalContext) -> Situation:
@@ -117,6 +118,8 @@ class MPCPlanner:
             raise ParameterError(f"max_iter must be an integer >= 1, got {max_iter!r}")
         self.max_movers = int(max_movers)
         self.max_iter = int(max_iter)
+        self.repairs = 1   # re-solves with the field's model taken along a plan found too close
+        self.trust = TRUST_RADIUS
         self.inputs = ("state", "subgoal", "command", "lines", "static", "movers")
         self._solvers: dict[int, tuple[Any, int]] = {}
         self._slots = self._solver_slots()
@@ -167,6 +170,11 @@ class MPCPlanner:
             # mover leaves no way out, so IPOPT still converges to the plan that violates least
             slack = opti.variable()
             opti.subject_to(slack >= 0)
+            # a trust region round the reference: the static field's first-order model holds
+            # near the positions it was taken at, not across a cluttered window
+            for j in range(1, lp.N + 1):
+                dx, dy = Z[j, 0] - ps.static[j - 1, 3], Z[j, 1] - ps.static[j - 1, 4]
+                opti.subject_to(dx * dx + dy * dy <= self.trust ** 2)
             opti.minimize(objective + SLACK_WEIGHT * slack)
             for con in lp.constraints:
                 for expr, lower in con.symbolic(Z, U, ps, lp):
@@ -205,26 +213,33 @@ class MPCPlanner:
         sit = situation_of(ctx)
         samples = self.sampler.samples(ctx)
         start, i, cost, viol = self._start(sit, samples)
-        ref = lp.rollout(sit, start[None])[0]
         solve, slots, n_duals = self._solver(len(sit.movers))
-        values = lp.symbolic_values(sit, ref, slots)
         # the last multipliers fit only the same problem (the same slots)
         duals = self.duals if self.duals is not None and len(self.duals) == n_duals else np.zeros(n_duals)
-        plan = None
-        try:
-            out_u, out_lam = solve(*[values[k] for k in self.inputs], start, ref, duals)
-            stats = solve.stats()
-            status = "solved" if stats.get("success") else str(stats.get("return_status", "failed"))
-            # a failed solve's last iterate may still be a good plan: the program judges it
-            plan = np.asarray(out_u, float).reshape(lp.K, lp.nu)
-            self.duals = np.asarray(out_lam, float).ravel() if stats.get("success") else None
-        except RuntimeError as exc:
-            status, self.duals = f"error: {str(exc).splitlines()[0][:80]}", None
-        mode = "mpc"
-        if plan is not None and np.all(np.isfinite(plan)):
+        status, mode, plan, p_cost, p_viol = "not run", "mpc", None, math.inf, math.inf
+        for attempt in range(1 + self.repairs):
+            # the symbolic model of the static field is taken along the start; a plan the
+            # program finds too close is solved again with the model taken along that plan
+            ref = lp.rollout(sit, start[None])[0]
+            values = lp.symbolic_values(sit, ref, slots)
+            try:
+                out_u, out_lam = solve(*[values[k] for k in self.inputs], start, ref, duals)
+                stats = solve.stats()
+                status = "solved" if stats.get("success") else str(stats.get("return_status", "failed"))
+                # a failed solve's last iterate may still be a good plan: the program judges it
+                plan = np.asarray(out_u, float).reshape(lp.K, lp.nu)
+                duals = np.asarray(out_lam, float).ravel() if stats.get("success") else np.zeros(n_duals)
+            except RuntimeError as exc:
+                status, plan = f"error: {str(exc).splitlines()[0][:80]}", None
+            if plan is None or not np.all(np.isfinite(plan)):
+                break
             c, v, _ = lp.evaluate(sit, plan)
             p_cost, p_viol = float(c[0]), float(v[0])
-        else:
+            if p_viol <= FEASIBLE or status != "solved":
+                break
+            start, mode = plan, "mpc-repaired"
+        self.duals = duals if status == "solved" else None
+        if plan is None or not np.all(np.isfinite(plan)):
             p_cost, p_viol = math.inf, math.inf
         if p_viol > FEASIBLE and not p_viol <= viol[i]:
             plan, p_cost, p_viol = samples[i], float(cost[i]), float(viol[i])
