@@ -90,6 +90,8 @@ def _add_plan_extra_arguments(p) -> None:
     p.add_argument("--export", metavar="FILE", help="write the path as .csv (x,y) or .yaml (nav_msgs/Path-like)")
     p.add_argument("--scen", metavar="FILE.scen", help="take start and goal from a Moving AI scenario file")
     p.add_argument("--query", type=int, default=0, metavar="K", help="which query of --scen (0 = first; default 0)")
+    p.add_argument("--params", metavar="JSON", help="more op.plan options as one JSON object, e.g. "
+                   "'{\"encoding\": \"general\", \"w\": 0.6}' (the planner's own parameters included)")
 
 
 def _check_seed(seed: int) -> None:
@@ -100,12 +102,27 @@ def _check_seed(seed: int) -> None:
     seed_bound("--seed", seed)
 
 
-def _plan_extra_params(args) -> dict:
-    if args.max_evals is None:
+def _json_params(text: str | None, flag: str) -> dict:
+    """The options of ``--params '{"key": value}'``: one JSON object (what the Python call
+    takes as keyword arguments), checked by the call itself with the same named errors."""
+    if text is None:
         return {}
+    try:
+        value = json.loads(text)
+    except ValueError as exc:
+        raise OptplanError(f"{flag} must be one JSON object such as '{{\"pop\": 40}}': {exc}") from None
+    if not isinstance(value, dict):
+        raise OptplanError(f"{flag} must be one JSON object such as '{{\"pop\": 40}}', got {type(value).__name__}")
+    return value
+
+
+def _plan_extra_params(args) -> dict:
+    extra = _json_params(getattr(args, "params", None), "--params")
+    if args.max_evals is None:
+        return extra
     if args.max_evals < 1:
         raise OptplanError(f"--max-evals must be a positive integer, got {args.max_evals}")
-    return {"max_evals": args.max_evals, "iters": None}
+    return {**extra, "max_evals": args.max_evals, "iters": None}
 
 
 def _plan_query(args, world) -> tuple:
@@ -170,6 +187,10 @@ def _add_simulate_arguments(parser) -> None:
     parser.add_argument("--export", metavar="FILE",
                         help="write the trajectory as .csv (t,x,y,theta,v,w) or .yaml (nav_msgs/Path-like)")
     parser.add_argument("--plot", metavar="FILE.png", help="write a static picture of the run")
+    parser.add_argument("--params", metavar="JSON", help="options of the local planner as one JSON object (what "
+                        "planner_params takes, over the scenario file's planner_params), e.g. '{\"max_iter\": 30}'")
+    parser.add_argument("--global-params", metavar="JSON", help="op.plan options of the global planner as one JSON "
+                        "object (over the scenario file's global_options), e.g. '{\"pop\": 40, \"iters\": 100}'")
 
 
 def _cmd_simulate(args) -> int:
@@ -182,15 +203,24 @@ def _cmd_simulate(args) -> int:
     _check_seed(args.seed)
     scenario = with_mover_motion(scenario_for(args.scenario, args.seed), args.movers)
     options = {}
+    from .worldgen.clutter import family_options
+
+    # a generated family's settings for the local planner, as op.simulate gives them for the
+    # family's name (the scenario object drawn here carries none), then the scenario file's
+    # planner_params (op.simulate lays them under these), then --params
+    family = family_options(args.scenario).get("local_params", {}).get(str(args.local_planner).lower(), {})
+    local_params = {**family, **_json_params(args.params, "--params")}
+    global_params = _json_params(args.global_params, "--global-params")
+    if local_params:
+        options["planner_params"] = local_params
     if args.subgoals:
         options["subgoals"] = args.subgoals
     if args.progress:
         options["progress"] = True
     refine = None if args.refine == "none" else args.refine
-    from .worldgen.clutter import family_options
-
-    plan = plan_global(scenario, args.global_planner, refine, args.seed,
-                       family_options(args.scenario).get("global_options"))
+    global_options = {**(family_options(args.scenario).get("global_options") or {}), **scenario.global_options,
+                      **global_params}
+    plan = plan_global(scenario, args.global_planner, refine, args.seed, global_options or None)
     res = simulate(scenario, global_planner=args.global_planner, local_planner=args.local_planner, refine=refine,
                    seed=args.seed, global_plan=plan, **options)
     if args.gif:

@@ -159,9 +159,17 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
                     subgoals=options.get("subgoals", default_subgoals),
                     on_blocked=options.get("on_blocked", default_blocked),
                     stuck_time=options.get("stuck_time", 10.0), stuck_distance=options.get("stuck_distance", 0.3),
-                    max_replans=options.get("max_replans", 5), global_options=options.get("global_options"),
+                    max_replans=options.get("max_replans", 5), global_options={**sc.global_options, **(options.get("global_options") or {})} or None,
                     subgoal_options=options.get("subgoal_options"), sweep_detour=options.get("sweep_detour", 1.5))
     params = local_params.get(str(local_name).lower(), {}) if isinstance(local_planner, str) else {}
+    if isinstance(local_planner, str):
+        from ..local import algorithm_names
+
+        unknown = sorted(set(sc.planner_params) - set(algorithm_names()))
+        if unknown:
+            raise ParameterError(f"the scenario's planner_params name(s) {named_with_hints(unknown, algorithm_names())}, "
+                                 f"which are not local planners; known: {', '.join(algorithm_names())}")
+        params = {**params, **sc.planner_params.get(str(local_name).lower(), {})}
     planner_params = {**params, **(options.get("planner_params") or {})}
     if options.get("local_program") is not None:
         planner_params["local_program"] = options["local_program"]

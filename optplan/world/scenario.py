@@ -81,6 +81,11 @@ Optional keys added by optplan (all validated like the rest):
 * ``timing_jitter``: seconds (default 0). Each moving obstacle of the file is advanced
   along its motion by a time drawn uniformly from ``[0, timing_jitter]`` with the
   run's seed, so seeded runs of a fixed scenario meet the movers at different moments.
+* ``planner_params: {qp-dwa: {...}, mpc: {...}}``: options per local planner, as
+  ``op.simulate(..., planner_params=...)`` takes them for that planner (the caller's win).
+* ``global_options: {pop: 40, clearance: 0.3, ...}``: ``op.plan`` options of the global
+  planner (the caller's ``global_options`` win). Both are checked where they are used,
+  with the same named errors as in Python.
 
 This module reads and checks the file (the :class:`Scenario` it builds is in
 :mod:`optplan.world.scenario_model`, the movers in :mod:`optplan.world.movers`, the value
@@ -114,7 +119,7 @@ SCENARIOS_DIR = Path(__file__).resolve().parent.parent / "data" / "scenarios"
 
 TOP_KEYS = ("map", "resolution", "robot", "start", "goal", "sensor_range", "dt", "time_limit",
             "unknown_obstacles", "dynamic_obstacles", "name", "description", "goal_tolerance",
-            "random_obstacles", "random_dynamic", "timing_jitter")
+            "random_obstacles", "random_dynamic", "timing_jitter", "planner_params", "global_options")
 REQUIRED = ("map", "start", "goal")
 
 
@@ -301,9 +306,34 @@ def scenario_from_dict(data: dict, base_dir: str | os.PathLike | None = None, so
     random_dynamic = _read_random(data.get("random_dynamic"), "random_dynamic",
                                   {"count": 0, "radius": 0.3, "speed": (0.3, 0.6), "length": (3.0, 8.0),
                                    "keep_away": 3.0, "motion": "shuttle", "ends_unseen": False})
+    kwargs["planner_params"] = _read_options(data.get("planner_params"), "planner_params", per_planner=True)
+    kwargs["global_options"] = _read_options(data.get("global_options"), "global_options")
     return Scenario(world, robot, start, goal, unknown_cells=cells, unknown_circles=circles,
                     dynamic=_read_movers(data.get("dynamic_obstacles")), random_obstacles=random_obstacles,
                     random_dynamic=random_dynamic, source=source, **kwargs)
+
+
+def _read_options(value, key: str, per_planner: bool = False) -> dict:
+    """``planner_params: {qp-dwa: {...}, mpc: {...}}`` (options per local planner) or
+    ``global_options: {pop: 30, ...}``: plain mappings of plain YAML data; what each option
+    means is checked where it is used (``make_local_planner``, ``op.plan``), with the same
+    named errors as in Python."""
+    import json
+
+    if value is None:
+        return {}
+    if not isinstance(value, dict) or not all(isinstance(k, str) for k in value):
+        raise ScenarioError(f"{key} must be a mapping of {'local planner names to mappings' if per_planner else 'options'}"
+                            f", got {value!r:.80}")
+    if per_planner:
+        for name, params in value.items():
+            if not isinstance(params, dict) or not all(isinstance(k, str) for k in params):
+                raise ScenarioError(f"{key}.{name} must be a mapping of the planner's options, got {params!r:.80}")
+    try:
+        json.dumps(value, allow_nan=False)
+    except (TypeError, ValueError):
+        raise ScenarioError(f"{key} must hold plain YAML data (numbers, text, lists, mappings; no .nan)") from None
+    return {k: dict(v) if isinstance(v, dict) else v for k, v in value.items()}
 
 
 def scenario_names() -> list[str]:

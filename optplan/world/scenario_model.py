@@ -43,6 +43,9 @@ class Scenario:
             :func:`optplan.worldgen.scenarios.realize` turns them into unknown and moving obstacles.
         timing_jitter: seconds; ``realize`` advances each mover by a random time up to this.
         source: the file it was read from, if any.
+        planner_params: options per local planner name (``{"qp-dwa": {...}}``), laid under
+            the caller's ``planner_params`` by ``op.simulate``.
+        global_options: ``op.plan`` options of the global planner, under the caller's.
     """
 
     world: Any
@@ -62,6 +65,8 @@ class Scenario:
     random_dynamic: dict | None = None
     timing_jitter: float = 0.0
     source: str = ""
+    planner_params: dict = field(default_factory=dict)
+    global_options: dict = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         self.start = np.asarray(self.start, dtype=float).reshape(-1)
