@@ -87,7 +87,9 @@ def _cmd_plan(args) -> int:
 def _add_plan_extra_arguments(p) -> None:
     p.add_argument("--max-evals", type=int, default=None, metavar="N",
                    help="budget of a metaheuristic in objective evaluations (instead of --iters)")
-    p.add_argument("--export", metavar="FILE", help="write the path as .csv (x,y) or .yaml (nav_msgs/Path-like)")
+    p.add_argument("--export", "--out", dest="export", metavar="FILE",
+                   help="write the path as .csv (x,y, 6 decimals), .json (exact), .geojson (a LineString in the "
+                        "map frame) or .yaml (nav_msgs/Path-like)")
     p.add_argument("--scen", metavar="FILE.scen", help="take start and goal from a Moving AI scenario file")
     p.add_argument("--query", type=int, default=0, metavar="K", help="which query of --scen (0 = first; default 0)")
     p.add_argument("--params", metavar="JSON", help="more op.plan options as one JSON object, e.g. "
@@ -185,7 +187,9 @@ def _add_simulate_arguments(parser) -> None:
     parser.add_argument("--gif", metavar="FILE.gif", help="write an animation of the run")
     parser.add_argument("--progress", action="store_true", help="print a status line every 10 simulated seconds")
     parser.add_argument("--export", metavar="FILE",
-                        help="write the trajectory as .csv (t,x,y,theta,v,w) or .yaml (nav_msgs/Path-like)")
+                        help="write the trajectory as .csv (t,x,y,theta,v,w; 6 decimals), .json (exact), .geojson "
+                             "(a LineString in the map frame, times and headings as properties) or .yaml "
+                             "(nav_msgs/Path-like)")
     parser.add_argument("--plot", metavar="FILE.png", help="write a static picture of the run")
     parser.add_argument("--params", metavar="JSON", help="options of the local planner as one JSON object (what "
                         "planner_params takes, over the scenario file's planner_params), e.g. '{\"max_iter\": 30}'")
@@ -435,8 +439,8 @@ def _check_outputs(args) -> None:
         flag = name.replace("_", "-")
         if target.is_dir() and not folder:
             raise OptplanError(f"--{flag} {value} is a folder; give a file name")
-        if name == "export" and target.suffix.lower() not in (".csv", ".yaml", ".yml"):
-            raise OptplanError(f"--export {value}: use a .csv or .yaml file name")
+        if name == "export" and target.suffix.lower() not in (".csv", ".yaml", ".yml", ".json", ".geojson"):
+            raise OptplanError(f"--export {value}: use a .csv, .json, .geojson or .yaml file name")
         if name in PICTURE_OPTIONS:
             from .viz.plots import figure_format
 

@@ -24,7 +24,9 @@ ROOT = Path(__file__).resolve().parents[1]
 # ------------------------------------------------------------------ paths and trajectories
 def test_path_csv_and_ros_yaml_round_trip(tmp_path):
     path = np.array([[0.5, 0.5], [3.25, 0.5], [3.25, 4.125], [3.25, 4.125], [0.1 + 0.2, 7.0]])
-    np.testing.assert_array_equal(read_path_csv(export_path(path, tmp_path / "p.csv")), path)
+    np.testing.assert_array_equal(read_path_csv(export_path(path, tmp_path / "p.csv", precision=None)), path)
+    np.testing.assert_allclose(read_path_csv(export_path(path, tmp_path / "p6.csv")), path, atol=5e-7)
+    assert "0.300000" in (tmp_path / "p6.csv").read_text()          # 6 decimals, not 0.30000000000000004
     msg = yaml.safe_load(export_path(path, tmp_path / "p.yaml", frame_id="odom").read_text())
     assert msg["header"]["frame_id"] == "odom" and len(msg["poses"]) == len(path)
     xy = np.array([[p["pose"]["position"]["x"], p["pose"]["position"]["y"]] for p in msg["poses"]])
@@ -40,7 +42,7 @@ def test_path_csv_and_ros_yaml_round_trip(tmp_path):
 
 def test_trajectory_export_keeps_time_and_heading(tmp_path):
     traj = np.array([[0.0, 1.0, 2.0, 0.0, 0.0, 0.0], [0.1, 1.05, 2.0, 0.3, 0.5, 3.0], [1.25, 1.5, 2.5, -2.0, 0.4, -1.0]])
-    np.testing.assert_array_equal(read_path_csv(export_trajectory(traj, tmp_path / "t.csv")), traj)
+    np.testing.assert_array_equal(read_path_csv(export_trajectory(traj, tmp_path / "t.csv", precision=None)), traj)
     msg = yaml.safe_load(export_trajectory(traj, tmp_path / "t.yml").read_text())
     stamps = [p["header"]["stamp"]["secs"] + p["header"]["stamp"]["nsecs"] * 1e-9 for p in msg["poses"]]
     np.testing.assert_allclose(stamps, traj[:, 0], atol=1e-9)
@@ -49,7 +51,8 @@ def test_trajectory_export_keeps_time_and_heading(tmp_path):
 
 
 @pytest.mark.parametrize("call,needle", [
-    (lambda d: export_path([[0, 0], [1, 1]], d / "p.txt"), ".csv or .yaml"),
+    (lambda d: export_path([[0, 0], [1, 1]], d / "p.txt"), ".csv, .json, .geojson or .yaml"),
+    (lambda d: export_path([[0, 0], [1, 1]], d / "p.csv", precision=-1), "precision"),
     (lambda d: export_path([[0, 0, 0]], d / "p.csv"), "2 columns"),
     (lambda d: export_path([[0, 0], [np.nan, 1]], d / "p.csv"), "finite"),
     (lambda d: export_trajectory(np.zeros((3, 5)), d / "t.csv"), "6 columns"),
@@ -397,3 +400,22 @@ def test_ompls_own_importer_reads_the_export(tmp_path, spec, pipelines):
     conn = sqlite3.connect(out)
     assert conn.execute("SELECT COUNT(*) FROM runs").fetchone()[0] == stored
     assert conn.execute("SELECT COUNT(*) FROM plannerConfigs").fetchone()[0] == pipelines
+
+
+def test_paths_leave_as_json_and_geojson_exactly(tmp_path):
+    import json
+
+    path = np.array([[0.5, 0.5], [0.1 + 0.2, 7.0], [1e-17, 3.141592653589793]])
+    doc = json.loads(export_path(path, tmp_path / "p.json", frame_id="odom").read_text())
+    assert doc["frame_id"] == "odom" and np.array_equal(np.array(doc["points"]), path)
+    geo = json.loads(export_path(path, tmp_path / "p.geojson").read_text())
+    assert geo["type"] == "Feature" and geo["geometry"]["type"] == "LineString"
+    assert np.array_equal(np.array(geo["geometry"]["coordinates"]), path)
+    assert geo["properties"]["length_m"] == pytest.approx(np.hypot(*np.diff(path, axis=0).T).sum())
+    traj = np.array([[0.0, 1.0, 2.0, 0.0, 0.0, 0.0], [0.1, 1.05, 2.0, 0.3, 0.5, 3.0]])
+    rows = json.loads(export_trajectory(traj, tmp_path / "t.json").read_text())["rows"]
+    assert np.array_equal(np.array(rows), traj)
+    from optplan.cli import main
+
+    assert main(["plan", "chen2025_20", "--algo", "astar", "--out", str(tmp_path / "a.geojson")]) == 0
+    assert json.loads((tmp_path / "a.geojson").read_text())["geometry"]["type"] == "LineString"

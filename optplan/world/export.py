@@ -1,11 +1,18 @@
-"""Paths and trajectories written for other tools: CSV and a ``nav_msgs/Path``-like YAML.
+"""Paths and trajectories written for other tools: CSV, JSON, GeoJSON and a ``nav_msgs/Path``-like YAML.
 
 A *path* is an ``(N, 2)`` array of points in metres (start first). A *trajectory* is the
 simulator's ``(T, 6)`` rows ``[t, x, y, theta, v, w]`` (seconds, metres, radians, m/s,
 rad/s). Both are written as:
 
 * ``.csv``: a header line, then one row per point (``x,y`` for a path; ``t,x,y,theta,v,w``
-  for a trajectory), full float precision so a file read back gives the same numbers.
+  for a trajectory), ``precision`` decimals (6 by default, a micrometre; ``precision=None``
+  writes every digit, so a file read back gives the same numbers).
+* ``.json``: ``{"frame_id", "columns", "points"}`` (a trajectory: ``"rows"``), numbers as
+  Python's ``repr`` writes them, so a file read back gives the same numbers.
+* ``.geojson``: one ``Feature`` whose geometry is the ``LineString`` of the points (a
+  ``Point`` for a one-point path), in the map frame's metres; ``properties`` name the frame
+  and say so (GeoJSON readers assume WGS84 degrees: give them the map frame as a local CRS),
+  a trajectory's times and headings included.
 * ``.yaml`` / ``.yml``: the fields of a ROS ``nav_msgs/Path`` message (``header`` with
   ``frame_id`` and ``stamp``, then ``poses``: ``geometry_msgs/PoseStamped`` with a
   position and a unit quaternion for the heading about z). A path has no time or heading
@@ -25,7 +32,7 @@ from ..checks import file_path
 from ..errors import ParameterError
 from .files import written_whole
 
-EXPORT_SUFFIXES = (".csv", ".yaml", ".yml")
+EXPORT_SUFFIXES = (".csv", ".yaml", ".yml", ".json", ".geojson")
 
 
 def _checked_rows(rows, width: int, what: str) -> np.ndarray:
@@ -48,7 +55,7 @@ def _check_frame(frame_id) -> None:
 def _target(file, kinds: str) -> Path:
     p = Path(file_path("file", file))
     if p.suffix.lower() not in EXPORT_SUFFIXES:
-        raise ParameterError(f"cannot export {kinds} to {p.name}: use a .csv or .yaml file name")
+        raise ParameterError(f"cannot export {kinds} to {p.name}: use a .csv, .json, .geojson or .yaml file name")
     return p
 
 
@@ -69,10 +76,32 @@ def path_headings(path) -> np.ndarray:
     return np.append(heading, heading[-1])
 
 
-def _write_csv(p: Path, header: str, rows: np.ndarray) -> Path:
+def _write_csv(p: Path, header: str, rows: np.ndarray, precision: int | None = 6) -> Path:
+    if precision is not None and (isinstance(precision, bool) or not isinstance(precision, int)
+                                  or not 0 <= precision <= 17):
+        raise ParameterError(f"precision must be a number of decimals in 0..17 or None (every digit), "
+                             f"got {precision!r}")
     with written_whole(p) as tmp:
-        np.savetxt(tmp, rows, delimiter=",", header=header, comments="", fmt="%.17g")
+        np.savetxt(tmp, rows, delimiter=",", header=header, comments="",
+                   fmt="%.17g" if precision is None else f"%.{precision}f")
     return p
+
+
+def _write_json(p: Path, doc: dict) -> Path:
+    import json
+
+    with written_whole(p) as tmp:
+        tmp.write_text(json.dumps(doc, allow_nan=False) + "\n")
+    return p
+
+
+def _geojson(xy: np.ndarray, frame_id: str, extra: dict) -> dict:
+    coords = xy.tolist()
+    geometry = {"type": "Point", "coordinates": coords[0]} if len(coords) == 1 else \
+        {"type": "LineString", "coordinates": coords}
+    return {"type": "Feature", "geometry": geometry,
+            "properties": {"frame_id": frame_id, "units": "m",
+                           "crs": f"the map frame {frame_id!r} in metres (not WGS84 degrees)", **extra}}
 
 
 def _stamp(t: float) -> str:
@@ -96,8 +125,9 @@ def _write_ros_path(p: Path, xy: np.ndarray, theta: np.ndarray, times: np.ndarra
     return p
 
 
-def export_path(path, file: str | os.PathLike, frame_id: str = "map") -> Path:
-    """Write an ``(N, 2)`` path (metres) to ``file``: ``.csv`` (``x,y``) or ``.yaml``
+def export_path(path, file: str | os.PathLike, frame_id: str = "map", precision: int | None = 6) -> Path:
+    """Write an ``(N, 2)`` path (metres) to ``file``: ``.csv`` (``x,y``, ``precision``
+    decimals), ``.json`` (exact), ``.geojson`` (a LineString in the map frame) or ``.yaml``
     (a ``nav_msgs/Path``-like message in ``frame_id``). Returns the file written.
 
     Raises:
@@ -106,15 +136,22 @@ def export_path(path, file: str | os.PathLike, frame_id: str = "map") -> Path:
     p = _target(file, "a path")
     _check_frame(frame_id)
     P = _checked_rows(path, 2, "path")
-    if p.suffix.lower() == ".csv":
-        return _write_csv(p, "x,y", P)
+    suffix = p.suffix.lower()
+    if suffix == ".csv":
+        return _write_csv(p, "x,y", P, precision)
+    if suffix == ".json":
+        return _write_json(p, {"frame_id": frame_id, "columns": ["x", "y"], "points": P.tolist()})
+    if suffix == ".geojson":
+        return _write_json(p, _geojson(P, frame_id, {"length_m": float(np.hypot(*np.diff(P, axis=0).T).sum())}))
     return _write_ros_path(p, P, path_headings(P), np.zeros(len(P)), frame_id)
 
 
-def export_trajectory(trajectory, file: str | os.PathLike, frame_id: str = "map") -> Path:
+def export_trajectory(trajectory, file: str | os.PathLike, frame_id: str = "map", precision: int | None = 6) -> Path:
     """Write a simulator trajectory (rows ``[t, x, y, theta, v, w]``) to ``file``: ``.csv``
-    (all six columns) or ``.yaml`` (a ``nav_msgs/Path``-like message: stamps from ``t``,
-    headings from ``theta``). Returns the file written.
+    (all six columns, ``precision`` decimals), ``.json`` (exact rows), ``.geojson`` (the
+    LineString of its positions, times and headings as properties) or ``.yaml`` (a
+    ``nav_msgs/Path``-like message: stamps from ``t``, headings from ``theta``). Returns the
+    file written.
 
     Raises:
         ParameterError: not a (T, 6) finite array, or an unsupported file suffix.
@@ -122,8 +159,14 @@ def export_trajectory(trajectory, file: str | os.PathLike, frame_id: str = "map"
     p = _target(file, "a trajectory")
     _check_frame(frame_id)
     T = _checked_rows(trajectory, 6, "trajectory")
-    if p.suffix.lower() == ".csv":
-        return _write_csv(p, "t,x,y,theta,v,w", T)
+    suffix = p.suffix.lower()
+    if suffix == ".csv":
+        return _write_csv(p, "t,x,y,theta,v,w", T, precision)
+    if suffix == ".json":
+        return _write_json(p, {"frame_id": frame_id, "columns": ["t", "x", "y", "theta", "v", "w"],
+                               "rows": T.tolist()})
+    if suffix == ".geojson":
+        return _write_json(p, _geojson(T[:, 1:3], frame_id, {"t": T[:, 0].tolist(), "theta": T[:, 3].tolist()}))
     return _write_ros_path(p, T[:, 1:3], T[:, 3], T[:, 0], frame_id)
 
 
