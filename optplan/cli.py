@@ -26,17 +26,17 @@ EXAMPLES = {
 }
 
 
-def _load_world(spec: str):
+def _load_world(spec: str, flip: bool = False):
     from .world.loaders import load_map
 
-    return load_map(spec)
+    return load_map(spec, origin="lower" if flip else "upper")
 
 
 def _cmd_plan(args) -> int:
     from .planning import plan
     from .demo import format_table
 
-    world = _load_world(args.map)
+    world = _load_world(args.map, getattr(args, "flip", False))
     start, goal = _plan_query(args, world)
     extra = _plan_extra_params(args)
     refine = None if args.refine == "none" else args.refine
@@ -368,7 +368,10 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
 
     p = sub.add_parser("plan", help="plan a global path on a map", epilog=EXAMPLES["plan"])
-    p.add_argument("map", help="map file (.map, .yaml, .pgm, .npy, .txt, .csv, circle-world .json) or a shipped map name")
+    p.add_argument("map", help="map file (.map, .yaml, .pgm, .npy, .txt, .csv, circle-world .json) or a shipped map "
+                   "name; a file's first row is the top of the map (x to the right, y up), unless --flip")
+    p.add_argument("--flip", action="store_true", help="the first row of a .npy/.txt/.csv matrix is the bottom "
+                   "row (an array a[iy, ix] with iy up, as matplotlib's imshow(origin='lower') draws it)")
     p.add_argument("--start", nargs=2, type=float, metavar=("X", "Y"),
                    help="start in metres (default: a paper map's own start, or the --scen query's)")
     p.add_argument("--goal", nargs=2, type=float, metavar=("X", "Y"),

@@ -153,3 +153,27 @@ def test_inflate_blocks_cells_within_margin():
     assert inner.occ[c[0], c[1] + 2] and inner.occ[c[0] + 1, c[1] + 2] and not inner.occ[c[0] + 2, c[1] + 2]
     with pytest.raises(op.ParameterError):
         g.inflate(-1)
+
+
+def test_matrix_orientation_is_said_and_can_be_flipped(tmp_path):
+    """A .npy map's first row is the top (image convention); origin='lower' (optplan plan
+    --flip) reads a[iy, ix] with iy up, as GridMap.occ holds it (issue 47)."""
+    import numpy as np
+
+    from optplan.cli import main
+
+    a = np.zeros((4, 5), bool)
+    a[0, 1] = True                        # the first row
+    np.save(tmp_path / "m.npy", a)
+    top = op.load_map(tmp_path / "m.npy")
+    bottom = op.load_map(tmp_path / "m.npy", origin="lower")
+    assert top.occ[3, 1] and bottom.occ[0, 1]
+    np.testing.assert_array_equal(bottom.occ, a)
+    with pytest.raises(op.ParameterError, match="upper"):
+        op.load_map(tmp_path / "m.npy", origin="up")
+    with pytest.raises(op.ParameterError, match="matrices"):
+        op.load_map("arena", origin="lower")
+    assert main(["plan", str(tmp_path / "m.npy"), "--flip", "--start", "0.5", "0.5", "--goal", "4.5", "3.5",
+                 "--algo", "astar", "--json"]) == 0
+    assert main(["plan", str(tmp_path / "m.npy"), "--flip", "--start", "1.5", "0.5", "--goal", "4.5", "3.5",
+                 "--algo", "astar"]) == 2      # (1.5, 0.5) is the blocked cell once flipped

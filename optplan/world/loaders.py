@@ -502,8 +502,19 @@ _LOADERS = {
 }
 
 
-def load_map(path: str | os.PathLike) -> GridMap:
-    """Load an occupancy grid, choosing the reader from the file suffix.
+MATRIX_SUFFIXES = (".npy", ".txt", ".csv")
+ORIGINS = ("upper", "lower")
+
+
+def load_map(path: str | os.PathLike, origin: str = "upper") -> "GridMap | CircleWorld":
+    """Load an occupancy grid (or a circle world), choosing the reader from the file suffix.
+
+    Orientation: x grows along a row (to the right), y upwards. Every format's first row is
+    the *top* row of the map (image convention, ``origin="upper"``, as ``matplotlib.imshow``
+    draws an array by default): a ``.npy`` array ``a`` is read so that ``a[0]`` is the top,
+    ``a[-1]`` the bottom row, and column ``j`` is ``x`` in ``[j, j + 1)`` cells. For a matrix
+    whose first row is the bottom (``a[iy, ix]`` with ``iy`` up, as ``GridMap.occ`` holds it
+    and ``imshow(origin="lower")`` draws it), pass ``origin="lower"`` (``optplan plan --flip``).
 
     Args:
         path: ``.map`` (Moving AI), ``.yaml`` + ``.pgm`` (ROS map_server), ``.pgm``,
@@ -512,12 +523,18 @@ def load_map(path: str | os.PathLike) -> GridMap:
             Pillow. Names of maps shipped with optplan (``optplan.world.maps.names()``)
             and of the paper maps (``chen2025_20``, ...; ``optplan.world.papermaps``) are
             accepted too.
+        origin: ``"upper"`` (default) or ``"lower"``: where the first row of a ``.npy``,
+            ``.txt`` or ``.csv`` matrix lies (the other formats fix it themselves).
 
     Raises:
         MapFormatError: missing, empty, truncated, binary or malformed file, or a map
             with no free cell.
+        ParameterError: an unknown ``origin``, or ``"lower"`` for a format that fixes it.
     """
     _check_path_arg(path, "load_map")
+    if origin not in ORIGINS:
+        raise ParameterError(f"origin must be 'upper' (first row on top, the default) or 'lower' (first row at "
+                             f"the bottom), got {origin!r}")
     p = Path(path)
     if not p.exists():
         from . import maps
@@ -533,10 +550,15 @@ def load_map(path: str | os.PathLike) -> GridMap:
     loader = _LOADERS.get(p.suffix.lower())
     if loader is None:
         raise MapFormatError(f"{p}: unknown map format {p.suffix!r}; use one of {', '.join(sorted(_LOADERS))}")
+    if origin == "lower" and p.suffix.lower() not in MATRIX_SUFFIXES:
+        raise ParameterError(f"origin='lower' is for 0/1 matrices ({', '.join(MATRIX_SUFFIXES)}); a {p.suffix} file "
+                             "fixes its own orientation")
     try:
         world = loader(p)
     except ParameterError as exc:  # e.g. a resolution of 0 in the file: the file is at fault
         raise MapFormatError(f"{p}: {exc}") from None
+    if origin == "lower":
+        world = GridMap(world.occ[::-1], world.resolution, world.origin, world.name)
     if isinstance(world, GridMap) and world.occ.all():
         raise MapFormatError(f"{p}: every cell of this {world.width} x {world.height} map is blocked; "
                              "nothing can be planned on it (is the map inverted? 0 = free, 1 = blocked)")
