@@ -40,7 +40,7 @@ def test_cell_sequence_ga_doubles_back_in_x(algorithm):
 
 
 def test_column_chromosome_cannot_represent_the_serpentine():
-    with pytest.raises(op.InfeasibleQueryError, match="one node per column"):
+    with pytest.raises(op.InfeasibleQueryError, match="one cell per column"):
         op.plan(serpentine(), START, GOAL, algorithm="iga", encoding="columns", seed=0, pop=20, iters=30)
 
 
@@ -106,3 +106,22 @@ def test_cell_sequence_iga_refines_and_offers_valid_alternatives():
     assert all(validate_path(world, p).ok for p in r.alternatives)
     refined = op.plan(world, s, g, algorithm="iga", encoding="cells", seed=0, pop=30, iters=40, refine="casadi")
     assert refined.feasible and refined.length <= r.length + 1e-9
+
+
+@pytest.mark.parametrize("algorithm", ["ga", "iga"])
+def test_path_gas_fall_back_to_the_cell_sequence_when_columns_cannot_hold_a_path(algorithm):
+    """Issue 43: on a rooms map whose path must turn back in x, ga/iga used to end in 'no path
+    with one node per column ... try encoding='waypoints'' (which iga refuses); they now plan
+    with li2023's general cell sequence and say so, and an explicit encoding='columns' names
+    an encoding they take."""
+    from optplan.solvers.paths import _columns_represent
+    from optplan.worldgen.maps import generate_map, map_query
+
+    grid = generate_map("rooms", 20, 10)
+    s, g = map_query(grid, 10)
+    assert not _columns_represent(grid, s, g, 0.0)
+    r = op.plan(grid, s, g, algorithm=algorithm, seed=0, iters=30)
+    assert r.feasible and r.encoding == "cells" and "encoding='cells'" in r.message
+    assert op.validate_path(grid, r.path)
+    with pytest.raises(op.InfeasibleQueryError, match="encoding='cells'"):
+        op.plan(grid, s, g, algorithm=algorithm, encoding="columns", seed=0, iters=30)

@@ -15,7 +15,7 @@ import time
 
 import numpy as np
 
-from ..errors import ParameterError, UnknownAlgorithmError
+from ..errors import InfeasibleQueryError, ParameterError, UnknownAlgorithmError
 from ..papers import LENGTH, PAPERS
 from ..formulations.encodings import ColumnNodes, FreeWaypoints, GeneralPath, SplinePath
 from ..formulations.problem import PathProblem
@@ -139,12 +139,34 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
 
         return plan_iaco(world, s, g, seed=seed, pop=pop, iters=iters, clearance=clearance, max_evals=max_evals,
                          **params)
+    if name in ("ga", "iga") and world.is_grid and encoding is None and not _columns_represent(world, s, g, clearance):
+        # one cell per column cannot hold a path here (it must turn back in x): li2023's own
+        # chromosome, a general cell sequence, can, as the metaheuristics fall back to 'general'
+        from .gridpath.cell_ga import plan_cell_ga
+
+        result = plan_cell_ga(world, s, g, improved=name == "iga", seed=seed, pop=pop, iters=iters,
+                              clearance=clearance, preset=preset or "li2023", postprocess=postprocess,
+                              max_evals=max_evals, alternatives=alternatives,
+                              alternative_separation=alternative_separation, **params)
+        result.encoding = "cells"
+        result.message = "; ".join(m for m in (
+            "no collision-free path with one cell per column exists between start and goal: planned with "
+            "encoding='cells' (li2023's general cell sequence) instead", result.message) if m)
+        return result
     if name in ("ga", "iga") and world.is_grid and encoding in (None, "columns"):
         from .gridpath.ga_path import plan_ga
 
-        return plan_ga(world, s, g, improved=name == "iga", seed=seed, pop=pop, iters=iters, clearance=clearance,
-                       preset=preset or "li2023", postprocess=postprocess, max_evals=max_evals,
-                       alternatives=alternatives, alternative_separation=alternative_separation, **params)
+        try:
+            return plan_ga(world, s, g, improved=name == "iga", seed=seed, pop=pop, iters=iters, clearance=clearance,
+                           preset=preset or "li2023", postprocess=postprocess, max_evals=max_evals,
+                           alternatives=alternatives, alternative_separation=alternative_separation, **params)
+        except InfeasibleQueryError as exc:
+            if "one node per column" not in str(exc):
+                raise
+            raise InfeasibleQueryError(f"no collision-free path with one cell per column exists between start and "
+                                       f"goal, so encoding='columns' cannot represent a solution; use "
+                                       f"encoding='cells' (li2023's general cell sequence), which {name} takes, or "
+                                       f"leave encoding unset to fall back to it") from None
     if name in ("ga", "iga") and encoding == "cells":
         from .gridpath.cell_ga import plan_cell_ga
 
