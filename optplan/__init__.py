@@ -50,6 +50,9 @@ _LAZY = {
     "smoothing_program": "optplan.programs",
     "show_options": "optplan.programs",
     "compare": "optplan.bench.compare",
+    "plot_map": "optplan.viz.api",
+    "plot_paths": "optplan.viz.api",
+    "plot_run": "optplan.viz.api",
 }
 
 __getattr__, __dir__, __all__ = lazy_exports("optplan", _LAZY, globals(), eager=[

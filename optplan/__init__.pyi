@@ -22,6 +22,9 @@ from optplan.registry import algorithms as algorithms
 from optplan.sim import simulate as simulate
 from optplan.solvers.graph import shortest_path as shortest_path
 from optplan.solvers.metaheuristics import optimize as optimize
+from optplan.viz.api import plot_map as plot_map
+from optplan.viz.api import plot_paths as plot_paths
+from optplan.viz.api import plot_run as plot_run
 from optplan.world.circles import CircleWorld as CircleWorld
 from optplan.world.export import export_path as export_path
 from optplan.world.export import export_trajectory as export_trajectory
@@ -36,4 +39,4 @@ from optplan.world.scenario import Scenario as Scenario
 from optplan.world.scenario import load_scenario as load_scenario
 
 __version__: str
-__all__ = ['BSpline', 'CellSequence', 'CircleWorld', 'ColumnNodes', 'GeneralVias', 'GridMap', 'InfeasibleQueryError', 'LocalProgram', 'MapFormatError', 'OptimizeResult', 'OptplanError', 'ParameterError', 'PathProgram', 'PlanResult', 'Points', 'ProgramResult', 'RobotSpec', 'Scenario', 'ScenarioError', 'SimResult', 'SplineThrough', 'UnknownAlgorithmError', 'Waypoints', 'algorithms', 'compare', 'export_path', 'export_trajectory', 'load_map', 'load_scen', 'load_scenario', 'optimize', 'paper_program', 'path_metrics', 'plan', 'save_map', 'shortest_path', 'show_options', 'simulate', 'smoothing_program', 'validate_path']
+__all__ = ['BSpline', 'CellSequence', 'CircleWorld', 'ColumnNodes', 'GeneralVias', 'GridMap', 'InfeasibleQueryError', 'LocalProgram', 'MapFormatError', 'OptimizeResult', 'OptplanError', 'ParameterError', 'PathProgram', 'PlanResult', 'Points', 'ProgramResult', 'RobotSpec', 'Scenario', 'ScenarioError', 'SimResult', 'SplineThrough', 'UnknownAlgorithmError', 'Waypoints', 'algorithms', 'compare', 'export_path', 'export_trajectory', 'load_map', 'load_scen', 'load_scenario', 'optimize', 'paper_program', 'path_metrics', 'plan', 'plot_map', 'plot_paths', 'plot_run', 'save_map', 'shortest_path', 'show_options', 'simulate', 'smoothing_program', 'validate_path']
