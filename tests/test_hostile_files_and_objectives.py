@@ -181,6 +181,16 @@ def test_a_method_whose_own_tables_exceed_the_memory_budget_is_refused_with_the_
         op.plan(grid, (0.5, 0.5), (399.5, 399.5), algorithm="aco", iters=2)
     # A* keeps one byte a cell: it plans under the same budget
     assert op.shortest_path(grid, (0.5, 0.5), (399.5, 399.5), method="astar").feasible
+    # a swarm whose fitness samples the distance field is refused before the sampler runs
+    import tracemalloc
+
+    tracemalloc.start()
+    try:
+        with pytest.raises(op.ParameterError, match="distance field"):
+            op.plan(grid, (0.5, 0.5), (399.5, 399.5), algorithm="gwo", max_evals=100, iters=None, pop=10)
+        assert tracemalloc.get_traced_memory()[1] < 20e6
+    finally:
+        tracemalloc.stop()
 
 
 def test_every_case_of_the_hostile_input_script_ends_in_one_line():

@@ -75,6 +75,12 @@ def collision_penalty_on(preset: FitnessPreset, world, goal) -> float:
     return float(pen)
 
 
+def uses_penetration(preset: FitnessPreset) -> bool:
+    """Whether a fitness measures how deep a path enters obstacles (a penalty on it, or the
+    feasibility rule's violation), which samples the map's distance field."""
+    return bool(preset.penetration_penalty) or preset.constraint == "feasibility"
+
+
 def get_preset(name: str | FitnessPreset) -> FitnessPreset:
     """Look up a preset by name (or pass one through)."""
     if isinstance(name, FitnessPreset):

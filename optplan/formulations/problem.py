@@ -15,7 +15,7 @@ from ..errors import ParameterError
 from ..world.metrics import turn_angles_deg
 from . import terms
 from .encodings import PathEncoding
-from .presets import FitnessPreset, collision_penalty_on, get_preset
+from .presets import FitnessPreset, collision_penalty_on, get_preset, uses_penetration
 from ..world.derived import DerivedStore
 
 _DERIVED = DerivedStore("formulations.problem")  # this module's data derived from worlds
@@ -49,6 +49,13 @@ class PathProblem:
             raise ParameterError(f"clearance must be a finite number >= 0 metres, got {self.clearance!r}")
         self.clearance = c
         self._collision_penalty = collision_penalty_on(self.preset, self.encoding.world, self.encoding.goal)
+        world = self.encoding.world
+        if self._wants_penetration and world.is_grid and not hasattr(self.encoding, "leg_length"):
+            # the penetration term samples the map's distance field: a map it cannot fit is
+            # refused now, not after the sampler and the first evaluations have run
+            from ..world.fields import check_field_memory
+
+            check_field_memory(world)
 
     @property
     def collision_penalty(self) -> float:
@@ -114,7 +121,7 @@ class PathProblem:
     # ------------------------------------------------------------ solver view
     @property
     def _wants_penetration(self) -> bool:
-        return bool(self.preset.penetration_penalty) or self.preset.constraint == "feasibility"
+        return uses_penetration(self.preset)
 
     def _constraint_parts(self, X: np.ndarray, paths: np.ndarray) -> tuple[np.ndarray, np.ndarray | float]:
         """Collision count and penetration; table lookups when the encoding offers them."""

@@ -190,6 +190,13 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
     if encoding not in ENCODINGS:
         raise ParameterError(f"encoding must be one of {', '.join(ENCODINGS)}, got {encoding!r}")
     note = ""
+    if world.is_grid and encoding != "general":
+        from ..formulations.presets import get_preset, uses_penetration
+        from ..world.fields import check_field_memory
+
+        fitness = get_preset(preset)
+        if uses_penetration(fitness.with_constraint(constraint) if constraint is not None else fitness):
+            check_field_memory(world)   # before any work: the sampler and the segment store come first
     if encoding == "columns" and not chosen and not _columns_represent(world, s, g, clearance):
         encoding = "general"
         note = ("no collision-free path with one node per column exists between start and goal: planned with "

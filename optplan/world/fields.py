@@ -71,6 +71,18 @@ class DistanceField:
         return lower[()]  # a scalar for a single point, as before
 
 
+def check_field_memory(grid, subdiv: int = 4) -> None:
+    """Refuse, before any work, a map whose sampled field cannot fit the memory budget: the
+    lattice's coordinates, covers, transform indices and distances take ~120 bytes a lattice
+    point while it is built (a 2000 x 2000 map at 4 points a cell: 7.7 GB)."""
+    from ..checks import memory_budget
+
+    memory_budget(f"the sampled distance field of a {grid.width} x {grid.height} map ({subdiv} points a cell; "
+                  "penetration terms and the casadi smoother use it)",
+                  120.0 * (grid.width * subdiv + 1) * (grid.height * subdiv + 1),
+                  "plan without penetration terms (astar, visibility, encoding='general'), or on a crop of the map")
+
+
 def grid_distance_field(grid, subdiv: int = 4) -> DistanceField:
     """The signed distance field of a GridMap on a lattice of ``subdiv`` points per cell
     (cached on the map); the values are :func:`lattice_clearance`'s."""
@@ -78,14 +90,7 @@ def grid_distance_field(grid, subdiv: int = 4) -> DistanceField:
     cached = _DERIVED.of(grid).get(key)
     if cached is not None:
         return cached
-    from ..checks import memory_budget
-
-    # the lattice's coordinates, covers, transform indices and distances while it is built:
-    # ~120 bytes a lattice point (a 2000 x 2000 map at 4 points a cell: 7.7 GB)
-    memory_budget(f"the sampled distance field of a {grid.width} x {grid.height} map ({subdiv} points a cell; "
-                  "penetration terms and the casadi smoother use it)",
-                  120.0 * (grid.width * subdiv + 1) * (grid.height * subdiv + 1),
-                  "plan without penetration terms (astar, visibility, encoding='general'), or on a crop of the map")
+    check_field_memory(grid, subdiv)
     xmin, ymin, xmax, ymax = grid.bounds
     xs = np.linspace(xmin, xmax, grid.width * subdiv + 1)
     ys = np.linspace(ymin, ymax, grid.height * subdiv + 1)
