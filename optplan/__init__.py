@@ -18,6 +18,11 @@ from .results import OptimizeResult, PlanResult, ProgramResult, SimResult
 
 __version__ = "0.1.0"
 
+# the 'optplan' logger: silent unless the program (or the optplan command, -v / -q) sets it up
+import logging as _logging
+
+_logging.getLogger("optplan").addHandler(_logging.NullHandler())
+
 # public name -> module that defines it
 _LAZY = {
     "GridMap": "optplan.world.grid",

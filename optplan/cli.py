@@ -420,7 +420,38 @@ def build_parser() -> argparse.ArgumentParser:
     d.add_argument("--out", default="optplan_demo.png", help="PNG to write (default optplan_demo.png)")
     d.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     d.set_defaults(func=_cmd_demo)
+    for command in sub.choices.values():
+        _add_verbosity_arguments(command)
     return parser
+
+
+def _add_verbosity_arguments(parser) -> None:
+    group = parser.add_mutually_exclusive_group()
+    group.add_argument("-v", "--verbose", action="store_true",
+                       help="also print the 'optplan' logger's debug messages on stderr")
+    group.add_argument("-q", "--quiet", action="store_true",
+                       help="print only warnings and errors on stderr (no notes, no progress bars)")
+
+
+def _set_up_logging(args) -> None:
+    """The 'optplan' logger to stderr for this command: notes (INFO) by default, debug
+    messages with -v, warnings only with -q. A program that imports optplan configures the
+    logger itself (optplan only adds a NullHandler to it)."""
+    import logging
+
+    log = logging.getLogger("optplan")
+    for h in list(log.handlers):
+        if getattr(h, "_optplan_cli", False):
+            log.removeHandler(h)
+    handler = logging.StreamHandler(sys.stderr)
+    handler._optplan_cli = True
+    handler.setFormatter(logging.Formatter("%(message)s"))
+    log.addHandler(handler)
+    log.setLevel(logging.DEBUG if getattr(args, "verbose", False) else
+                 logging.WARNING if getattr(args, "quiet", False) else logging.INFO)
+    log.propagate = False
+    if getattr(args, "quiet", False) and hasattr(args, "no_progress"):
+        args.no_progress = True
 
 
 # options that name a file or folder the command writes
@@ -490,6 +521,7 @@ def main(argv: list[str] | None = None) -> int:
         parser.print_help()
         return 2
     try:
+        _set_up_logging(args)
         _check_outputs(args)
         return int(args.func(args) or 0)
     except OptplanError as exc:
@@ -505,8 +537,9 @@ def main(argv: list[str] | None = None) -> int:
         where = f" {exc.filename}" if getattr(exc, "filename", None) else ""
         print(f"optplan: error: cannot access{where}: {exc.strerror or exc}", file=sys.stderr)
         return EXIT_ERROR
-    except KeyboardInterrupt:
-        print("optplan: interrupted", file=sys.stderr)
+    except KeyboardInterrupt as exc:
+        hint = str(exc)
+        print(f"optplan: interrupted{'; ' + hint if hint else ''}", file=sys.stderr)
         return 130
     except Exception as exc:  # a bug, not a bad input: say so on one line, keep the details on request
         import os

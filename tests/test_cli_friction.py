@@ -99,3 +99,27 @@ def test_an_occupancy_array_passed_as_the_world_is_pointed_at_gridmap():
     with pytest.raises(op.ParameterError, match=r"op\.GridMap\(occ"):
         op.plan(occ, (0.5, 0.5), (4.5, 4.5))
     assert op.plan(op.GridMap(occ), (0.5, 0.5), (4.5, 4.5)).length == pytest.approx(4 * np.sqrt(2))
+
+
+def test_verbosity_flags_and_one_interrupt_line(tmp_path, capsys, monkeypatch):
+    """-q keeps stderr to warnings and errors, the default prints the notes through the
+    'optplan' logger; an interrupted bench says 'interrupted' once, with how to resume."""
+    from optplan.cli import main
+
+    spec = tmp_path / "s.yaml"
+    spec.write_text("kind: plan\nmaps: [chen2025_20]\nalgorithms: [astar]\nruns: 1\n")
+    db = str(tmp_path / "r.sqlite")
+    assert main(["bench", str(spec), "--db", db, "--workers", "1", "-q"]) == 0
+    assert capsys.readouterr().err == ""
+    assert main(["bench", str(spec), "--db", db, "--workers", "1"]) == 0
+    assert "already in the database" in capsys.readouterr().err
+
+    import optplan.bench.command as command
+
+    def interrupted(*a, **k):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(command, "run_spec", interrupted)
+    assert main(["bench", str(spec), "--db", db, "--workers", "1"]) == 130
+    err = capsys.readouterr().err
+    assert err.count("interrupted") == 1 and "rerun the same command" in err

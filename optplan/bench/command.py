@@ -2,6 +2,7 @@
 command line, :mod:`optplan.cli`), and :func:`reproduce`, the same from Python."""
 from __future__ import annotations
 
+import logging
 import os
 import signal
 import sys
@@ -12,6 +13,7 @@ from types import SimpleNamespace
 from ..errors import ParameterError
 
 PAPERS = ("hou2024", "yang2023", "yuan2021", "li2023", "chen2025")
+log = logging.getLogger(__name__)
 
 @contextmanager
 def _sigterm_as_interrupt():
@@ -34,7 +36,7 @@ def _check_workers(workers) -> None:
     if workers is not None and workers < 1:
         raise ParameterError(f"--workers must be a positive integer, got {workers}")
     if workers is not None and workers > 4 * (os.cpu_count() or 1):
-        print(f"optplan: note: {workers} workers on {os.cpu_count()} CPUs", file=sys.stderr)
+        log.warning(f"optplan: note: {workers} workers on {os.cpu_count()} CPUs")
 
 
 def run_spec(spec, store, args, label: str = ""):
@@ -58,8 +60,8 @@ def _export_ompl(store, args, keys) -> None:
         from .ompl import export_ompl
 
         files = export_ompl(store, args.export_ompl, keys)
-        print(f"wrote {len(files)} OMPL benchmark log(s) to {args.export_ompl} (Planner Arena: "
-              f"ompl_benchmark_statistics.py {args.export_ompl}/*.log -d benchmark.db)", file=sys.stderr)
+        log.info(f"wrote {len(files)} OMPL benchmark log(s) to {args.export_ompl} (Planner Arena: "
+                 f"ompl_benchmark_statistics.py {Path(args.export_ompl) / '*.log'} -d benchmark.db)")
 
 
 def run_bench(args) -> int:
@@ -77,15 +79,15 @@ def run_bench(args) -> int:
                 try:
                     rep = run_spec(spec, store, args, label=spec.name)
                 except KeyboardInterrupt:
-                    print(f"optplan: interrupted; {store.count()} runs are stored in {args.db}; rerun the same "
-                          f"command to finish the rest", file=sys.stderr)
-                    raise
-            print(f"{spec.name}: {rep.describe()}; database {args.db}", file=sys.stderr)
+                    # the command line prints this once, after 'interrupted'
+                    raise KeyboardInterrupt(f"{store.count()} runs are stored in {args.db}; rerun the same "
+                                            f"command to finish the rest") from None
+            log.info(f"{spec.name}: {rep.describe()}; database {args.db}")
             failed = rep.failed
         print(_tables(spec, store, args, args.layout).rstrip("\n"))
         if args.csv:
             n = store.to_csv(args.csv, [r.key for r in spec.expand()])
-            print(f"wrote {n} rows to {args.csv}", file=sys.stderr)
+            log.info(f"wrote {n} rows to {args.csv}")
         _export_ompl(store, args, [r.key for r in spec.expand()])
         if failed:
             print(f"optplan: {failed} run(s) failed; their messages are in the 'error' column of {args.db} "
@@ -122,15 +124,15 @@ def run_reproduce(args) -> int:
                     rep = run_spec(spec, store, args, label=spec.name)
                 except KeyboardInterrupt:
                     if args.db != ":memory:":
-                        print(f"optplan: interrupted; rerun with --db {args.db} to resume", file=sys.stderr)
+                        raise KeyboardInterrupt(f"rerun with --db {args.db} to resume") from None
                     raise
-            print(f"{spec.name}: {rep.describe()}", file=sys.stderr)
+            log.info(f"{spec.name}: {rep.describe()}")
             failed += rep.failed
             keys += [r.key for r in spec.expand()]
             print(_tables(spec, store, args), flush=True)
         if args.csv:
             n = store.to_csv(args.csv, keys)
-            print(f"wrote {n} rows to {args.csv}", file=sys.stderr)
+            log.info(f"wrote {n} rows to {args.csv}")
         _export_ompl(store, args, keys)
         if failed:
             print(f"optplan: {failed} run(s) failed (see the 'failed' counts in the tables)", file=sys.stderr)
