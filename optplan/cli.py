@@ -452,6 +452,13 @@ def _set_up_logging(args) -> None:
     log.propagate = False
     if getattr(args, "quiet", False) and hasattr(args, "no_progress"):
         args.no_progress = True
+    import warnings
+
+    def show(message, category, filename, lineno, file=None, line=None):
+        # one line, like the errors: what Python prints by default names a source line of optplan
+        log.warning(f"optplan: warning: {one_line(message)}")
+
+    warnings.showwarning = show
 
 
 # options that name a file or folder the command writes

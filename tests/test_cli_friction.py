@@ -123,3 +123,17 @@ def test_verbosity_flags_and_one_interrupt_line(tmp_path, capsys, monkeypatch):
     assert main(["bench", str(spec), "--db", db, "--workers", "1"]) == 130
     err = capsys.readouterr().err
     assert err.count("interrupted") == 1 and "rerun the same command" in err
+
+
+def test_warnings_print_as_one_line(tmp_path, capsys):
+    """A ROS map's yaw and unknown cells are warned about on one 'optplan: warning:' line each
+    (Python printed the source line of optplan that raised them)."""
+    from optplan.cli import main
+
+    (tmp_path / "m.pgm").write_bytes(b"P2\n3 2\n255\n254 0 205\n254 254 254\n")
+    (tmp_path / "m.yaml").write_text("image: m.pgm\nresolution: 0.05\norigin: [0.0, 0.0, 0.3]\n")
+    assert main(["plan", str(tmp_path / "m.yaml"), "--start", "0.025", "0.025", "--goal", "0.125", "0.025",
+                 "--algo", "astar"]) == 0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 2 and all(line.startswith("optplan: warning: ") for line in err)
+    assert "yaw 0.3" in err[0] and "unknown" in err[1]

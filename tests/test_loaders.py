@@ -87,7 +87,10 @@ def test_ros_map_server_yaml(tmp_path):
     _write_pgm(tmp_path / "m.pgm", img)
     (tmp_path / "m.yaml").write_text("image: m.pgm\nresolution: 0.05\norigin: [-1.0, 2.0, 0.0]\n"
                                      "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n")
-    g = op.load_map(tmp_path / "m.yaml")
+    from optplan.world.loaders import MapUnknownCellsWarning
+
+    with pytest.warns(MapUnknownCellsWarning, match="1 of 6 cells"):   # said, not silent (issue 47)
+        g = op.load_map(tmp_path / "m.yaml")
     assert g.resolution == 0.05 and g.origin == (-1.0, 2.0)
     # top image row is y = 1; unknown (205) is treated as blocked
     np.testing.assert_array_equal(g.occ, [[False, False, False], [False, True, True]])

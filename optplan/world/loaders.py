@@ -393,6 +393,10 @@ class MapOriginYawWarning(UserWarning):
     """A ROS map's origin has a yaw that an axis-aligned grid cannot represent."""
 
 
+class MapUnknownCellsWarning(UserWarning):
+    """A ROS map holds cells that are neither free nor occupied (unknown); they are blocked."""
+
+
 def _read_image(path: Path) -> tuple[np.ndarray, int]:
     """Read a raster image with Pillow: grey values (colour channels averaged, as ROS
     map_server does; fully transparent pixels count as unknown, value -1), top row
@@ -437,6 +441,13 @@ def _grid_from_image(img: np.ndarray, maxval: int, negate: bool, occ_t: float, f
         # values that scale keeps as probabilities are blocked: a planner must not rely on them.
         p = img / maxval if negate else (maxval - img) / maxval
         free = (p < free_t) & (img >= 0)
+        unknown = int(((p <= occ_t) & ~free).sum() + (img < 0).sum())
+        if unknown:
+            import warnings
+
+            warnings.warn(f"{name}: {unknown} of {img.size} cells are neither free nor occupied (unknown, "
+                          f"between free_thresh {free_t:g} and occupied_thresh {occ_t:g}); they are planned as "
+                          "blocked", MapUnknownCellsWarning, stacklevel=4)
     return GridMap.from_rows(~free, resolution, origin, name)
 
 
