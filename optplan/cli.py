@@ -290,12 +290,12 @@ BENCH_EPILOG = """examples:
   optplan bench my_spec.yaml --executor dask://10.0.0.5:8786 --db results.sqlite
   optplan bench programs_example --db programs.sqlite                # kind program: one program, many solvers
 Rerunning the same command skips the runs already in --db (resume after an interruption).
-Spec format: optplan/data/specs/README.md"""
+Spec format: {specs}/README.md"""
 
 REPRODUCE_EPILOG = """examples:
   optplan reproduce chen2025 --quick
   optplan reproduce hou2024 --runs 10 --workers 2 --db hou2024.sqlite   # resumable
-Shipped specs: optplan/data/specs/PAPER_*.yaml"""
+Shipped specs: {specs}/PAPER_*.yaml"""
 
 
 def _common_run_arguments(p: argparse.ArgumentParser) -> None:
@@ -321,7 +321,9 @@ def _common_run_arguments(p: argparse.ArgumentParser) -> None:
 def add_bench_arguments(parser: argparse.ArgumentParser) -> None:
     """Arguments of ``optplan bench``."""
     parser.formatter_class = argparse.RawDescriptionHelpFormatter
-    parser.epilog = BENCH_EPILOG
+    from .bench.spec import SPECS_DIR
+
+    parser.epilog = BENCH_EPILOG.format(specs=SPECS_DIR)   # where the installed package keeps them
     parser.add_argument("spec", help="experiment spec YAML file, or the name of a shipped spec")
     parser.add_argument("--db", default="results.sqlite", metavar="FILE",
                         help="SQLite results database (default results.sqlite; ':memory:' keeps nothing)")
@@ -333,7 +335,9 @@ def add_bench_arguments(parser: argparse.ArgumentParser) -> None:
 def add_reproduce_arguments(parser: argparse.ArgumentParser) -> None:
     """Arguments of ``optplan reproduce``."""
     parser.formatter_class = argparse.RawDescriptionHelpFormatter
-    parser.epilog = REPRODUCE_EPILOG
+    from .bench.spec import SPECS_DIR
+
+    parser.epilog = REPRODUCE_EPILOG.format(specs=SPECS_DIR)
     from .bench.command import PAPERS
 
     parser.add_argument("paper", choices=PAPERS, help="which paper's experiments to run")

@@ -137,3 +137,23 @@ def test_warnings_print_as_one_line(tmp_path, capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 2 and all(line.startswith("optplan: warning: ") for line in err)
     assert "yaw 0.3" in err[0] and "unknown" in err[1]
+
+
+def test_bench_help_names_files_that_exist_where_the_package_is_installed(capsys):
+    import re
+    from pathlib import Path
+
+    from optplan.cli import main
+
+    with pytest.raises(SystemExit):
+        main(["bench", "--help"])
+    text = capsys.readouterr().out
+    readme = re.search(r"Spec format: (\S+)", text).group(1)
+    assert Path(readme).is_file()
+
+
+def test_the_too_few_note_does_not_claim_fixed_sizes():
+    from optplan.bench.stats import too_few_note
+
+    note = too_few_note(0.05)
+    assert "2 / C(n + m, n)" in note
