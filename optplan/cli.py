@@ -58,7 +58,8 @@ def _cmd_plan(args) -> int:
     if args.plot:
         from .viz.plots import plot_paths
 
-        plot_paths(world, {args.algo: res.path}, args.plot, title=f"{args.algo} on {Path(args.map).name}")
+        name = args.algo + (f" + {refine}" if refine else "")    # the refined path is what is drawn
+        plot_paths(world, {name: res.path}, args.plot, title=f"{name} on {Path(args.map).name}")
     if args.json:
         from .solvers.gaps import class_gaps
 

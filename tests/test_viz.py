@@ -122,3 +122,37 @@ def test_the_simulator_layer_never_imports_viz_or_the_command_line():
            for p in sorted((PACKAGE / "sim").rglob("*.py"))}
     assert not {k: v for k, v in bad.items() if v}
     assert "optplan.world.scenario" in _imported_modules(PACKAGE / "sim" / "environment.py")  # the check sees imports
+
+
+def test_plot_titles_name_the_refinement_box_plots_have_units_and_legends_leave_the_map(tmp_path):
+    """Issue 47 polish: 'plan --refine casadi --plot' titled the refined path without '+ casadi';
+    box plots had no unit; the legend sat on the map."""
+    import optplan as op
+    from optplan.cli import main
+    from optplan.viz.experiment_plots import metric_label
+    from optplan.viz.plots import plot_paths
+
+    assert metric_label("length") == "length [m]" and metric_label("time_s") == "time_s [s]"
+    assert metric_label("cost") == "cost"
+    grid = op.load_map("chen2025_30")
+    fig = plot_paths(grid, {"a": np.array([[0.5, 0.5], [5.5, 0.5]])})
+    ax = fig.axes[0]
+    fig.canvas.draw()
+    legend = ax.get_legend().get_window_extent()
+    assert legend.x0 >= ax.get_window_extent().x1 - 1       # beside the axes, not on the map
+    import optplan.viz.plots as plots
+
+    seen = {}
+    real = plots.plot_paths
+
+    def spy(world, paths, filename=None, title="", **kw):
+        seen["title"] = title
+        return real(world, paths, filename, title, **kw)
+
+    plots.plot_paths = spy
+    try:
+        assert main(["plan", "chen2025_20", "--algo", "astar", "--refine", "qp", "--plot",
+                     str(tmp_path / "p.png")]) == 0
+    finally:
+        plots.plot_paths = real
+    assert seen["title"].startswith("astar + qp")

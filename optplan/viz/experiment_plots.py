@@ -20,6 +20,18 @@ def _safe(name: str) -> str:
     return re.sub(r"[^0-9A-Za-z_.+-]", "_", name)
 
 
+# units of the metrics the runs store (a metric not listed has none, e.g. a count or a cost)
+METRIC_UNITS = {"length": "m", "path_length": "m", "time_s": "s", "runtime_s": "s", "wall_s": "s",
+                "min_clearance": "m", "turn_angle_deg": "deg", "max_abs_accel": "m/s^2", "mean_step_ms": "ms",
+                "max_abs_jerk": "m/s^3"}
+
+
+def metric_label(metric: str) -> str:
+    """An axis label for a stored metric, with its unit where it has one: ``length [m]``."""
+    unit = METRIC_UNITS.get(metric)
+    return f"{metric} [{unit}]" if unit else metric
+
+
 def box_plot(groups: Mapping[str, Sequence[float]], filename: str | Path | None = None, title: str = "",
              ylabel: str = "", reference_line: float | None = None):
     """One box per group (median, quartiles, 1.5 IQR whiskers, outliers) with the runs jittered on top;
@@ -67,7 +79,8 @@ def experiment_plots(res: ExperimentResults, out_dir: str | Path, metric: str | 
         vals = {names[g]: res.values(recs, metric) for g, recs in groups.items()}
         if any(len(v) for v in vals.values()):
             files.append(out_dir / f"{_safe(spec.name)}_{_safe(t.name)}_box.png")
-            box_plot(vals, files[-1], title=f"{t.name}: {metric}", ylabel=metric, reference_line=ref_line)
+            box_plot(vals, files[-1], title=f"{t.name}: {metric}", ylabel=metric_label(metric),
+                     reference_line=ref_line)
         histories, paths, finals = {}, {}, {}
         from ..bench.kinds import get_kind
 

@@ -99,8 +99,8 @@ def plot_paths(world, paths: Mapping[str, np.ndarray], filename: str | Path | No
     trajectories, which end where the robot stopped, not at the goal). ``highlight`` names
     one path (e.g. the exact optimum) drawn as a wide band above the others, so paths that
     follow it closely cannot hide it."""
-    fig, ax = new_figure((6.4, 6.4))
-    draw_paths(ax, world, paths, start, goal, highlight)
+    fig, ax = new_figure((8.0, 6.4))
+    draw_paths(ax, world, paths, start, goal, highlight, legend_loc="outside")
     return finish_figure(fig, filename, title, dpi=120)
 
 
@@ -133,7 +133,10 @@ def draw_paths(ax, world, paths: Mapping[str, np.ndarray], start=None, goal=None
         ax.plot(*np.asarray(start, float)[:2], "g^", ms=10, zorder=6, label="start")
     if goal is not None:
         ax.plot(*np.asarray(goal, float)[:2], "r*", ms=13, zorder=6, label="goal")
-    ax.legend(loc=legend_loc, fontsize=7, framealpha=0.85)
+    if legend_loc == "outside":   # beside the map, where it covers no obstacle
+        ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=7, framealpha=0.85, borderaxespad=0.0)
+    else:
+        ax.legend(loc=legend_loc, fontsize=7, framealpha=0.85)
 
 
 def finish_figure(fig, filename: str | Path | None = None, title: str = "", dpi: int = 110):
