@@ -69,11 +69,19 @@ def _cmd_plan(args) -> int:
                               res.path[-1] if len(res.path) else args.goal, res.path, clearance=args.clearance))
         print(json.dumps(out))
     else:
-        d = res.to_dict()
-        print(format_table([d], [("algorithm", "algorithm", ""), ("length", "length [m]", ".4f"),
-                                 ("turn_angle_deg", "total turn [deg]", ".1f"), ("n_turns", "turns", "d"),
-                                 ("min_clearance", "min clearance [m]", ".3f"), ("runtime_s", "time [s]", ".4f"),
-                                 ("feasible", "feasible", "")]))
+        from .demo import RESULT_COLUMNS, result_row
+        from .solvers.gaps import class_gaps
+
+        # the same columns as the demo's table, the gap against the exact any-angle optimum
+        optimum = None
+        if len(res.path):
+            try:
+                optimum = class_gaps(world, res.path[0], res.path[-1], res.path, clearance=args.clearance).get(
+                    "exact_length")
+            except OptplanError:
+                optimum = None
+        name = args.algo + (f" + {refine}" if refine else "")
+        print(format_table([result_row(name, res, optimum)], RESULT_COLUMNS))
         if res.encoding:
             print(f"encoding: {res.encoding}")
         if res.message:

@@ -1,6 +1,7 @@
 """``optplan demo``: plan on a shipped map, compare with the exact optimum, draw it."""
 from __future__ import annotations
 
+import math
 import sys
 from pathlib import Path
 
@@ -34,6 +35,23 @@ def format_table(rows: list[dict], columns: list[tuple[str, str, str]]) -> str:
     return "\n".join([head, rule, *body])
 
 
+# the columns of a table of plan results, in the demo and in `optplan plan` alike
+RESULT_COLUMNS = [
+    ("algorithm", "algorithm", ""), ("length", "length [m]", ".4f"), ("gap", "gap to exact optimum [%]", ".2f"),
+    ("turn", "total turn [deg]", ".1f"), ("turns", "turns", "d"), ("clear", "min clearance [m]", ".3f"),
+    ("ms", "time [ms]", ".1f"), ("feasible", "feasible", ""), ("note", "note", ""),
+]
+
+
+def result_row(name: str, r, optimum: float | None, note: str = "") -> dict:
+    """One row of :data:`RESULT_COLUMNS` for the PlanResult ``r`` (``optimum``: the exact
+    any-angle length, ``None`` when unknown)."""
+    gap = 100.0 * (r.length / optimum - 1.0) if optimum and math.isfinite(r.length) else "-"
+    return {"algorithm": name, "length": r.length, "gap": gap, "turn": r.turn_angle_deg, "turns": r.n_turns,
+            "clear": r.min_clearance, "ms": 1000.0 * r.runtime_s, "feasible": "yes" if r.feasible else "NO",
+            "note": note}
+
+
 def run_demo(out: str | Path = "optplan_demo.png", seed: int = 0, stream=None) -> list[dict]:
     """Run the demo, print the table to ``stream`` (stdout) and write the PNG to ``out``."""
     stream = stream or sys.stdout
@@ -47,19 +65,9 @@ def run_demo(out: str | Path = "optplan_demo.png", seed: int = 0, stream=None) -
         except UnknownAlgorithmError:
             continue  # that planner is not part of this version
     optimum = results["visibility"].length
-    rows = []
-    for name, r in results.items():
-        rows.append({
-            "algorithm": name, "length": r.length, "gap": 100.0 * (r.length / optimum - 1.0),
-            "turn": r.turn_angle_deg, "turns": r.n_turns, "clear": r.min_clearance,
-            "ms": 1000.0 * r.runtime_s, "feasible": "yes" if r.feasible else "NO",
-            "note": "" if r.refined or " + " not in name else "fell back to the seed",
-        })
-    table = format_table(rows, [
-        ("algorithm", "algorithm", ""), ("length", "length [m]", ".4f"), ("gap", "gap to exact optimum [%]", ".2f"),
-        ("turn", "total turn [deg]", ".1f"), ("turns", "turns", "d"), ("clear", "min clearance [m]", ".3f"),
-        ("ms", "time [ms]", ".1f"), ("feasible", "feasible", ""), ("note", "note", ""),
-    ])
+    rows = [result_row(name, r, optimum, "" if r.refined or " + " not in name else "fell back to the seed")
+            for name, r in results.items()]
+    table = format_table(rows, RESULT_COLUMNS)
     print(table, file=stream)
     print("exact optimum = visibility graph over obstacle corners (any-angle, cell centres); "
           "'+ casadi' / '+ qp' = the msiar-gwo path refined by IPOPT / the OSQP corridor smoother "
