@@ -13,12 +13,13 @@ msiar-gwo > ipopt, and every result is judged by the same ``prog.evaluate`` and 
 collision test. Prints one table per variable choice and writes a figure of the best
 path of each solver.
 
-    python examples/formulation_experiments.py [--seeds 3] [--quick] [--out formulation.png]
+    python examples/formulation_experiments.py [--seeds 3] [--quick] [--out out/formulation_experiments]
 """
 from __future__ import annotations
 
 import argparse
 import math
+from pathlib import Path
 
 import numpy as np
 
@@ -51,7 +52,8 @@ def main(argv=None) -> int:
     ap.add_argument("--seeds", type=int, default=3)
     ap.add_argument("--max-evals", type=int, default=6000)
     ap.add_argument("--quick", action="store_true", help="1 seed, 2000 evaluations")
-    ap.add_argument("--out", default="formulation_experiments.png")
+    ap.add_argument("--out", default="out/formulation_experiments",
+                    help="folder for the figure (created), as every example's --out")
     a = ap.parse_args(argv)
     seeds = range(1 if a.quick else a.seeds)
     evals = 2000 if a.quick else a.max_evals
@@ -79,9 +81,11 @@ def main(argv=None) -> int:
             key = (variables.name, row["solver"])
             if r.feasible and (key not in best or r.cost < best[key].cost):
                 best[key] = r
+    from optplan.viz.plots import save_figure
+
     fig = plot(world, start, goal, best)
-    fig.savefig(a.out, dpi=120)
-    print(f"wrote {a.out}")
+    written = save_figure(fig, Path(a.out) / "formulation_experiments.png", dpi=120)
+    print(f"wrote {written}")
     return 0
 
 
