@@ -156,8 +156,11 @@ def population_budget(pop, iters, max_evals, dim: int = 1) -> None:
         need = int(pop) * dim * 8 * POPULATION_COPIES
         if need > MEMORY_BUDGET_BYTES:
             top = MEMORY_BUDGET_BYTES // (dim * 8 * POPULATION_COPIES)
+            if iters and max_evals is None and isinstance(iters, (int, np.integer)) and iters > 0:
+                top = min(top, MAX_EVALUATIONS // int(iters))   # the hint must pass the evaluation bound too
             raise ParameterError(f"pop {pop} needs about {need / 1024 ** 3:.3g} GiB for {dim} variables per "
-                                 f"individual; the bound is {MEMORY_BUDGET_BYTES / 1024 ** 3:g} GiB, i.e. pop <= {top}")
+                                 f"individual; the bound is {MEMORY_BUDGET_BYTES / 1024 ** 3:g} GiB, i.e. pop <= {top}"
+                                 + (f" with iters={iters}" if iters and max_evals is None else ""))
     evals = max_evals if max_evals is not None else (int(pop) * int(iters) if pop and iters else None)
     if evals is not None and evals > MAX_EVALUATIONS:
         raise ParameterError(f"the budget asks for {evals:.3g} objective evaluations (pop x iters or max_evals); the "

@@ -215,3 +215,16 @@ def test_every_listed_map_name_loads_and_the_readmes_scenario_ships():
     for name in maps.names():
         op.load_map(name)
     assert main(["plan", "arena.map", "--scen", "arena.map.scen", "--query", "40", "--json"]) == 0
+
+
+def test_the_population_hint_names_a_value_that_is_accepted():
+    """Issue 47: the 'pop <= N' hint of a population too large for memory named values the
+    evaluation bound then refused."""
+    import re
+
+    from optplan.checks import population_budget
+
+    with pytest.raises(op.ParameterError) as exc:
+        population_budget(10 ** 12, 500, None, dim=10)
+    top = int(re.search(r"pop <= (\d+)", str(exc.value)).group(1))
+    population_budget(top, 500, None, dim=10)            # accepted
