@@ -8,7 +8,7 @@ Supported by :func:`load_map` (dispatch on the suffix):
 * ``.map`` — Moving AI benchmark format (``type``/``height``/``width``/``map``
   header; ``.``, ``G`` and ``S`` are free, every other character blocked).
 * ``.yaml`` — ROS ``map_server`` metadata pointing at a ``.pgm`` (P2 or P5) image, or
-  at a PNG/BMP/other image read with Pillow (the ``images`` extra); ``mode``
+  at a PNG/BMP/other image read with Pillow (installed with matplotlib); ``mode``
   (``trinary``, ``scale``, ``raw``), ``negate``, ``occupied_thresh``, ``free_thresh``,
   ``resolution`` and ``origin`` are honoured. Cells that are neither free nor occupied
   (unknown) are blocked. An origin yaw other than 0 cannot be applied to an
