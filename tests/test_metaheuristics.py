@@ -271,3 +271,15 @@ def test_ipso_keeps_clipping_and_bad_wall_rules_are_refused():
     assert get_algorithm("ipso")().walls == "clip" and get_algorithm("pso")().walls == "absorb"
     with pytest.raises(op.ParameterError, match="walls"):
         op.optimize(SPHERE, SPHERE.bounds, algorithm="pso", pop=5, iters=2, walls="bounce")
+
+
+def test_progress_to_a_log_file_is_lines_not_carriage_returns(capsys, monkeypatch):
+    """Issue 47: progress redrew one line with carriage returns every 0.5 s, also into a log
+    file; off a terminal it prints plain lines (every 10 s) and no stray newline."""
+    import optplan.solvers.metaheuristics.engine as engine
+
+    clock = iter(float(t) for t in range(0, 10_000, 3))
+    monkeypatch.setattr(engine.time, "perf_counter", lambda: next(clock))
+    op.optimize(lambda X: (X ** 2).sum(1), [(-5, 5)] * 2, algorithm="gwo", iters=12, progress=True)
+    err = capsys.readouterr().err
+    assert "\r" not in err and err.count("gwo: iteration") >= 2

@@ -359,6 +359,7 @@ def _loop(algorithm: Algorithm, state: State, X0: np.ndarray, *, callback=None, 
         state.snapshot()
     last_improvement, last_best = 0, state.best_f
     t_report = time.perf_counter()
+    tty = bool(progress) and bool(getattr(sys.stderr, "isatty", lambda: False)())
     while True:
         why = budget.spent(state.it, state.nfev)
         if why is not None:
@@ -373,10 +374,12 @@ def _loop(algorithm: Algorithm, state: State, X0: np.ndarray, *, callback=None, 
         history_nfev.append(state.nfev)
         if archive_every and state.it % archive_every == 0:
             state.snapshot()
-        if progress and time.perf_counter() - t_report > 0.5:
+        if progress and time.perf_counter() - t_report > (0.5 if tty else 10.0):
+            # a terminal gets one line redrawn in place; a log file a new line every 10 s, not
+            # a line of carriage returns
             t_report = time.perf_counter()
-            print(f"\r{algorithm.name}: iteration {state.it}, evaluations {state.nfev}, best {state.best_f:.6g}",
-                  end="", file=sys.stderr, flush=True)
+            line = f"{algorithm.name}: iteration {state.it}, evaluations {state.nfev}, best {state.best_f:.6g}"
+            print(f"\r{line}" if tty else line, end="" if tty else "\n", file=sys.stderr, flush=True)
         if watch:
             if state.best_f < last_best:
                 last_best, last_improvement = state.best_f, state.it
@@ -389,7 +392,7 @@ def _loop(algorithm: Algorithm, state: State, X0: np.ndarray, *, callback=None, 
             break
     if archive_every and state.it % archive_every != 0:
         state.snapshot()  # the final population
-    if progress:
+    if progress and tty:
         print(file=sys.stderr)
     return state, np.asarray(history), np.asarray(history_nfev, dtype=np.int64), status, message, state.it
 
