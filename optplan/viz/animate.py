@@ -75,7 +75,7 @@ def animate_run(scenario, result, filename: str | Path, fps: int = 10, max_frame
     movers = [Circle((0, 0), ob.radius, color="tab:pink", alpha=0.9, zorder=6) for ob in sc.dynamic]
     for m in movers:
         ax.add_patch(m)
-    run_legend(ax, sc)
+    run_legend(ax, sc, below=True)
     head = title or f"{sc.name or 'scenario'}: {result.global_planner} + {result.local_planner}"
     label = ax.set_title(head)
     filename = Path(filename)
@@ -149,9 +149,11 @@ def _draw_route(ax, sc, result) -> None:
     ax.plot(*sc.goal, "r*", ms=12, zorder=6)  # the scenario's goal, wherever the robot stopped
 
 
-def run_legend(ax, sc) -> None:
+def run_legend(ax, sc, below: bool = False) -> None:
     """One legend entry per kind of element a closed-loop picture shows (drawn as proxies,
-    so the entries exist even for elements that appear only in later frames)."""
+    so the entries exist even for elements that appear only in later frames); ``below`` puts
+    it under the map, where it covers no obstacle (the still picture; an animation's frames
+    keep it in the corner of their fixed canvas)."""
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
@@ -166,7 +168,11 @@ def run_legend(ax, sc) -> None:
                Line2D([], [], marker="*", ls="", color="r", ms=10, label="goal")]
     if sc.dynamic:
         handles.append(Line2D([], [], marker="o", ls="", color="tab:pink", ms=8, label="moving obstacle"))
-    ax.legend(handles=handles, loc="upper left", fontsize=6, framealpha=0.8)
+    if below:
+        ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncol=3, fontsize=6,
+                  framealpha=0.8)
+    else:
+        ax.legend(handles=handles, loc="upper left", fontsize=6, framealpha=0.8)
 
 
 def plot_run(scenario, result, filename: str | Path | None = None, title: str | None = None, dpi: int = 110):
@@ -203,7 +209,7 @@ def plot_run(scenario, result, filename: str | Path | None = None, title: str | 
         hits = _collision_steps(env, sc, traj)
         if len(hits):
             ax.plot(traj[hits, 1], traj[hits, 2], "x", color="red", ms=7, zorder=8)
-    run_legend(ax, sc)
+    run_legend(ax, sc, below=True)
     head = title or f"{sc.name or 'scenario'}: {result.global_planner} + {result.local_planner}"
     fig = finish_figure(fig, None, f"{head}: {outcome_text(result)} after {result.time_s:.1f} s", dpi=dpi)
     ax.title.set_color(OUTCOME_COLOURS.get(result.status, "black"))
