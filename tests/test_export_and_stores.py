@@ -280,15 +280,18 @@ def test_ros_yaml_yaw_warns_and_mode_is_honoured(tmp_path):
     # values 0 (occupied), 100 (free in raw mode? no: raw means the value itself), 254 (free)
     (tmp_path / "m.pgm").write_bytes(b"P2\n3 1\n255\n0 100 254\n")
     base = "image: m.pgm\nresolution: 1.0\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n"
+    from optplan.world.loaders import MapUnknownCellsWarning
+
     (tmp_path / "tri.yaml").write_text(base + "origin: [0.0, 0.0, 0.0]\n")
-    np.testing.assert_array_equal(op.load_map(tmp_path / "tri.yaml").to_rows(), [[True, True, False]])
+    with pytest.warns(MapUnknownCellsWarning, match="1 of 3"):        # 100 is neither free nor occupied
+        np.testing.assert_array_equal(op.load_map(tmp_path / "tri.yaml").to_rows(), [[True, True, False]])
     (tmp_path / "raw.yaml").write_text(base + "origin: [0.0, 0.0, 0.0]\nmode: raw\n")
     np.testing.assert_array_equal(op.load_map(tmp_path / "raw.yaml").to_rows(), [[False, True, True]])
     (tmp_path / "bad.yaml").write_text(base + "origin: [0.0, 0.0, 0.0]\nmode: fuzzy\n")
     with pytest.raises(op.MapFormatError, match="mode must be one of"):
         op.load_map(tmp_path / "bad.yaml")
     (tmp_path / "yaw.yaml").write_text(base + "origin: [0.0, 0.0, 0.7]\n")
-    with pytest.warns(MapOriginYawWarning, match="yaw 0.7"):
+    with pytest.warns(MapOriginYawWarning, match="yaw 0.7"), pytest.warns(MapUnknownCellsWarning):
         op.load_map(tmp_path / "yaw.yaml")
 
 
