@@ -607,7 +607,7 @@ def can_stop(margin: float = 0.0) -> CanStop:
 
 
 def default_local_program(robot: RobotSpec, horizon: float = 2.0, intervals: int = 10, step: float = 0.1,
-                          margin: float = 0.008) -> LocalProgram:
+                          margin: float = 0.02) -> LocalProgram:
     """The window program ``mpc`` solves unless given one: reach the subgoal, stay near the
     global path, keep speed, change commands smoothly; clearance and a stop at the end."""
     lp = LocalProgram(robot, horizon, intervals, step, name="default")
