@@ -278,10 +278,11 @@ def run_records(records: Iterable, store, executor: Any = "local", workers: int 
             stored = store.done_keys([r["key"] for r in waiting], include_failed=not retry_failed)
             report.elsewhere += sum(r["key"] in stored for r in waiting)
             rest = [r for r in waiting if r["key"] not in stored]
-            mine = [r for r in rest if store.claim(r["key"], not retry_failed)]
-            queue.elsewhere = [r for r in rest if r not in mine]
+            taken = [store.claim(r["key"], not retry_failed) for r in rest]
+            mine = [r for r, t in zip(rest, taken) if t]
+            queue.elsewhere = [r for r, t in zip(rest, taken) if not t]
             if mine:                    # their owner is gone: this process runs them
-                queue.refill(mine)
+                queue.refill(mine, claimed=True)
                 execute()
             elif queue.elsewhere:
                 time.sleep(CLAIM_POLL_S)
@@ -307,10 +308,12 @@ class ClaimQueue:
         self.store, self.include_failed = store, include_failed
         self.items: list[dict] = []
         self.elsewhere: list[dict] = []
+        self.claimed = False
         self.refill(todo)
 
-    def refill(self, todo: list[dict]) -> None:
-        self.items = list(reversed(todo))
+    def refill(self, todo: list[dict], claimed: bool = False) -> None:
+        """Runs to hand out; ``claimed``: this process holds their claims already."""
+        self.items, self.claimed = list(reversed(todo)), claimed
 
     def __len__(self) -> int:
         return len(self.items)
@@ -318,7 +321,7 @@ class ClaimQueue:
     def pop(self) -> dict | None:
         while self.items:
             rec = self.items.pop()
-            if self.store.claim(rec["key"], self.include_failed):
+            if self.claimed or self.store.claim(rec["key"], self.include_failed):
                 return rec
             self.elsewhere.append(rec)
         return None
