@@ -183,7 +183,7 @@ def _add_simulate_arguments(parser) -> None:
     parser.add_argument("--global", "--global-planner", dest="global_planner", default="astar", metavar="NAME",
                         help="global planner (see 'optplan algorithms'); default astar (visibility on circle worlds)")
     parser.add_argument("--local", "--local-planner", dest="local_planner", default="dwa", metavar="NAME",
-                        help="local planner: dwa, missa-dwa, idwa, ba-dwa, iga-dwa, qp-dwa; default dwa")
+                        help="local planner: dwa, missa-dwa, idwa, ba-dwa, iga-dwa, qp-dwa, mpc; default dwa")
     parser.add_argument("--refine", default="none", choices=_refine_choices(), help="refine the global path")
     parser.add_argument("--seed", type=int, default=0, help="random seed (global planner, random obstacles); default 0")
     parser.add_argument("--subgoals", default=None,
@@ -204,6 +204,9 @@ def _add_simulate_arguments(parser) -> None:
                         "planner_params takes, over the scenario file's planner_params), e.g. '{\"max_iter\": 30}'")
     parser.add_argument("--global-params", metavar="JSON", help="op.plan options of the global planner as one JSON "
                         "object (over the scenario file's global_options), e.g. '{\"pop\": 40, \"iters\": 100}'")
+    parser.add_argument("--local-program", metavar="NAME", help="a named window program (default) solved by the "
+                        "local planner: dwa samples it, qp-dwa samples and polishes it with one QP, mpc solves it "
+                        "by NMPC (mpc's own default)")
 
 
 def _cmd_simulate(args) -> int:
@@ -221,13 +224,22 @@ def _cmd_simulate(args) -> int:
     # a generated family's settings for the local planner, as op.simulate gives them for the
     # family's name (the scenario object drawn here carries none), then the scenario file's
     # planner_params (op.simulate lays them under these), then --params
-    family = family_options(args.scenario).get("local_params", {}).get(str(args.local_planner).lower(), {})
+    family = {} if args.local_program else \
+        family_options(args.scenario).get("local_params", {}).get(str(args.local_planner).lower(), {})
     local_params = {**family, **_json_params(args.params, "--params")}
     global_params = _json_params(args.global_params, "--global-params")
     if local_params:
         options["planner_params"] = local_params
     if args.subgoals:
         options["subgoals"] = args.subgoals
+    if args.local_program:
+        options["local_program"] = args.local_program
+    # the local planner, its parameters and its program are checked before the global plan is made
+    from .local import make_local_planner
+
+    make_local_planner(args.local_planner, scenario.robot, scenario.dt,
+                       **{**scenario.planner_params.get(str(args.local_planner).lower(), {}), **local_params},
+                       **({"local_program": args.local_program} if args.local_program else {}))
     if args.progress:
         options["progress"] = True
     refine = None if args.refine == "none" else args.refine
@@ -304,6 +316,7 @@ Spec format: {specs}/README.md"""
 REPRODUCE_EPILOG = """examples:
   optplan reproduce chen2025 --quick
   optplan reproduce hou2024 --runs 10 --workers 2 --db hou2024.sqlite   # resumable
+  optplan reproduce yuan2021 --part global --update-docs   # rewrite its marked tables in README/docs
 Shipped specs: {specs}/PAPER_*.yaml"""
 
 
@@ -353,6 +366,10 @@ def add_reproduce_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--part", default=None, help="only this part (e.g. global, local, functions, paths)")
     parser.add_argument("--db", default=":memory:", metavar="FILE",
                         help="keep results in this SQLite file and resume from it (default: in memory, fresh)")
+    parser.add_argument("--update-docs", action="store_true",
+                        help="rewrite the marked results tables of README.md and docs/fidelity/*.md that this "
+                             "command prints (those whose command asks for the same --runs and --quick) from this "
+                             "run; a --db holding runs of older code writes their numbers")
     _common_run_arguments(parser)
 
 

@@ -90,9 +90,9 @@ def _side_program(sign: float) -> op.LocalProgram:
     return lp
 
 
-@pytest.mark.parametrize("solver", ["dwa", "mpc"])
+@pytest.mark.parametrize("solver", ["dwa", "qp-dwa", "mpc"])
 def test_a_custom_local_term_reaches_every_solver(solver):
-    """The same custom term steers both solvers round the block on its side; neither collides."""
+    """The same custom term steers every solver round the block on its side; none collides."""
     sides = {}
     for sign in (1.0, -1.0):
         r = op.simulate(op.load_scenario(SCENARIO), global_planner="astar", local_planner=solver,
@@ -130,11 +130,58 @@ def test_mpc_reports_cost_violation_and_status_per_step():
 
 def test_bad_local_program_requests_are_refused():
     lp = op.LocalProgram(ROBOT)
-    with pytest.raises(op.ParameterError, match="qp-dwa"):
-        op.simulate("hou2024_dynamic1", local_planner="qp-dwa", local_program=lp)
+    with pytest.raises(op.ParameterError, match="own critics"):
+        op.simulate("hou2024_dynamic1", local_planner="idwa", local_program=lp)
     from optplan.local import make_local_planner
 
     with pytest.raises(op.ParameterError, match="max_mover"):
         make_local_planner("mpc", ROBOT, 0.1, max_movrs=3)
     with pytest.raises(op.ParameterError, match="intervals"):
         op.LocalProgram(ROBOT, intervals=0)
+
+
+def _one_step(name, **params):
+    from optplan.local import make_local_planner
+    from optplan.local.base import LocalContext
+    from optplan.world.robot import RobotState
+
+    sit = _situation()
+    planner = make_local_planner(name, ROBOT, 0.1, **params)
+    state = RobotState(0.0, 0.0, 0.1, 0.4, 0.1)
+    planner.reset(state, sit.path)
+    ctx = LocalContext(state=state, subgoal=sit.subgoal, goal=sit.subgoal, global_path=sit.path,
+                       static_distance=sit.static_distance, dynamic=np.zeros((0, 5)), dt=0.1)
+    return sit, planner, planner.command(ctx)
+
+
+def test_qp_dwa_over_a_program_is_never_worse_than_its_best_sample():
+    """The polish is kept only when the program prefers it: the step's cost is at most the
+    best sample's, under the same program's batched view."""
+    sit, planner, cmd = _one_step("qp-dwa", local_program="default")
+    assert cmd.info["planner"] == "qp-dwa" and cmd.info["mode"] in ("qp-dwa", "fallback-sample")
+    from optplan.world.robot import RobotState
+
+    lp = planner.lp
+    U = planner.sampler.samples(type("C", (), {"state": RobotState(0.0, 0.0, 0.1, 0.4, 0.1), "dt": 0.1})())
+    i, cost, viol = planner.sampler.best(sit, U)
+    assert viol[i] <= 1e-6 and cmd.info["violation"] <= 1e-6
+    assert cmd.info["cost"] <= cost[i] + 1e-9
+    assert lp.name == "default"
+
+
+def test_a_named_local_program_is_the_same_program_and_a_wrong_name_is_refused():
+    _, by_name, a = _one_step("dwa", local_program="default")
+    _, by_object, b = _one_step("dwa", local_program=op.local_terms.default_local_program(ROBOT, step=0.1))
+    assert (a.v, a.w) == (b.v, b.w) and a.info["cost"] == b.info["cost"]
+    with pytest.raises(op.ParameterError, match="did you mean 'default'"):
+        _one_step("mpc", local_program="defualt")
+    with pytest.raises(op.ParameterError, match="path_creep"):
+        _one_step("mpc", path_creep={"sped": 0.1})
+
+
+def test_the_local_programs_spec_names_a_program_and_its_solvers():
+    from optplan.bench.spec import load_spec
+
+    runs = load_spec("local_programs", quick=True).expand()
+    assert {r.local_planner for r in runs} == {"dwa", "mpc"}
+    assert all(r.params["local_program"] == "default" for r in runs)

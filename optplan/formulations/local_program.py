@@ -35,6 +35,9 @@ from ..errors import ParameterError
 from ..world.robot import RobotSpec
 from .namespaces import Batch, BatchNamespace, Sym, SymbolicNamespace
 
+# metres of shortfall added for touching a static obstacle: more than any mover shortfall
+# can be (the sum of two radii and margins), so any plan clear of the walls ranks first
+CONTACT_PENALTY = 10.0
 _SMOOTH = 1e-9  # under square roots of the symbolic view: differentiable at 0
 
 
@@ -49,6 +52,8 @@ class Situation:
         static_distance: ``(..., 2) -> (...)`` signed distance from a point to the static
             obstacles known now (robot radius not subtracted).
         movers: ``(k, 5)`` rows ``(x, y, vx, vy, radius)``, predicted at constant velocity.
+        distance_error: how much ``static_distance`` may overestimate the true distance, m
+            (a position within it of an obstacle counts as touching it).
     """
 
     state: np.ndarray
@@ -56,6 +61,7 @@ class Situation:
     path: np.ndarray
     static_distance: Callable[[np.ndarray], np.ndarray]
     movers: np.ndarray = field(default_factory=lambda: np.zeros((0, 5)))
+    distance_error: float = 0.0
 
 
 # ----------------------------------------------------------------------------- expressions
@@ -297,7 +303,8 @@ class Clearance(LocalConstraint):
     """Every predicted position keeps ``margin`` metres between the robot's edge and the
     static obstacles, and ``margin + mover_margin + mover_growth * t`` from every mover
     predicted at constant velocity (``t`` seconds ahead: a prediction errs more the farther
-    it looks)."""
+    it looks). Its violation is the deepest shortfall along the window, plus
+    :data:`CONTACT_PENALTY` where the robot would touch a static obstacle."""
 
     name = "clearance"
 
@@ -314,7 +321,12 @@ class Clearance(LocalConstraint):
         return self.margin + self.mover_margin + self.mover_growth * prog.h * np.arange(1, n + 1)
 
     def batched(self, Z, U, sit, prog):
-        short = np.maximum(self.margin - prog.static_gap(Z, sit), 0.0)
+        gap = prog.static_gap(Z, sit)
+        # touching a static obstacle is certain harm, a mover's predicted shortfall is not: when
+        # nothing holds (a mover closing in), the least violating plan must not be one that
+        # trades mover clearance for contact with a wall
+        touch = gap - sit.distance_error
+        short = np.maximum(self.margin - gap, 0.0) + np.where(touch < 0.0, CONTACT_PENALTY - touch, 0.0)
         need = self._mover_need(prog, Z.shape[1] - 1)
         for gap in prog.mover_gaps(Z, sit):
             short = np.maximum(short, need - gap)
@@ -616,3 +628,25 @@ def default_local_program(robot: RobotSpec, horizon: float = 2.0, intervals: int
     lp.subject_to(clearance(mover_margin=0.1, mover_growth=0.1) >= margin)
     lp.subject_to(can_stop(margin))
     return lp
+
+
+# Named window programs: what a scenario file, a bench spec or the command line can name
+# (``local_program: default``); each is built for the run's robot and control period.
+LOCAL_PROGRAMS: dict[str, Callable[[RobotSpec, float], LocalProgram]] = {
+    "default": lambda robot, step: default_local_program(robot, step=step),
+}
+
+
+def named_local_program(program: "str | LocalProgram", robot: RobotSpec, step: float) -> LocalProgram:
+    """``program`` itself, or the named one of :data:`LOCAL_PROGRAMS` built for ``robot``."""
+    if isinstance(program, LocalProgram):
+        return program
+    if isinstance(program, str) and program.lower() in LOCAL_PROGRAMS:
+        return LOCAL_PROGRAMS[program.lower()](robot, step)
+    from ..errors import named_with_hints
+
+    if isinstance(program, str):
+        raise ParameterError(f"unknown local program {named_with_hints([program], list(LOCAL_PROGRAMS))}; "
+                             f"named ones: {', '.join(LOCAL_PROGRAMS)} (or pass an op.LocalProgram)")
+    raise ParameterError(f"local_program must be an op.LocalProgram or the name of one "
+                         f"({', '.join(LOCAL_PROGRAMS)}), got {type(program).__name__}")

@@ -47,18 +47,23 @@ def make_local_planner(name: str, robot: RobotSpec, dt: float, **params: Any) ->
     """
     key = str(name).lower()
     program = params.pop("local_program", None)
+    if program is not None:
+        from ..formulations.local_program import named_local_program
+
+        program = named_local_program(program, robot, dt)
     if key == "mpc":
         from .program_planners import MPCPlanner
 
         return _built(MPCPlanner, key, robot, dt, program=program, **params)
     if program is not None:
-        if key != "dwa":
-            raise ParameterError(f"local_program= is solved by 'dwa' (sampling) and 'mpc' (NMPC); {name!r} runs "
-                                 "its own critics (a window program for qp-dwa and the paper presets is not "
-                                 "built yet)")
-        from .program_planners import ProgramSampler
+        from .program_planners import ProgramQPDWA, ProgramSampler
 
-        return _built(ProgramSampler, key, robot, dt, program=program, **params)
+        solvers = {"dwa": ProgramSampler, "qp-dwa": ProgramQPDWA}
+        if key not in solvers:
+            raise ParameterError(f"local_program= is solved by 'dwa' (sampling), 'qp-dwa' (sampling + QP polish) "
+                                 f"and 'mpc' (NMPC); {name!r} runs its own critics (a paper preset as a window "
+                                 "program is not built yet)")
+        return _built(solvers[key], key, robot, dt, program=program, **params)
     preset = PRESETS.get(key)
     if preset is None:
         raise UnknownAlgorithmError(f"unknown local planner {name!r}; choose one of {', '.join(algorithm_names())}")

@@ -3,6 +3,8 @@
 * ``dwa`` over a program (:class:`ProgramSampler`): the dynamic window's constant commands,
   each held over the whole window, scored by the program's own cost and constraints; the
   admissible sample of least cost is driven (the least violating one when none holds).
+* ``qp-dwa`` over a program (:class:`ProgramQPDWA`): the best sample, then one SQP step
+  of the same program (a QP solved by OSQP), kept when the program finds it better.
 * ``mpc`` (:class:`MPCPlanner`): CasADi NMPC of the same program by multiple shooting
   (IPOPT), built once with the situation as parameters and solved every period. Its start
   is the better, under the program, of the previous solution shifted by one period and the
@@ -25,6 +27,7 @@ from ..errors import ParameterError
 from ..formulations.local_program import LocalProgram, Situation, SymbolicSituation, default_local_program
 from ..world.robot import Command, RobotSpec, RobotState
 from .base import LocalContext
+from .hooks import PlannerView
 from .limiter import RuckigLimiter
 from .window import dynamic_window, sample_grid
 
@@ -38,7 +41,41 @@ def situation_of(ctx: LocalContext) -> Situation:
     s = ctx.state
     return Situation(state=np.array([s.x, s.y, s.theta, s.v, s.w, s.vy], float),
                      subgoal=np.asarray(ctx.subgoal, float), path=np.asarray(ctx.global_path, float),
-                     static_distance=ctx.static_distance, movers=np.asarray(ctx.dynamic, float).reshape(-1, 5))
+                     static_distance=ctx.static_distance, movers=np.asarray(ctx.dynamic, float).reshape(-1, 5),
+                     distance_error=float(ctx.distance_error or 0.0))
+
+
+# the path creep is on by default for the program solvers: without it mpc stopped for good in
+# the narrowest clutter gaps (docs/measurements.md, "Local planning as programs")
+DEFAULT_CREEP: dict = {}
+
+
+def _creep(params: dict | None):
+    """The path creep of a program solver: ``None`` (off) or its parameters (``{}``: defaults)."""
+    if params is None:
+        return None
+    if not isinstance(params, dict):
+        raise ParameterError(f"path_creep must be a mapping of its parameters ({{}} for its defaults) or None, "
+                             f"got {params!r}")
+    import dataclasses
+
+    from .creep import PathCreep
+
+    known = [f.name for f in dataclasses.fields(PathCreep) if f.init]
+    unknown = sorted(set(params) - set(known))
+    if unknown:
+        from ..errors import named_with_hints
+
+        raise ParameterError(f"unknown path_creep parameter {named_with_hints(unknown, known)}; known: "
+                             f"{', '.join(known)}")
+    return PathCreep(**dict(params))
+
+
+def _rank(violation: float, cost: float) -> tuple[bool, float]:
+    """Order of two plans under a program: admissible before not, then the lesser cost
+    (or, between inadmissible ones, the lesser violation)."""
+    bad = not violation <= FEASIBLE
+    return bad, (violation if bad else cost)
 
 
 class ProgramSampler:
@@ -103,13 +140,18 @@ class MPCPlanner:
         max_movers: mover slots of the built problem (the nearest are taken).
         n_v, n_w: the sampled window (warm start and fallback).
         max_iter: IPOPT's iteration limit per step.
+        path_creep: parameters of the path creep (``local/creep.py``) that takes over after
+            the robot has stood beside obstacles (default: its own defaults), or ``None``
+            for none.
     """
 
     name = "mpc"
 
     def __init__(self, robot: RobotSpec, dt: float, program: LocalProgram | None = None, max_movers: int = 10,
-                 n_v: int = 9, n_w: int = 15, max_iter: int = 20) -> None:
+                 n_v: int = 9, n_w: int = 15, max_iter: int = 20, path_creep: dict | None = DEFAULT_CREEP) -> None:
         self.robot, self.dt = robot, float(dt)
+        self.view = PlannerView(robot, self.dt, {})
+        self.creep = _creep(path_creep)
         self.sampler = ProgramSampler(robot, dt, program, n_v=n_v, n_w=n_w, name="mpc")
         lp = self.lp = self.sampler.lp
         if isinstance(max_movers, bool) or not isinstance(max_movers, (int, np.integer)) or max_movers < 0:
@@ -179,19 +221,32 @@ class MPCPlanner:
             for con in lp.constraints:
                 for expr, lower in con.symbolic(Z, U, ps, lp):
                     opti.subject_to(expr + slack >= lower)
-            opti.solver("ipopt", {"print_time": False, "expand": True},
-                        {"print_level": 0, "max_iter": self.max_iter, "tol": 1e-4, "acceptable_tol": 1e-3,
-                         "sb": "yes", "warm_start_init_point": "yes", "warm_start_bound_push": 1e-6,
-                         "warm_start_mult_bound_push": 1e-6, "mu_init": 1e-3})
+            # no slack for touching a static obstacle, whatever the program (a plan that must
+            # touch one fails here, and the best sample, ranked the same way, is driven)
+            for expr in lp.static_rows(Z, ps):
+                opti.subject_to(expr >= 0.0)
+            self._choose_solver(opti)
             fn = opti.to_function(f"mpc{slots}", [getattr(ps, k) for k in self.inputs] + [U, Z, opti.lam_g],
                                   [U, opti.lam_g])
             self._solvers[slots] = (fn, int(opti.lam_g.shape[0]))
         fn, n_duals = self._solvers[slots]
         return fn, slots, n_duals
 
+    def _choose_solver(self, opti) -> None:
+        """IPOPT to convergence (or ``max_iter``), warm-started with the last multipliers."""
+        opti.solver("ipopt", {"print_time": False, "expand": True},
+                    {"print_level": 0, "max_iter": self.max_iter, "tol": 1e-4, "acceptable_tol": 1e-3,
+                     "sb": "yes", "warm_start_init_point": "yes", "warm_start_bound_push": 1e-6,
+                     "warm_start_mult_bound_push": 1e-6, "mu_init": 1e-3})
+
+    def _solved(self, stats: dict) -> bool:
+        return bool(stats.get("success"))
+
     def reset(self, state: RobotState, global_path: np.ndarray) -> None:
         self.previous = None
         self.duals = None
+        if self.creep is not None:
+            self.creep.reset(self.view, state, global_path)
         self.limiter.reset([state.v, state.w, state.vy][:self.lp.nu])
 
     def _start(self, sit: Situation, samples: np.ndarray) -> tuple[np.ndarray, int, np.ndarray, np.ndarray]:
@@ -210,13 +265,19 @@ class MPCPlanner:
     def command(self, ctx: LocalContext) -> Command:
         t0 = time.perf_counter()
         lp = self.lp
+        win = dynamic_window(self.robot, ctx.state, ctx.dt, omni=lp.nu == 3)
+        took = self.creep.override(self.view, ctx, win) if self.creep is not None else None
+        if took is not None:   # the path creep has the robot (see local/creep.py)
+            self.previous, self.duals = None, None
+            v, w, extra = took
+            return self._limited(win.clip(v, w, 0.0), {"planner": self.name, "status": "creep", **extra}, t0)
         sit = situation_of(ctx)
         samples = self.sampler.samples(ctx)
         start, i, cost, viol = self._start(sit, samples)
         solve, slots, n_duals = self._solver(len(sit.movers))
         # the last multipliers fit only the same problem (the same slots)
         duals = self.duals if self.duals is not None and len(self.duals) == n_duals else np.zeros(n_duals)
-        status, mode, plan, p_cost, p_viol = "not run", "mpc", None, math.inf, math.inf
+        status, mode, plan, p_cost, p_viol = "not run", self.name, None, math.inf, math.inf
         for attempt in range(1 + self.repairs):
             # the symbolic model of the static field is taken along the start; a plan the
             # program finds too close is solved again with the model taken along that plan
@@ -225,10 +286,11 @@ class MPCPlanner:
             try:
                 out_u, out_lam = solve(*[values[k] for k in self.inputs], start, ref, duals)
                 stats = solve.stats()
-                status = "solved" if stats.get("success") else str(stats.get("return_status", "failed"))
+                solved = self._solved(stats)
+                status = "solved" if solved else str(stats.get("return_status", "failed"))
                 # a failed solve's last iterate may still be a good plan: the program judges it
                 plan = np.asarray(out_u, float).reshape(lp.K, lp.nu)
-                duals = np.asarray(out_lam, float).ravel() if stats.get("success") else np.zeros(n_duals)
+                duals = np.asarray(out_lam, float).ravel() if solved else np.zeros(n_duals)
             except RuntimeError as exc:
                 status, plan = f"error: {str(exc).splitlines()[0][:80]}", None
             if plan is None or not np.all(np.isfinite(plan)):
@@ -237,23 +299,64 @@ class MPCPlanner:
             p_cost, p_viol = float(c[0]), float(v[0])
             if p_viol <= FEASIBLE or status != "solved":
                 break
-            start, mode = plan, "mpc-repaired"
+            start, mode = plan, f"{self.name}-repaired"
         self.duals = duals if status == "solved" else None
         if plan is None or not np.all(np.isfinite(plan)):
             p_cost, p_viol = math.inf, math.inf
-        if p_viol > FEASIBLE and not p_viol <= viol[i]:
+        if _rank(p_viol, p_cost) > _rank(float(viol[i]), float(cost[i])):
+            # the program prefers the best sample (admissible first, then cheaper)
             plan, p_cost, p_viol = samples[i], float(cost[i]), float(viol[i])
             mode = "fallback-sample"
         self.previous = plan
         # the first command within one period's reach (an iterate IPOPT stopped at may not
         # hold the rate rows), then jerk-limited
-        win = dynamic_window(self.robot, ctx.state, ctx.dt, omni=lp.nu == 3)
-        v, w, vy = win.clip(plan[0][0], plan[0][1], plan[0][2] if lp.nu == 3 else 0.0)
-        target = np.array([v, w, vy][:lp.nu])
-        u, ruckig = (self.limiter.step(target) if self.robot.jerk_max is not None
-                     else (target, "unlimited"))
+        u = win.clip(plan[0][0], plan[0][1], plan[0][2] if lp.nu == 3 else 0.0)
+        return self._limited(u, {"planner": self.name, "mode": mode, "status": status, "cost": p_cost,
+                                 "violation": p_viol}, t0)
+
+    def _limited(self, u: tuple[float, float, float], info: dict[str, Any], t0: float) -> Command:
+        """The command ``u`` (within the window) after the Ruckig limiter, with the step's info."""
+        nu = self.lp.nu
+        target = np.array(u[:nu])
+        out, ruckig = (self.limiter.step(target) if self.robot.jerk_max is not None
+                       else (target, "unlimited"))
         if self.robot.jerk_max is None:
-            self.limiter.reset(u)
-        info: dict[str, Any] = {"planner": self.name, "mode": mode, "status": status, "cost": p_cost,
-                                "violation": p_viol, "ruckig": ruckig, "solve_ms": (time.perf_counter() - t0) * 1e3}
-        return Command(v=float(u[0]), w=float(u[1]), vy=float(u[2]) if lp.nu == 3 else 0.0, info=info)
+            self.limiter.reset(out)
+        info.update(ruckig=ruckig, solve_ms=(time.perf_counter() - t0) * 1e3)
+        return Command(v=float(out[0]), w=float(out[1]), vy=float(out[2]) if nu == 3 else 0.0, info=info)
+
+
+class ProgramQPDWA(MPCPlanner):
+    """``qp-dwa`` over a window program: the best sample of the dynamic window, then one
+    SQP step of the same program (its local quadratic model, solved by OSQP through
+    CasADi's ``sqpmethod``), kept only when the program finds it better than the sample.
+    The first command is limited by Ruckig, as in the critic-based ``qp-dwa``.
+
+    Args:
+        robot, dt, program, max_movers, n_v, n_w: as :class:`MPCPlanner`.
+        max_iter: SQP steps per control period (1: one QP polish).
+    """
+
+    name = "qp-dwa"
+
+    def __init__(self, robot: RobotSpec, dt: float, program: LocalProgram | None = None, max_movers: int = 10,
+                 n_v: int = 11, n_w: int = 21, max_iter: int = 1, path_creep: dict | None = DEFAULT_CREEP) -> None:
+        super().__init__(robot, dt, program, max_movers=max_movers, n_v=n_v, n_w=n_w, max_iter=max_iter,
+                         path_creep=path_creep)
+        self.sampler.name = self.name
+        self.repairs = 0
+
+    def _choose_solver(self, opti) -> None:
+        opti.solver("sqpmethod", {"qpsol": "osqp", "max_iter": self.max_iter, "print_header": False,
+                                  "print_iteration": False, "print_status": False, "print_time": False,
+                                  "error_on_fail": False, "expand": True, "convexify_strategy": "eigen-clip",
+                                  "qpsol_options": {"error_on_fail": False, "print_time": False,
+                                                    "osqp": {"verbose": False}}})
+
+    def _solved(self, stats: dict) -> bool:
+        # the step budget is the method (a polish, not a solve to convergence)
+        return bool(stats.get("success")) or stats.get("return_status") == "Maximum_Iterations_Exceeded"
+
+    def _start(self, sit: Situation, samples: np.ndarray) -> tuple[np.ndarray, int, np.ndarray, np.ndarray]:
+        i, cost, viol = self.sampler.best(sit, samples)
+        return samples[i], i, cost, viol

@@ -132,8 +132,10 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
                 random movers is a ``ParameterError``.
             global_plan: a PlanResult to follow instead of planning (e.g. one global plan
                 shared by several local planners; it must be for the same map, start and goal).
-            local_program: an :class:`~optplan.formulations.local_program.LocalProgram` solved
-                every period by ``local_planner="dwa"`` (sampling) or ``"mpc"`` (NMPC).
+            local_program: an :class:`~optplan.formulations.local_program.LocalProgram`, or the
+                name of one (``"default"``), solved every period by ``local_planner="dwa"``
+                (sampling), ``"qp-dwa"`` (sampling + one SQP step, OSQP) or ``"mpc"`` (NMPC).
+                ``mpc`` solves the default program without it.
 
     Returns:
         A :class:`SimResult` (``to_json_dict()`` gives the ``optplan simulate --json`` keys).
@@ -161,7 +163,9 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
                     stuck_time=options.get("stuck_time", 10.0), stuck_distance=options.get("stuck_distance", 0.3),
                     max_replans=options.get("max_replans", 5), global_options={**sc.global_options, **(options.get("global_options") or {})} or None,
                     subgoal_options=options.get("subgoal_options"), sweep_detour=options.get("sweep_detour", 1.5))
-    params = local_params.get(str(local_name).lower(), {}) if isinstance(local_planner, str) else {}
+    # a generated family's parameters tune the critic planners; a window program has its own
+    params = local_params.get(str(local_name).lower(), {}) \
+        if isinstance(local_planner, str) and options.get("local_program") is None else {}
     if isinstance(local_planner, str):
         from ..local import algorithm_names
 
