@@ -18,8 +18,9 @@ the paths of the first run overlaid.
                                        [--tube-radius M] [--starts K]
 
 --part local: the same comparison in closed loop. For each paper with a fusion
-(hou2024, yang2023, yuan2021, li2023), its global planner -> its local planner and
-qp-dwa, with the pure global path, + casadi and + qp, on the same scenarios and
+(hou2024, yang2023, yuan2021, li2023), its global planner -> its local planner, qp-dwa
+and mpc (CasADi NMPC of the default window program; not in --quick), with the pure
+global path, + casadi and + qp, on the same scenarios and
 seeds (the shipped specs PAPER_refined_closed_loop, also ``optplan reproduce PAPER
 --part refined``): success, collisions, time, with the Wilson interval of each
 pipeline's success and the exact McNemar test against the paper's pure fusion.
