@@ -185,3 +185,29 @@ def test_the_local_programs_spec_names_a_program_and_its_solvers():
     runs = load_spec("local_programs", quick=True).expand()
     assert {r.local_planner for r in runs} == {"dwa", "mpc"}
     assert all(r.params["local_program"] == "default" for r in runs)
+
+
+@pytest.mark.parametrize("turns", [False, True])
+def test_mover_clearance_is_one_rule_in_both_views(turns):
+    """The symbolic mover rows give the batched shortfall at the reference; a mover that may
+    turn round is kept clear of its whole line segment, so it never leaves more room."""
+    import casadi as ca
+
+    lp = op.LocalProgram(ROBOT, horizon=2.0, intervals=5, step=0.1)
+    lp.subject_to(LT.clearance(mover_margin=0.1, mover_growth=0.1, mover_turns=turns) >= 0.02)
+    # a mover driving away from the robot along its path: turning round brings it back
+    sit = _situation(np.array([[1.0, 0.1, 0.4, 0.0, 0.2]]))
+    U = np.tile([0.6, 0.0], (1, lp.K, 1))
+    Z = lp.rollout(sit, U)[0]
+    gaps = next(lp.mover_gaps(Z[None], sit, turns=turns))[0]
+    opti = ca.Opti()
+    ps = SymbolicSituation(opti, lp, max_movers=1)
+    Zs = opti.parameter(lp.N + 1, 3)
+    rows = lp.mover_rows(Zs, ps, squared=False, turns=turns)
+    ps.set(lp.symbolic_values(sit, Z, 1))
+    opti.set_value(Zs, Z)
+    assert np.allclose([float(opti.value(r)) for r in rows], gaps, atol=1e-6)
+    straight = next(lp.mover_gaps(Z[None], sit, turns=False))[0]
+    assert np.all(gaps <= straight + 1e-12)
+    if turns:
+        assert gaps.min() < straight.min() - 0.1

@@ -308,14 +308,18 @@ class Clearance(LocalConstraint):
 
     name = "clearance"
 
-    def __init__(self, margin: float = 0.0, mover_margin: float = 0.0, mover_growth: float = 0.0) -> None:
+    def __init__(self, margin: float = 0.0, mover_margin: float = 0.0, mover_growth: float = 0.0,
+                 mover_turns: bool = False) -> None:
         for what, v in (("margin", margin), ("mover_margin", mover_margin), ("mover_growth", mover_growth)):
             if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v < 0:
                 raise ParameterError(f"clearance {what} must be a finite number >= 0, got {v!r}")
+        if not isinstance(mover_turns, bool):
+            raise ParameterError(f"clearance mover_turns must be True or False, got {mover_turns!r}")
         self.margin, self.mover_margin, self.mover_growth = float(margin), float(mover_margin), float(mover_growth)
+        self.mover_turns = mover_turns
 
     def __ge__(self, margin: float) -> "Clearance":
-        return Clearance(margin, self.mover_margin, self.mover_growth)
+        return Clearance(margin, self.mover_margin, self.mover_growth, self.mover_turns)
 
     def _mover_need(self, prog, n: int) -> np.ndarray:
         return self.margin + self.mover_margin + self.mover_growth * prog.h * np.arange(1, n + 1)
@@ -328,14 +332,14 @@ class Clearance(LocalConstraint):
         touch = gap - sit.distance_error
         short = np.maximum(self.margin - gap, 0.0) + np.where(touch < 0.0, CONTACT_PENALTY - touch, 0.0)
         need = self._mover_need(prog, Z.shape[1] - 1)
-        for gap in prog.mover_gaps(Z, sit):
+        for gap in prog.mover_gaps(Z, sit, turns=self.mover_turns):
             short = np.maximum(short, need - gap)
         return short.max(axis=1)   # the deepest shortfall along the window
 
     def symbolic(self, Z, U, ps, prog):
         rows = [(e, self.margin) for e in prog.static_rows(Z, ps)]
         need = self._mover_need(prog, Z.shape[0] - 1)
-        rows += [(e, 0.0) for e in prog.mover_rows(Z, ps, squared=True, margin=need)]
+        rows += [(e, 0.0) for e in prog.mover_rows(Z, ps, squared=True, margin=need, turns=self.mover_turns)]
         return rows
 
 
@@ -471,12 +475,20 @@ class LocalProgram:
         P = Z[:, 1:, :2] if Z.shape[1] > 1 else Z[:, :, :2]
         return np.asarray(sit.static_distance(P), float) - self.robot.radius
 
-    def mover_gaps(self, Z: np.ndarray, sit: Situation):
-        """``(S, n)`` per mover: distance from the robot's edge to that predicted mover's edge."""
+    def mover_gaps(self, Z: np.ndarray, sit: Situation, turns: bool = False):
+        """``(S, n)`` per mover: distance from the robot's edge to that predicted mover's edge.
+        ``turns``: the mover may turn round at any moment, so ``t`` seconds ahead it is
+        anywhere on its line within ``|v| t`` of where it is now (a segment, not a point)."""
         P = Z[:, 1:, :2]
         t = self.h * np.arange(1, P.shape[1] + 1)
         for x, y, vx, vy, r in np.asarray(sit.movers, float).reshape(-1, 5):
-            yield np.hypot(P[..., 0] - (x + vx * t), P[..., 1] - (y + vy * t)) - r - self.robot.radius
+            if turns:   # state j against its own segment m(0) -/+ v t_j
+                A = np.stack([x - vx * t, y - vy * t], axis=1)
+                d = 2.0 * np.stack([vx * t, vy * t], axis=1)
+                k = np.clip(((P - A) * d).sum(axis=-1) / ((d * d).sum(axis=-1) + _SMOOTH), 0.0, 1.0)
+                yield np.hypot(*(P - A - k[..., None] * d).transpose(2, 0, 1)) - r - self.robot.radius
+            else:
+                yield np.hypot(P[..., 0] - (x + vx * t), P[..., 1] - (y + vy * t)) - r - self.robot.radius
 
     def mover_gap(self, Z: np.ndarray, sit: Situation) -> np.ndarray:
         """``(S, n)``: distance from the robot's edge to the nearest predicted mover's edge."""
@@ -492,10 +504,10 @@ class LocalProgram:
         return [L[j - 1, 0] + L[j - 1, 1] * (Z[j, 0] - L[j - 1, 3]) + L[j - 1, 2] * (Z[j, 1] - L[j - 1, 4])
                 - self.robot.radius for j in range(1, Z.shape[0])]
 
-    def mover_rows(self, Z, ps: "SymbolicSituation", squared: bool, margin=0.0) -> list:
+    def mover_rows(self, Z, ps: "SymbolicSituation", squared: bool, margin=0.0, turns: bool = False) -> list:
         """Symbolic mover gaps over the parameter slots of the movers: ``|p - m(t)|^2 -
         (R + r + margin_j)^2`` when ``squared`` (a constraint row ``>= 0``; ``margin`` a number
-        or one per predicted state), else the edge distance."""
+        or one per predicted state), else the edge distance. ``turns``: as :meth:`mover_gaps`."""
         import casadi as ca
 
         margins = np.broadcast_to(np.asarray(margin, float), (Z.shape[0] - 1,))
@@ -504,7 +516,13 @@ class LocalProgram:
             x, y, vx, vy, r = (ps.movers[i, c] for c in range(5))
             for j in range(1, Z.shape[0]):
                 t = self.h * j
-                d2 = (Z[j, 0] - (x + vx * t)) ** 2 + (Z[j, 1] - (y + vy * t)) ** 2
+                if turns:   # nearest point of the segment m(0) -/+ v t
+                    ax, ay, dx, dy = x - vx * t, y - vy * t, 2 * vx * t, 2 * vy * t
+                    k = ca.fmin(1, ca.fmax(0, ((Z[j, 0] - ax) * dx + (Z[j, 1] - ay) * dy)
+                                           / (dx * dx + dy * dy + _SMOOTH)))
+                    d2 = (Z[j, 0] - ax - k * dx) ** 2 + (Z[j, 1] - ay - k * dy) ** 2
+                else:
+                    d2 = (Z[j, 0] - (x + vx * t)) ** 2 + (Z[j, 1] - (y + vy * t)) ** 2
                 rows.append(d2 - (self.robot.radius + r + margins[j - 1]) ** 2 if squared
                             else ca.sqrt(d2 + _SMOOTH) - r - self.robot.radius)
         return rows
@@ -606,10 +624,12 @@ def custom(fn: Callable, name: str = "custom") -> Custom:
     return Custom(fn, name)
 
 
-def clearance(mover_margin: float = 0.0, mover_growth: float = 0.0) -> Clearance:
+def clearance(mover_margin: float = 0.0, mover_growth: float = 0.0, mover_turns: bool = False) -> Clearance:
     """Clearance constraint; ``clearance() >= d`` keeps ``d`` metres from obstacles and movers,
-    and ``mover_margin + mover_growth * t`` more from movers predicted ``t`` seconds ahead."""
-    return Clearance(0.0, mover_margin, mover_growth)
+    and ``mover_margin + mover_growth * t`` more from movers predicted ``t`` seconds ahead.
+    ``mover_turns``: a mover may turn round on its line at any moment (shuttling movers), so it
+    is kept clear of wherever it can be along its line, not only of where it is heading."""
+    return Clearance(0.0, mover_margin, mover_growth, mover_turns)
 
 
 def can_stop(margin: float = 0.0) -> CanStop:
