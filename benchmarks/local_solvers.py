@@ -6,7 +6,8 @@ Solvers: ``dwa`` (Fox's sampled preset), ``qp-dwa`` (sampling + OSQP polish + Ru
 sampling plus one SQP (OSQP) step: the three program solvers side by side. A ``-creep``
 suffix (``mpc-creep``, ``qp-dwa:program-creep``) turns off their path creep (``local/creep.py``).
 Worlds: the BARN-style clutter family (``clutter``: entry corridor, 0.15 m cells, r = 0.2 m,
-0.5 m/s), the same with 2 movers (``clutter-movers``), and the shipped dynamic scenarios. The
+0.5 m/s), the same with 2 movers (``clutter-movers``), the shipped dynamic scenarios and the
+papers' local experiments (``papers``). The
 clutter seeds start at 5000 by default: they were not used while the solvers were written.
 
 Columns: success, collisions (runs with any), timeouts, stuck, median time to goal and
@@ -16,7 +17,8 @@ planner's step time median and p95 over every step, and how many runs kept the r
 acceleration limits (|dv/dt| <= a_max, |dw/dt| <= alpha_max). For mpc, the share of steps
 that fell back to the best sample.
 
-    python benchmarks/local_solvers.py                       # 20 clutter + 20 clutter-movers seeds, 4 scenarios
+    python benchmarks/local_solvers.py                       # 20 clutter + 20 clutter-movers seeds, 11 scenarios
+    python benchmarks/local_solvers.py --worlds papers hou2024_dynamic1 --solvers dwa qp-dwa mpc
     python benchmarks/local_solvers.py --seeds 5 --solvers mpc --worlds clutter-movers
 """
 from __future__ import annotations
@@ -33,6 +35,9 @@ from optplan.local_terms import default_local_program
 from optplan.worldgen.clutter import family_options, family_scenario
 
 SCENARIOS = ("hou2024_dynamic1", "hou2024_dynamic2", "hou2024_dynamic3", "hou2024_dynamic4")
+# the papers' own local experiments (shipped scenarios, seed 0, the scenarios' own mover motion)
+PAPER_SCENARIOS = ("hou2024_table4_1", "li2023_exp1", "li2023_exp2_2", "yang2023_fusion", "yang2023_idwa_crossing",
+                   "yuan2021_added_obstacles", "yuan2021_path_switch")
 
 
 def _timed_planner(name: str, world: str, seed: int):
@@ -93,10 +98,13 @@ def run(solvers, worlds, seeds, seed0) -> dict:
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--solvers", nargs="+", default=["dwa", "qp-dwa", "mpc"])
-    ap.add_argument("--worlds", nargs="+", default=["clutter", "clutter-movers", *SCENARIOS])
+    ap.add_argument("--worlds", nargs="+", default=["clutter", "clutter-movers", *SCENARIOS, *PAPER_SCENARIOS],
+                    help="generated families (seeded), shipped scenarios (seed 0), or 'papers' for the papers' "
+                         "local experiments")
     ap.add_argument("--seeds", type=int, default=20, help="seeds per generated family")
     ap.add_argument("--seed0", type=int, default=5000)
     args = ap.parse_args(argv)
+    args.worlds = [w for name in args.worlds for w in (PAPER_SCENARIOS if name == "papers" else (name,))]
     t0 = time.perf_counter()
     rows = run(args.solvers, args.worlds, args.seeds, args.seed0)
     print(f"\nfamilies: seeds {args.seed0}..{args.seed0 + args.seeds - 1}; {time.perf_counter() - t0:.0f} s")
