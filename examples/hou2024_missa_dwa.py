@@ -1,8 +1,9 @@
 """Reproduce hou2024 (MISSA-DWA) with optplan.
 
 --part global: Tables 2-3 analog on the stand-ins for environment models 1 and 2
-(hou2024_env1/env2): ACO, SSA and MISSA (IACO is not implemented), 50 runs,
-Table 1 settings (60 individuals, 300 iterations; ACO alpha 2, beta 6, rho 0.1,
+(hou2024_env1/env2): ACO, IACO (reconstructed from the one-sentence summary of
+Zheng et al. [19], docs/fidelity/hou2024.md), SSA and MISSA, 50 runs, Table 1
+settings (60 individuals, 300 iterations; ACO and IACO alpha 2, beta 6, rho 0.1,
 Q 5) under the paper's protocol (penalised fitness, own initialisation including
 MISSA's chaotic eq 9, fitness of the pruned path), then SSA and MISSA under the
 feasibility-rule protocol (-fair rows): min/mean length, total rotation angle and

@@ -368,8 +368,8 @@ def add_reproduce_arguments(parser: argparse.ArgumentParser) -> None:
                         help="keep results in this SQLite file and resume from it (default: in memory, fresh)")
     parser.add_argument("--update-docs", action="store_true",
                         help="rewrite the marked results tables of README.md and docs/fidelity/*.md that this "
-                             "command prints (those whose command asks for the same --runs and --quick) from this "
-                             "run; a --db holding runs of older code writes their numbers")
+                             "run prints (those whose recorded command runs the same runs) from this run; a --db "
+                             "holding runs of older code writes their numbers")
     _common_run_arguments(parser)
 
 

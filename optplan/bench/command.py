@@ -97,26 +97,38 @@ def run_bench(args) -> int:
         store.close()
 
 
-def run_reproduce(args) -> int:
-    """``optplan reproduce PAPER``: run the paper's shipped specs and print its tables in its layout."""
+def _reproduce_specs(paper: str, part: str | None, quick: bool, runs: int | None) -> list:
+    """The shipped specs ``optplan reproduce PAPER [--part PART]`` runs, in its order."""
     from .spec import load_spec, shipped_specs
+
+    names = shipped_specs(paper)
+    if not names:
+        raise ParameterError(f"no shipped specs for {paper} in optplan/data/specs")
+    specs = sorted((load_spec(n, quick=quick, runs=runs) for n in names), key=lambda s: (s.order, s.name))
+    parts = sorted({s.part for s in specs if s.part})
+    if part is not None:
+        if part not in parts:
+            raise ParameterError(f"{paper} has no part {part!r}; its parts: {', '.join(parts)}")
+        specs = [s for s in specs if s.part == part]
+    return specs
+
+
+def run_reproduce(args) -> int:
+    """``optplan reproduce PAPER``: run the paper's shipped specs and print its tables in its layout;
+    with ``--update-docs``, rewrite the docs' marked tables of those specs (:mod:`.doc_tables`)."""
     from .store import ResultStore
 
     _check_workers(args.workers)
-    names = shipped_specs(args.paper)
-    if not names:
-        raise ParameterError(f"no shipped specs for {args.paper} in optplan/data/specs")
-    specs = sorted((load_spec(n, quick=args.quick, runs=args.runs) for n in names), key=lambda s: (s.order, s.name))
+    update = getattr(args, "update_docs", False)
+    if update and args.format != "markdown":
+        raise ParameterError("--update-docs writes the markdown tables; drop --format latex")
+    specs = _reproduce_specs(args.paper, args.part, args.quick, args.runs)
     if args.quick and args.workers is None and args.executor == "local":
         args.workers = 1  # a quick grid takes seconds; starting worker processes would cost more than it saves
-    parts = sorted({s.part for s in specs if s.part})
-    if args.part is not None:
-        if args.part not in parts:
-            raise ParameterError(f"{args.paper} has no part {args.part!r}; its parts: {', '.join(parts)}")
-        specs = [s for s in specs if s.part == args.part]
     store = ResultStore(args.db)
     failed = 0
     keys: list[str] = []
+    printed: dict[str, str] = {}
     try:
         for spec in specs:
             with _sigterm_as_interrupt():
@@ -129,11 +141,23 @@ def run_reproduce(args) -> int:
             log.info(f"{spec.name}: {rep.describe()}")
             failed += rep.failed
             keys += [r.key for r in spec.expand()]
-            print(_tables(spec, store, args), flush=True)
+            printed[spec.name] = _tables(spec, store, args)
+            print(printed[spec.name], flush=True)
         if args.csv:
             n = store.to_csv(args.csv, keys)
             log.info(f"wrote {n} rows to {args.csv}")
         _export_ompl(store, args, keys)
+        if update and failed:
+            log.warning("--update-docs: runs failed, so the docs were left as they are")
+        elif update:
+            written, left = _update_docs(printed, specs)
+            for b in written:
+                log.info(f"updated {b.where()}")
+            for b in left:
+                log.info(f"left {b.where()}: its command ({b.command}) runs other runs")
+            if not written:
+                log.info("--update-docs: no marked table in the docs is printed by this command "
+                         "(optplan/bench/doc_tables.py says how tables are marked)")
         if failed:
             print(f"optplan: {failed} run(s) failed (see the 'failed' counts in the tables)", file=sys.stderr)
         return 1 if failed else 0
@@ -141,14 +165,69 @@ def run_reproduce(args) -> int:
         store.close()
 
 
+def _update_docs(printed: dict[str, str], specs: list) -> tuple[list, list]:
+    """Rewrite the docs' marked tables (:mod:`.doc_tables`) of the specs just run whose command runs
+    exactly these runs (the same run keys); returns the blocks written and those of the same specs
+    left alone (their command runs other seeds or budgets)."""
+    from .doc_tables import find_blocks, write_tables
+
+    ran = {s.name: [r.key for r in s.expand()] for s in specs}
+    chosen, left = [], []
+    for b in find_blocks():
+        if b.spec not in printed:
+            continue
+        theirs = {s.name: s for s in command_specs(b.command)}.get(b.spec)
+        same = theirs is not None and [r.key for r in theirs.expand()] == ran[b.spec]
+        (chosen if same else left).append(b)
+    write_tables(chosen, printed, {s.name: s.seeds for s in specs})
+    return chosen, left
+
+
+def command_specs(command: str) -> list:
+    """The specs a doc table's ``command`` runs (``optplan reproduce PAPER [--part P] [--runs N]
+    [--quick]`` or ``optplan bench SPEC [--runs N] [--quick]``, see :mod:`.doc_tables`), loaded as
+    the command loads them (so their ``seeds`` are the command's)."""
+    from .doc_tables import parse_command
+    from .spec import load_spec
+
+    inv = parse_command(command)
+    if inv.kind == "reproduce":
+        return _reproduce_specs(inv.name, inv.part, inv.quick, inv.runs)
+    return [load_spec(inv.name, quick=inv.quick, runs=inv.runs)]
+
+
+def command_reports(command: str, spec_names, workers: int | None = 1) -> dict[str, tuple[str, list[int]]]:
+    """What a doc table's ``command`` (``optplan reproduce ...`` / ``optplan bench ...``, see
+    :mod:`.doc_tables`) prints now for each of ``spec_names``, run fresh in memory: ``{spec: (text,
+    seeds)}``. Each spec's tables come from its own runs, so only the named specs are run."""
+    from .store import ResultStore
+
+    specs = {s.name: s for s in command_specs(command)}
+    unknown = [n for n in spec_names if n not in specs]
+    if unknown:
+        raise ParameterError(f"{command!r} does not run {', '.join(unknown)}; it runs {', '.join(specs)}")
+    args = SimpleNamespace(executor="local", workers=workers, no_progress=True, retry_failed=False,
+                           format="markdown", plots=None)
+    out = {}
+    for name in dict.fromkeys(spec_names):
+        store = ResultStore(":memory:")
+        try:
+            run_spec(specs[name], store, args, label=name)
+            out[name] = (_tables(specs[name], store, args), specs[name].seeds)
+        finally:
+            store.close()
+    return out
+
+
 def reproduce(paper: str, part: str | None = None, *, quick: bool = False, runs: int | None = None,
               workers: int | None = None, db: str = ":memory:", plots: str | None = None,
-              progress: bool = True) -> int:
+              progress: bool = True, update_docs: bool = False) -> int:
     """``optplan reproduce PAPER [--part PART]`` from Python (what the example scripts call, so
-    both print the same tables, claims included); returns the command's exit status."""
+    both print the same tables, claims included); ``update_docs`` is ``--update-docs``; returns the
+    command's exit status."""
     if paper not in PAPERS:
         raise ParameterError(f"unknown paper {paper!r}; known: {', '.join(PAPERS)}")
     args = SimpleNamespace(paper=paper, part=part, quick=quick, runs=runs, workers=workers, db=db,
                               executor="local", format="markdown", plots=plots, csv=None, retry_failed=False,
-                              no_progress=not progress)
+                              no_progress=not progress, update_docs=update_docs)
     return run_reproduce(args)

@@ -137,11 +137,11 @@ def li2023_global(res: ExperimentResults, fmt: str = "markdown") -> str:
     base, improved = (labels + labels)[:2] if len(labels) < 2 else labels[:2]
     # further (baseline, improved) pairs, e.g. the column chromosome next to the paper's
     pairs = [(base, improved)] + [tuple(labels[i:i + 2]) for i in range(2, len(labels) - 1, 2)]
-    t1 = Table(["map", "algorithm", "mean length [m]", "gap to optimum [%]", "mean time [s]", "mean key points",
-                "length reduction [%]", "time reduction [%]", "key point reduction [%]"])
-    t2 = Table(["map", "A* length [m]", "A* key points", "A* time [s]", f"{improved.upper()} mean length [m]",
-                f"{improved.upper()} key points", f"{improved.upper()} time [s]", "optimum [m]",
-                "length reduction [%]", "time reduction [%]", "key point reduction [%]"])
+    t1 = Table(["map", "algorithm", "mean length [m]", "gap to optimum [%]", "mean runtime [s]", "mean key points",
+                "length reduction [%]", "runtime reduction [%]", "key point reduction [%]"])
+    t2 = Table(["map", "A* length [m]", "A* key points", "A* runtime [s]", f"{improved.upper()} mean length [m]",
+                f"{improved.upper()} key points", f"{improved.upper()} runtime [s]", "optimum [m]",
+                "length reduction [%]", "runtime reduction [%]", "key point reduction [%]"])
     details = []
     for t in res.spec.targets:
         opt = exact_optimum_of(t.spec)
