@@ -83,7 +83,8 @@ def planner_options(name: str, world, encoding=None) -> set[str]:
         from .gridpath.iaco import plan_iaco
 
         entry = plan_iaco if name == "iaco" else plan_aco
-        return keyword_names(entry, PLAN_OWN) | keyword_names(aco_path, PLAN_OWN)
+        # postprocess: applied by paths.plan_path to the colony's cell path
+        return keyword_names(entry, PLAN_OWN) | keyword_names(aco_path, PLAN_OWN) | {"postprocess"}
     if kind == "cell-ga":
         from .gridpath.ga_path import GAParams, plan_ga
 

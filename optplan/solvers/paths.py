@@ -129,16 +129,22 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
     alternatives, alternative_separation = check_alternatives(alternatives, alternative_separation)
     s = world.check_query_point(start, "start", clearance)
     g = world.check_query_point(goal, "goal", clearance)
-    if name == "aco":  # an ant colony keeps pheromone, not a population of paths: no alternatives
+    if name in ("aco", "iaco"):  # an ant colony keeps pheromone, not a population of paths: no alternatives
         from .gridpath.aco import plan_aco
-
-        return plan_aco(world, s, g, seed=seed, pop=pop, iters=iters, clearance=clearance, max_evals=max_evals,
-                        **params)
-    if name == "iaco":
         from .gridpath.iaco import plan_iaco
 
-        return plan_iaco(world, s, g, seed=seed, pop=pop, iters=iters, clearance=clearance, max_evals=max_evals,
-                         **params)
+        colony = plan_aco if name == "aco" else plan_iaco
+        t0 = time.perf_counter()
+        result = colony(world, s, g, seed=seed, pop=pop, iters=iters, clearance=clearance, max_evals=max_evals,
+                        **params)
+        if postprocess in (None, "none") or not result.feasible:
+            return result
+        # the ants' 8-connected cell path, post-processed like a metaheuristic's (e.g. hou2024's
+        # MISSA path is pruned; judging ACO raw against it compares representations, not searches)
+        path = postprocess_path(world, result.path, postprocess, clearance)
+        return make_plan_result(world, path, name, time.perf_counter() - t0, clearance=clearance,
+                                history=result.history, seed=result.seed, nfev=result.nfev,
+                                message="; ".join(m for m in (result.message, f"postprocess={postprocess}") if m))
     if name in ("ga", "iga") and world.is_grid and encoding is None and not _columns_represent(world, s, g, clearance):
         # one cell per column cannot hold a path here (it must turn back in x): li2023's own
         # chromosome, a general cell sequence, can, as the metaheuristics fall back to 'general'
