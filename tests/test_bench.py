@@ -480,3 +480,17 @@ def test_gap_is_measured_against_the_optimum_at_the_runs_clearance():
     target = res.spec.targets[0].spec
     assert exact_optimum_of(target, 0.3) > exact_optimum_of(target)
     assert any("at clearance 0.3 m" in n for n in table.notes)
+
+
+def test_a_metaheuristic_option_shared_with_a_graph_search_is_refused_at_load(tmp_path):
+    """A* takes none of the swarms' options; shared with it, every A* run would fail, so the spec
+    is refused when it is loaded, naming them."""
+    f = tmp_path / "mixed.yaml"
+    f.write_text("kind: plan\nmaps: [chen2025_20]\nalgorithms: [gwo, {name: astar, runs: 1}]\n"
+                 "params: {pop: 10, iters: 5, constraint: penalty}\nruns: 1\n")
+    with pytest.raises(ScenarioError, match="astar does not take the parameter.*constraint"):
+        load_spec(f)
+    f.write_text("kind: plan\nmaps: [chen2025_20]\n"
+                 "algorithms: [{name: gwo, params: {constraint: penalty}}, {name: astar, runs: 1}]\n"
+                 "params: {pop: 10, iters: 5}\nruns: 1\n")
+    assert {r.algorithm for r in load_spec(f).expand()} == {"gwo", "astar"}

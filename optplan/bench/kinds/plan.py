@@ -127,9 +127,9 @@ class PlanKind(RunKind):
         from ...solvers.metaheuristics import get_algorithm
         from ...solvers.paths import plan_path
 
+        if algorithm in GRAPH_METHODS:   # a metaheuristic's options fail every graph-search run
+            return keyword_names(plan) | keyword_names(shortest_path)
         names = keyword_names(plan) | keyword_names(plan_path)
-        if algorithm in GRAPH_METHODS:
-            return names | keyword_names(shortest_path)
         try:
             return names | set(get_algorithm(algorithm).defaults())
         except Exception:  # a planner that is not an engine algorithm (ACO, the path GAs): not listed
