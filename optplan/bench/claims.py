@@ -65,6 +65,8 @@ class Claim:
 
 
 def _reduction(a: np.ndarray, b: np.ndarray) -> float:
+    if a.mean() == b.mean():   # equal, including both exactly 0 (every run at the optimum)
+        return 0.0
     return float(1.0 - a.mean() / b.mean())
 
 
@@ -73,7 +75,9 @@ def _bootstrap_reduction(a: np.ndarray, b: np.ndarray, seed: int = 0) -> tuple[f
     rng = np.random.default_rng(seed)
     ia = rng.integers(0, len(a), size=(BOOTSTRAP, len(a)))
     ib = rng.integers(0, len(b), size=(BOOTSTRAP, len(b)))
-    r = 1.0 - a[ia].mean(axis=1) / b[ib].mean(axis=1)
+    ma, mb = a[ia].mean(axis=1), b[ib].mean(axis=1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r = np.where(ma == mb, 0.0, 1.0 - ma / mb)
     return float(np.percentile(r, 2.5)), float(np.percentile(r, 97.5))
 
 
@@ -204,6 +208,9 @@ def render_claims(res, fmt: str = "markdown") -> str:
 
 _TIMING = "timings were measured on a machine shared with other jobs: times are inflated and noisy"
 _PROTO = "paper protocol"
+_TUNED_ON = ("F6", "F12")
+_TUNED_NOTE = ("MSIAR-GWO's convergence-factor exponents were Q-learned on shifted F6 and F12 "
+               "(optplan/solvers/metaheuristics/tuning.py, as chen2025 §3.1 names them)")
 _LIKE_FOR_LIKE = "the paper's figures are for its own (raw) ACO/IACO paths; here both sides are pruned"
 # the compared columns of hou2024 Tables 2-3, in the order of their claims
 _HOU2024_COLUMNS = (("length", "ssa", "length"), ("length", "aco", "length"), ("length", "iaco", "length"),
@@ -308,7 +315,11 @@ CLAIMS: tuple[Claim, ...] = (
       for m, a, b in (("chen2025_20", 29.1038, 30.3848), ("chen2025_40", 57.7521, 59.2548))),
     # chen2025 §4.1, Tables 4-5 (mean best value of 20 runs, 500 iterations, pop 30; the headline
     # run shifts F1-F13, chen2025.md says why)
-    *(Claim("chen2025_functions", f"Table {t}", quote, f, "less", "msiar-gwo", o, "f")
+    # judged on the shifted functions (the headline) and on the functions as printed; F6 and F12
+    # are the two its Q-learned exponents were tuned on (solvers/metaheuristics/tuning.py)
+    *(Claim(spec, f"Table {t}", quote + (" (MSIAR-GWO was tuned on this function)" if f in _TUNED_ON else ""),
+            f, "less", "msiar-gwo", o, "f", note=_TUNED_NOTE if f in _TUNED_ON else "")
+      for spec in ("chen2025_functions", "chen2025_functions_unshifted")
       for t, fs, quote in ((4, ("F5", "F6", "F7"), "MSIAR-GWO is always in first place in F5-F7"),
                            (5, ("F12", "F13"), "in F12 and F13 MSIAR-GWO shows an absolute advantage"))
       for f in fs for o in ("gwo", "aro", "dbo", "woa", "igwo")),
