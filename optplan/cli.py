@@ -193,7 +193,7 @@ def _add_simulate_arguments(parser) -> None:
                         help="motion of the scenario's random movers: back and forth for the whole run, or "
                              "once across the path, as the papers draw them (default: the scenario's)")
     parser.add_argument("--json", action="store_true", help="print exactly one JSON object")
-    parser.add_argument("--gif", metavar="FILE.gif", help="write an animation of the run")
+    parser.add_argument("--gif", metavar="FILE.gif|FILE.mp4", help="write an animation of the run (.mp4 needs ffmpeg)")
     parser.add_argument("--progress", action="store_true", help="print a status line every 10 simulated seconds")
     parser.add_argument("--export", metavar="FILE",
                         help="write the trajectory as .csv (t,x,y,theta,v,w; 6 decimals), .json (exact), .geojson "
@@ -516,9 +516,13 @@ def _check_outputs(args) -> None:
             from .viz.plots import figure_format
 
             figure_format(target)
-        if name == "gif" and target.suffix.lower() != ".gif":
-            raise OptplanError(f"--gif {value}: the animation is written as a GIF; give a .gif file name"
-                               + (" (MP4 and other video formats are not written)" if target.suffix else ""))
+        if name == "gif":
+            from .viz.animate import check_video_target
+
+            try:
+                check_video_target(target)
+            except OptplanError as exc:
+                raise OptplanError(f"--gif {exc}") from None
         if name == "csv" and target.suffix.lower() != ".csv":
             raise OptplanError(f"--csv {value}: give a .csv file name")
         parent = target if folder else target.parent

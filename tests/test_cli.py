@@ -137,3 +137,42 @@ def test_a_closed_output_pipe_prints_no_error(tmp_path):
     done = subprocess.run([sys.executable, "-c", child], cwd=tmp_path, env=env, capture_output=True, text=True,
                           timeout=120)
     assert done.stderr.strip() == "status 141", done.stderr
+
+
+def test_an_mp4_without_ffmpeg_is_refused_before_any_work(tmp_path, capsys, monkeypatch):
+    import matplotlib
+
+    monkeypatch.setitem(matplotlib.rcParams, "animation.ffmpeg_path", str(tmp_path / "no-ffmpeg"))
+    code = main(["simulate", "li2023_exp1", "--gif", str(tmp_path / "run.mp4")])
+    out, err = capsys.readouterr()
+    assert code == 2 and out == "" and "ffmpeg" in err and len(err.strip().splitlines()) == 1
+    assert not (tmp_path / "run.mp4").exists()
+    assert main(["simulate", "li2023_exp1", "--gif", str(tmp_path / "run.avi")]) == 2
+    assert ".gif or .mp4" in capsys.readouterr().err
+
+
+def test_an_mp4_gets_every_frame_through_ffmpeg(tmp_path, monkeypatch):
+    """MP4 frames are piped to ffmpeg as raw RGB: a stand-in ffmpeg checks the byte count
+    against the size and frame rate it is told, and writes the file."""
+    import matplotlib
+
+    import optplan as op
+    from optplan.sim.closed_loop import realized_scenario
+    from optplan.viz.animate import animate_run
+
+    fake = tmp_path / "ffmpeg"
+    fake.write_text("#!" + sys.executable + "\n"
+                    "import sys\n"
+                    "a = sys.argv\n"
+                    "w, h = map(int, a[a.index('-s') + 1].split('x'))\n"
+                    "data = sys.stdin.buffer.read()\n"
+                    "assert len(data) % (w * h * 3) == 0, 'partial frame'\n"
+                    "open(a[-1], 'w').write(f'{len(data) // (w * h * 3)} {a[a.index(\"-r\") + 1]}')\n")
+    fake.chmod(0o755)
+    monkeypatch.setitem(matplotlib.rcParams, "animation.ffmpeg_path", str(fake))
+    sc = op.load_scenario("li2023_exp1")
+    res = op.simulate(sc, global_planner="astar", local_planner="dwa", seed=0, time_limit=3)
+    out = animate_run(realized_scenario(sc, 0, None), res, tmp_path / "run.mp4", fps=10, max_frames=12)
+    frames, fps = out.read_text().split()
+    # the run's frames and the last one held for two seconds
+    assert int(frames) == min(12, len(res.trajectory)) + 20 and fps == "10"

@@ -14,9 +14,34 @@ import numpy as np
 from ..world.files import written_whole
 
 
+VIDEO_SUFFIXES = (".gif", ".mp4")
+
+
+def ffmpeg_program() -> str | None:
+    """The ffmpeg that MP4 output runs (matplotlib's ``animation.ffmpeg_path``), or ``None``."""
+    import shutil
+
+    import matplotlib
+
+    return shutil.which(str(matplotlib.rcParams["animation.ffmpeg_path"]))
+
+
+def check_video_target(filename: str | Path) -> None:
+    """Refuse, before any work, an animation file that cannot be written: a suffix other than
+    ``.gif``/``.mp4``, or ``.mp4`` without ffmpeg."""
+    from ..errors import OptplanError
+
+    suffix = Path(filename).suffix.lower()
+    if suffix not in VIDEO_SUFFIXES:
+        raise OptplanError(f"{filename}: an animation is written as .gif or .mp4, not {suffix or 'no suffix'!r}")
+    if suffix == ".mp4" and ffmpeg_program() is None:
+        raise OptplanError(f"{filename}: MP4 is encoded by ffmpeg, which is not on PATH (or matplotlib's "
+                           "animation.ffmpeg_path); install it, or write a .gif")
+
+
 def animate_run(scenario, result, filename: str | Path, fps: int = 10, max_frames: int = 150,
                 title: str | None = None) -> Path:
-    """Write a GIF of ``result`` (a SimResult of ``op.simulate``) in ``scenario``.
+    """Write a GIF (or, with ffmpeg, an MP4) of ``result`` (a SimResult of ``op.simulate``) in ``scenario``.
 
     Shows the known map, unknown static obstacles (hatched until sensed, then filled
     blue), the global path (red dashed), the driven trajectory (blue),
@@ -26,8 +51,8 @@ def animate_run(scenario, result, filename: str | Path, fps: int = 10, max_frame
         scenario: the world of the run, with its random parts realised
             (``optplan.sim.closed_loop.realized_scenario``).
         result: its SimResult.
-        filename: ``.gif`` to write.
-        fps: frames per second of the GIF.
+        filename: ``.gif`` or ``.mp4`` to write (MP4 needs ffmpeg; checked first).
+        fps: frames per second.
         max_frames: the run is subsampled to at most this many frames.
 
     Returns:
@@ -38,6 +63,8 @@ def animate_run(scenario, result, filename: str | Path, fps: int = 10, max_frame
     from .plots import blank_figure, draw_world
     from ..sim.environment import SimEnvironment
 
+    check_video_target(filename)
+    mp4 = Path(filename).suffix.lower() == ".mp4"
     sc = scenario
     if sc.random_obstacles or sc.random_dynamic or sc.timing_jitter:
         from ..errors import ParameterError
@@ -117,15 +144,40 @@ def animate_run(scenario, result, filename: str | Path, fps: int = 10, max_frame
         fig.canvas.restore_region(background)
         for a in moving:
             ax.draw_artist(a)
-        frame = Image.fromarray(np.asarray(fig.canvas.buffer_rgba())[..., :3].copy())
+        rgb = np.asarray(fig.canvas.buffer_rgba())[..., :3].copy()
+        if mp4:
+            images.append(rgb)
+            continue
+        frame = Image.fromarray(rgb)
         if palette is None:  # one palette for the whole run: quantising against it is cheap
             palette = frame.quantize(colors=96)
         images.append(frame.quantize(palette=palette, dither=Image.Dither.NONE))
     # hold the last frame for two seconds, so the outcome can be read
+    if mp4:
+        _write_mp4(filename, images + [images[-1]] * (2 * fps), fps)
+        return filename
     durations = [int(1000 / fps)] * (len(images) - 1) + [2000]
     with written_whole(filename, "animation") as tmp:
         images[0].save(tmp, format="GIF", save_all=True, append_images=images[1:], duration=durations, loop=0)
     return filename
+
+
+def _write_mp4(filename: Path, frames: list[np.ndarray], fps: int) -> None:
+    """Encode RGB frames ``(h, w, 3)`` as H.264 MP4 by piping them to ffmpeg (even sizes padded)."""
+    import subprocess
+
+    from ..errors import OptplanError
+
+    h, w = frames[0].shape[:2]
+    with written_whole(filename, "animation") as tmp:
+        cmd = [ffmpeg_program(), "-y", "-loglevel", "error", "-f", "rawvideo", "-pix_fmt", "rgb24",
+               "-s", f"{w}x{h}", "-r", str(int(fps)), "-i", "-", "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+               "-pix_fmt", "yuv420p", "-f", "mp4", str(tmp)]
+        run = subprocess.run(cmd, input=b"".join(np.ascontiguousarray(f, np.uint8).tobytes() for f in frames),
+                             capture_output=True)
+        if run.returncode != 0:
+            raise OptplanError(f"ffmpeg could not write {filename}: "
+                               f"{run.stderr.decode(errors='replace').strip()[-300:] or 'exit ' + str(run.returncode)}")
 
 
 OUTCOME_COLOURS = {"reached": "tab:green", "collision": "tab:red", "stuck": "tab:orange", "timeout": "tab:orange"}
