@@ -19,6 +19,8 @@ computed from the stored runs, never written by hand:
   Verdict: ``holds`` when the interval reaches the claimed share, ``weaker`` when it lies
   below it but some runs succeed, ``reversed`` when none do.
 
+When the numbers of runs could never give a p-value below alpha (a ``--quick`` run: 3 against 3
+runs, the smallest rank-sum p is 0.1), a ``less`` claim gets ``too few runs``, not a verdict.
 A claim whose groups or target the spec does not hold (a quick run on fewer maps, a missing
 baseline) is listed as ``not run``, so every claim is always shown.
 """
@@ -30,7 +32,9 @@ import numpy as np
 
 from .tables import Table
 
-VERDICTS = ("holds", "weaker", "not significant", "reversed", "not run")
+# "too few runs": the runs' sizes could never reach alpha (3 against 3: the smallest p is 0.1)
+TOO_FEW_RUNS = "too few runs"
+VERDICTS = ("holds", "weaker", "not significant", "reversed", "too few runs", "not run")
 BOOTSTRAP = 2000
 
 
@@ -95,7 +99,7 @@ def judge_less(a, b, claimed: float | None, alpha: float = 0.05) -> tuple[str, s
     """``(our figure, verdict)`` of "``a`` is lower than ``b`` by ``claimed``" (see module doc)."""
     from scipy.stats import wilcoxon
 
-    from .stats import ranksum_p
+    from .stats import ranksum_p, smallest_p
 
     a, b = np.asarray(a, float), np.asarray(b, float)
     if len(a) < 2 or len(b) < 1:
@@ -105,10 +109,14 @@ def judge_less(a, b, claimed: float | None, alpha: float = 0.05) -> tuple[str, s
         diff = a - b[0]
         p = 1.0 if np.all(diff == 0) else float(wilcoxon(diff, alternative="two-sided").pvalue)
         lo, hi = _bootstrap_reduction(a, np.repeat(b, 2))
+        floor = 2.0 / 2 ** len(a)   # the smallest two-sided p of the signed-rank test
     else:
         p = ranksum_p(a, b)
         lo, hi = _bootstrap_reduction(a, b)
+        floor = smallest_p(len(a), len(b))
     figure = f"{100 * red:+.1f} % [{100 * lo:+.1f}, {100 * hi:+.1f}], p={p:.2g}"
+    if floor >= alpha:   # e.g. a --quick run: no outcome could be significant, so no verdict
+        return figure, TOO_FEW_RUNS
     return figure, _verdict(p, alpha, red >= 0, claimed is not None and hi < claimed)
 
 
