@@ -225,6 +225,18 @@ def _sample_hits(grid, origin, D, length, S) -> np.ndarray:
     return np.any(deep & pad[iy, ix], axis=1)
 
 
+def _search_start(P: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, list]:
+    """The A* state over nodes ``P`` (``0`` the start, ``1`` the goal): distances, predecessors,
+    closed flags, the Euclidean heuristic to the goal and the heap holding the start."""
+    n = len(P)
+    dist = np.full(n, np.inf)
+    pred = np.full(n, -1, dtype=np.int64)
+    closed = np.zeros(n, dtype=bool)
+    h = np.hypot(*(P - P[1]).T)
+    dist[0] = 0.0
+    return dist, pred, closed, h, [(h[0], 0)]
+
+
 def _astar_over_corners(rule: _EdgeRule, P: np.ndarray, Q: np.ndarray,
                         bound: float = np.inf) -> tuple[np.ndarray, np.ndarray]:
     """A* from node 0 to node 1 over the corner visibility graph with lazy edges.
@@ -240,13 +252,7 @@ def _astar_over_corners(rule: _EdgeRule, P: np.ndarray, Q: np.ndarray,
     ``bound`` (grid units): the length of a known path from start to goal; a node whose
     ``f = g + h`` exceeds it cannot be on a shortest path, so it is not made a candidate.
     """
-    n = len(P)
-    dist = np.full(n, np.inf)
-    pred = np.full(n, -1, dtype=np.int64)
-    closed = np.zeros(n, dtype=bool)
-    h = np.hypot(*(P - P[1]).T)
-    dist[0] = 0.0
-    heap = [(h[0], 0)]
+    dist, pred, closed, h, heap = _search_start(P)
     anydir = np.all(Q == 0, axis=1)
     # the corners (nodes 2..) are sorted by x: with a bound, the candidates of a node lie in
     # the ellipse |v - u| + |v - goal| <= bound - dist[u], inside an x-range of the corners
@@ -265,7 +271,7 @@ def _astar_over_corners(rule: _EdgeRule, P: np.ndarray, Q: np.ndarray,
             cx = 0.5 * (P[u, 0] + P[1, 0])
             lo, hi = 2 + np.searchsorted(xs, cx - a, "left"), 2 + np.searchsorted(xs, cx + a, "right")
         else:
-            lo, hi = 2, n
+            lo, hi = 2, len(P)
         idx = np.concatenate([ends, np.arange(lo, hi)])
         d = P[idx] - P[u]
         step = np.hypot(d[:, 0], d[:, 1])
@@ -403,13 +409,7 @@ def _astar_tiled(rule: _EdgeRule, P: np.ndarray, Q: np.ndarray,
 
     Nodes ``0``/``1`` are start and goal, ``2..`` the corners (any order).
     """
-    n = len(P)
-    dist = np.full(n, np.inf)
-    pred = np.full(n, -1, dtype=np.int64)
-    closed = np.zeros(n, dtype=bool)
-    h = np.hypot(*(P - P[1]).T)
-    dist[0] = 0.0
-    heap = [(h[0], 0)]
+    dist, pred, closed, h, heap = _search_start(P)
     vis = _Visible(rule, P, Q, h, bound)
     ahead: dict[int, tuple[int, float, np.ndarray, np.ndarray]] = {}
     while heap:
