@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import optplan as op
-from optplan.bench.claims import CLAIMS, claims_of, judge_less, judge_less_spread, judge_rate
+from optplan.bench.claims import CLAIMS, TOO_FEW_RUNS, claims_of, judge_fails, judge_less, judge_less_spread, judge_rate
 from optplan.errors import ParameterError
 from optplan.formulations.pruned import PrunedColumnFitness
 from optplan.solvers.paths import make_problem
@@ -102,6 +102,14 @@ def test_judge_spread_and_rate_verdicts():
     assert judge_rate(9, 10, 1.0)[1] == "weaker"         # one failure contradicts "every run"
     assert judge_rate(9, 10, 0.95)[1] == "holds"         # but is consistent with 95 %
     assert judge_rate(3, 10, 1.0)[1] == "weaker"
+    # a method the paper shows failing: every run succeeding reverses it, a few failures weaken it
+    assert judge_fails(0, 20, 0.0)[1] == "holds"
+    assert judge_fails(20, 20, 0.0)[1] == "reversed"
+    assert judge_fails(15, 20, 0.0)[1] == "weaker"
+    assert judge_fails(1, 20, 0.05)[1] == "holds"         # one success is consistent with "at most 5 %"
+    # 3 against 3 runs can never reach p < 0.05: no verdict
+    assert judge_less([1.0, 1.1, 1.2], [2.0, 2.1, 2.2], 0.1)[1] == TOO_FEW_RUNS
+    assert judge_less([1.0, 1.1, 1.2, 1.3], [2.0, 2.1, 2.2, 2.3], 0.1)[1] == "holds"
     assert judge_rate(0, 10, 1.0)[1] == "reversed"
 
 
@@ -112,9 +120,13 @@ def test_every_claim_names_a_shipped_spec_and_a_known_kind():
     for name in specs:
         spec = load_spec(name)
         targets = {t.name for t in spec.targets}
-        labels = set(spec.labels)
+        from optplan.bench.summary import pipeline_name
+
+        # a claim names an algorithm label, or a pipeline (label/local planner) where the spec varies them
+        labels = set(spec.labels) | {pipeline_name(lab, r, lp, len(spec.refine) > 1, len(spec.local_planners) > 1)
+                                     for lab in spec.labels for r in spec.refine for lp in spec.local_planners}
         for c in claims_of(name):
-            assert c.kind in ("less", "less_spread", "rate")
+            assert c.kind in ("less", "less_spread", "rate", "fails")
             assert c.target in targets, (c.quote, c.target)
             assert c.better in labels and (c.other is None or c.other in labels), (c.quote, labels)
 
