@@ -362,7 +362,7 @@ CLAIMS: tuple[Claim, ...] = (
           "yang2023_idwa_crossing", "rate", "astar/idwa", claimed=1.0),
     Claim("yang2023_local_fusion", "§7.3", "the IPSO + IDWA fusion reaches the goal avoiding every obstacle",
           "yang2023_fusion", "rate", "ipso/idwa", claimed=1.0),
-    *(Claim("hou2024_local_dynamic", "§4.5, Figs 9-21", "MISSA-DWA reaches the target avoiding the dynamic and "
+    *(Claim("hou2024_local_dynamic", "§4.5, Figs 9-10", "MISSA-DWA reaches the target avoiding the dynamic and "
             "unknown obstacles", m, "rate", "missa/missa-dwa", claimed=1.0)
       for m in ("hou2024_dynamic1", "hou2024_dynamic2", "hou2024_dynamic3", "hou2024_dynamic4")),
     Claim("li2023_local_exp1", "§6.2, Figs 18-19", "the IGA + IDWA fusion avoids the dynamic obstacles and reaches "
