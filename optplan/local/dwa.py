@@ -35,7 +35,7 @@ from ..errors import ParameterError, named_with_hints
 from ..world.robot import Command, RobotSpec, RobotState
 from .base import LocalContext, MoverSweepSource
 from .critics import CRITICS, Critic
-from .hooks import Mechanism, PlannerView, Roles
+from .hooks import Mechanism, PlannerView, Roles, build_part
 from .mechanisms import MECHANISMS, InitialHeading
 from .rollout import (Rollouts, Step, assess, join_rollouts, rollout, rollout_ramped, rollout_tracking,
                       static_gradient)
@@ -175,8 +175,8 @@ class DWAPlanner(MoverSweepSource):
         self.terms: list[tuple[Critic, float]] = []
         for cname, (w, p) in terms.items():
             w = self._number(f"weight of {cname}", w, allow_zero=True)
-            self.terms.append((self._build(CRITICS[cname], p, cname), w))
-        self.mechanisms: list[Mechanism] = [self._build(MECHANISMS[m], p, m) for m, p in mechs.items()]
+            self.terms.append((build_part(CRITICS[cname], p, cname), w))
+        self.mechanisms: list[Mechanism] = [build_part(MECHANISMS[m], p, m) for m, p in mechs.items()]
         self.roles = Roles.of(self.mechanisms)
         self.rollout_dt = self.options["rollout_dt"] or self.dt
         self.steps = max(1, int(round(self.options["horizon"] / self.rollout_dt)))
@@ -221,13 +221,6 @@ class DWAPlanner(MoverSweepSource):
         if o["normalise"] not in ("sum", "minmax", "none"):
             raise ParameterError(f"normalise must be 'sum', 'minmax' or 'none', got {o['normalise']!r}")
         return o
-
-    @staticmethod
-    def _build(cls, params: dict, what: str):
-        try:
-            return cls(**params)
-        except TypeError as e:
-            raise ParameterError(f"bad parameters for {what}: {params!r} ({e})") from None
 
     # ------------------------------------------------------------------ protocol
     def reset(self, state: RobotState, global_path: np.ndarray) -> None:

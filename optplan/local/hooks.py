@@ -37,6 +37,26 @@ from .rollout import Step
 from .window import Window
 
 
+def build_part(cls, params: Mapping[str, Any], what: str):
+    """``cls(**params)``, a critic or mechanism of a local planner built from user parameters: an
+    unknown parameter of a dataclass is named with the known ones, any other refusal becomes a
+    :class:`ParameterError` naming ``what``."""
+    import dataclasses
+
+    from ..errors import ParameterError, named_with_hints
+
+    if dataclasses.is_dataclass(cls):
+        known = [f.name for f in dataclasses.fields(cls) if f.init]
+        unknown = sorted(set(params) - set(known))
+        if unknown:
+            raise ParameterError(f"bad parameters for {what}: unknown {named_with_hints(unknown, known)}; "
+                                 f"known: {', '.join(known)}")
+    try:
+        return cls(**params)
+    except TypeError as e:
+        raise ParameterError(f"bad parameters for {what}: {dict(params)!r} ({e})") from None
+
+
 @dataclass(frozen=True)
 class PlannerView:
     """What a mechanism may know of the planner it belongs to.

@@ -27,7 +27,7 @@ from ..errors import ParameterError
 from ..formulations.local_program import LocalProgram, Situation, SymbolicSituation, default_local_program
 from ..world.robot import Command, RobotSpec, RobotState
 from .base import LocalContext
-from .hooks import PlannerView
+from .hooks import PlannerView, build_part
 from .limiter import RuckigLimiter
 from .window import dynamic_window, sample_grid
 
@@ -57,18 +57,9 @@ def _creep(params: dict | None):
     if not isinstance(params, dict):
         raise ParameterError(f"path_creep must be a mapping of its parameters ({{}} for its defaults) or None, "
                              f"got {params!r}")
-    import dataclasses
-
     from .creep import PathCreep
 
-    known = [f.name for f in dataclasses.fields(PathCreep) if f.init]
-    unknown = sorted(set(params) - set(known))
-    if unknown:
-        from ..errors import named_with_hints
-
-        raise ParameterError(f"unknown path_creep parameter {named_with_hints(unknown, known)}; known: "
-                             f"{', '.join(known)}")
-    return PathCreep(**dict(params))
+    return build_part(PathCreep, params, "path_creep")
 
 
 def _rank(violation: float, cost: float) -> tuple[bool, float]:
@@ -146,6 +137,7 @@ class MPCPlanner:
     """
 
     name = "mpc"
+    warm_from_previous = True   # start from the shifted previous plan when the program rates it better
 
     def __init__(self, robot: RobotSpec, dt: float, program: LocalProgram | None = None, max_movers: int = 10,
                  n_v: int = 9, n_w: int = 15, max_iter: int = 20, path_creep: dict | None = DEFAULT_CREEP) -> None:
@@ -253,7 +245,7 @@ class MPCPlanner:
         """The solver's start: the better of the shifted previous plan and the best sample."""
         i, cost, viol = self.sampler.best(sit, samples)
         start = samples[i]
-        if self.previous is not None:
+        if self.warm_from_previous and self.previous is not None:
             shifted = np.concatenate([self.previous[1:], self.previous[-1:]], axis=0)
             lo, hi = self.lp.bounds()
             shifted = np.clip(shifted, lo, hi)
@@ -338,6 +330,7 @@ class ProgramQPDWA(MPCPlanner):
     """
 
     name = "qp-dwa"
+    warm_from_previous = False  # a polish of this period's best sample
 
     def __init__(self, robot: RobotSpec, dt: float, program: LocalProgram | None = None, max_movers: int = 10,
                  n_v: int = 11, n_w: int = 21, max_iter: int = 1, path_creep: dict | None = DEFAULT_CREEP) -> None:
@@ -356,7 +349,3 @@ class ProgramQPDWA(MPCPlanner):
     def _solved(self, stats: dict) -> bool:
         # the step budget is the method (a polish, not a solve to convergence)
         return bool(stats.get("success")) or stats.get("return_status") == "Maximum_Iterations_Exceeded"
-
-    def _start(self, sit: Situation, samples: np.ndarray) -> tuple[np.ndarray, int, np.ndarray, np.ndarray]:
-        i, cost, viol = self.sampler.best(sit, samples)
-        return samples[i], i, cost, viol
