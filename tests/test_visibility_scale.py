@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import optplan as op
-from optplan.solvers.graph import shadows as S
+from optplan.world import shadows as S
 from optplan.solvers.graph import visibility as V
 from optplan.solvers.graph.visibility import corner_nodes, visibility_path
 from optplan.world.geometry import segments_free

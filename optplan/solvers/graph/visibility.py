@@ -43,7 +43,7 @@ import numpy as np
 
 from ...errors import InfeasibleQueryError, ParameterError
 from ...world.geometry import convex_corners, segments_free
-from .shadows import DIST_SLACK, CornerTiles, GridLines, Shadows, direction, taut_regions
+from ...world.shadows import DIST_SLACK, CornerTiles, GridLines, Shadows, direction, taut_regions
 
 POINT_MODES = ("exact", "centres", "corners")
 
