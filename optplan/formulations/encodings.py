@@ -488,54 +488,39 @@ def _join_through_ends(D: np.ndarray, succ: np.ndarray, M: int) -> None:
     succ[i, j] = np.where(by_s, succ[i, S], succ[i, G])
 
 
-@dataclass
-class GeneralPath(PathEncoding):
-    """Any path class on any map: ``m`` via points joined by geodesic legs through the roadmap.
+# grid maps with more convex corners than this get the local graph and landmarks
+# (:class:`_LandmarkLegs`) instead of all-pairs geodesics over every corner (:class:`_CornerLegs`)
+EXACT_CORNERS = 2000
+# the landmarks via points snap to on large maps: about LANDMARK_ROWS / graph nodes of them
+# (a Dijkstra row each: time and memory stay bounded), within LANDMARKS
+LANDMARK_ROWS = 3_000_000
+LANDMARKS = (32, 144)
+# times the local graph's radius is doubled when it does not join start and goal, before the
+# exact corner legs decide (they say whether the goal is reachable at all)
+WIDENINGS = 2
 
-    ``x = (x1, y1, ..., xm, ym)`` in metres inside the world bounds. Each via point is snapped
-    to the nearest node of the world's :class:`~optplan.world.roadmap.Roadmap` that the start
-    can reach (start and goal count as nodes: a via point snapped to either adds nothing),
-    and consecutive nodes are joined by their shortest way over the roadmap's visible edges.
-    So every individual decodes to a collision-free path (no repair, no penalty), the
-    metaheuristic chooses the corridor by where it puts the via points, and with ``m`` via
-    points every class whose shortest path wraps around at most ``m`` chosen corners in
-    sequence is reachable (more ``m``, more windings). The roadmap (corners, edges, all-pairs
-    distances) is built once per world and clearance and kept in the world's cache; the
-    start and goal rows are built once per encoding.
 
-    On circle worlds with many discs the roadmap uses coarser polygons (8-32 vertices per disc,
-    about 2000 nodes in all), so decoded paths are up to ``1/cos(pi/ring) - 1`` longer around
-    discs than the arcs; refinement or the class search then closes that in-class gap.
+class _CornerLegs:
+    """Legs over the world's :class:`~optplan.world.roadmap.Roadmap`: via points snap to any
+    corner, legs are exact geodesics (all-pairs tables over the corners, start and goal)."""
 
-    Length is a table sum (``leg_length``), exact for the decoded polyline; :meth:`decode`
-    gives fixed-size paths ``(n, N, 2)`` (repeated points pad short ones) for other terms.
-    """
+    exact = True
 
-    m: int = 3
-    clearance: float = 0.0
-    penetration_samples = 1
-
-    def __post_init__(self) -> None:
+    def __init__(self, world, start, goal, clearance: float) -> None:
         from ..errors import InfeasibleQueryError
         from ..world.roadmap import Roadmap
 
-        if int(self.m) < 1:
-            raise ParameterError(f"number of via points m must be >= 1, got {self.m}")
-        self.m = int(self.m)
-        xmin, ymin, xmax, ymax = self.world.bounds
-        self.lower = np.tile([xmin, ymin], self.m).astype(float)
-        self.upper = np.tile([xmax, ymax], self.m).astype(float)
         # circle worlds: fewer polygon vertices per disc when there are many discs, so the
         # all-pairs tables stay near 2000 nodes (paths around discs get a little longer)
-        ring = None if self.world.is_grid else int(np.clip(2000 // max(len(self.world.circles), 1), 8, 32))
-        rm = self.roadmap = Roadmap.of(self.world, self.clearance, ring)
+        ring = None if world.is_grid else int(np.clip(2000 // max(len(world.circles), 1), 8, 32))
+        rm = self.roadmap = Roadmap.of(world, clearance, ring)
         M = len(rm.nodes)
-        ds, es = rm.attach(self.start)
-        dg, eg = rm.attach(self.goal)
-        direct = bool(rm.visible(self.start[None], self.goal[None])[0])
+        ds, es = rm.attach(start)
+        dg, eg = rm.attach(goal)
+        direct = bool(rm.visible(start[None], goal[None])[0])
         via = ds + dg
         k = int(via.argmin()) if M else -1
-        sg = float(np.hypot(*(self.goal - self.start))) if direct else (float(via[k]) if M else np.inf)
+        sg = float(np.hypot(*(goal - start))) if direct else (float(via[k]) if M else np.inf)
         if not np.isfinite(sg):
             raise InfeasibleQueryError("the goal is not reachable from the start through free space "
                                        "(no chain of visible obstacle corners joins them)")
@@ -559,12 +544,217 @@ class GeneralPath(PathEncoding):
         succ[G, S] = S if direct else eg[k]
         _join_through_ends(D, succ, M)
         self.table, self.succ = D, succ
-        self.points = np.vstack([rm.nodes, self.start[None], self.goal[None]]) if M else np.stack([self.start, self.goal])
+        self.points = np.vstack([rm.nodes, start[None], goal[None]]) if M else np.stack([start, goal])
+        self.path_points = self.points
+        self.snap_path = np.arange(len(self.points))
+
+    def walk(self, i: np.ndarray, j: np.ndarray) -> np.ndarray:
+        """Path-point sequences ``(n, L)`` of the legs ``i[r] -> j[r]`` (snap indices), each
+        padded with its end."""
+        from ..world.roadmap import walk_legs
+
+        return walk_legs(self.succ, i, j)
+
+
+class _LandmarkLegs:
+    """Legs on grid maps with many corners: via points snap to a few dozen to :data:`LANDMARKS`
+    landmarks (lattice points of the :class:`~optplan.world.roadmap.LocalGraph` spread over the
+    map) or to the start or goal, and a leg is the shortest way over the local graph (start
+    and goal joined to every node they see), from one Dijkstra row per landmark and end.
+
+    Set-up is one pass over near node pairs and a Dijkstra row per landmark and end: no all-pairs
+    table over the corners. Legs bend at lattice points as well as at corners, so they are a
+    few per cent longer than the exact geodesics; every one is collision-free by the exact
+    segment rule, as every edge of the graph is."""
+
+    exact = False
+
+    def __init__(self, world, start, goal, clearance: float) -> None:
+        from scipy.sparse import coo_matrix
+        from scipy.sparse.csgraph import dijkstra
+
+        from ..world.roadmap import LocalGraph, tangent_at
+
+        radius = None
+        for _ in range(WIDENINGS + 1):
+            lg = LocalGraph.of(world, clearance, radius)
+            N = len(lg.nodes)
+            S, G = N, N + 1
+            # the ends see any node, however far
+            pairs, weights = [lg.edges], [lg.weights]
+            for e, p in ((S, start), (G, goal)):
+                d = (lg.nodes - p) / world.resolution
+                idx = np.nonzero(tangent_at(d, lg.quadrants))[0]
+                idx = idx[~_hidden_from(world, p, d[idx])]
+                idx = idx[world.segments_free(np.broadcast_to(p, (len(idx), 2)), lg.nodes[idx], clearance)]
+                pairs.append(np.stack([np.full(len(idx), e), idx], axis=1))
+                weights.append(np.maximum(np.hypot(*(lg.nodes[idx] - p).T), 1e-12))
+            I, w = np.concatenate(pairs), np.concatenate(weights)
+            if world.segments_free(start[None], goal[None], clearance)[0]:
+                I = np.vstack([I, [[S, G]]])
+                w = np.r_[w, max(float(np.hypot(*(goal - start))), 1e-12)]
+            graph = coo_matrix((w, (I[:, 0], I[:, 1])), shape=(N + 2, N + 2)).tocsr()
+            graph = (graph + graph.T).tocsr()   # both directions stored: Dijkstra runs faster than undirected
+            count = int(np.clip(LANDMARK_ROWS // max(N, 1), *LANDMARKS))
+            marks = _spread(lg.nodes[lg.lattice], count, world.bounds)
+            sources = np.r_[lg.lattice[marks], S, G].astype(np.int64)
+            dist, pred = dijkstra(graph, directed=True, indices=sources, return_predecessors=True)
+            if np.isfinite(dist[-2, G]):
+                break
+            radius = 2.0 * lg.radius   # widen the local edges, a few times at most
+        else:
+            raise _NotJoined
+        self.graph_radius = lg.radius
+        self.table = dist[:, sources]
+        self.pred = pred.astype(np.int64)
+        self.sources = sources
+        self.points = np.vstack([lg.nodes[sources[:-2]], start[None], goal[None]])
+        self.path_points = np.vstack([lg.nodes, start[None], goal[None]])
+        self.snap_path = sources
+
+    def walk(self, i: np.ndarray, j: np.ndarray) -> np.ndarray:
+        """Path-point sequences ``(n, L)`` of the legs ``i[r] -> j[r]`` (snap indices), each
+        padded with its end: the predecessors of row ``i`` walked back from ``j``, reversed."""
+        i = np.asarray(i, dtype=np.int64).ravel()
+        j = np.asarray(j, dtype=np.int64).ravel()
+        first, cur = self.sources[i], self.sources[j].copy()
+        back = [cur.copy()]
+        while np.any(cur != first):
+            go = cur != first
+            nxt = self.pred[i[go], cur[go]]
+            if np.any(nxt < 0):
+                raise ParameterError("roadmap leg between unconnected nodes")
+            cur[go] = nxt
+            back.append(cur.copy())
+        back = np.stack(back[::-1], axis=1)                      # (n, L): first ... end, first-padded
+        shift = (back == first[:, None]).sum(axis=1) - 1        # leading copies of ``first`` to drop
+        col = np.minimum(np.arange(back.shape[1])[None, :] + shift[:, None], back.shape[1] - 1)
+        return np.take_along_axis(back, col, axis=1)
+
+
+def _hidden_from(grid, p: np.ndarray, d: np.ndarray) -> np.ndarray:
+    """Whether the points at offsets ``d`` (grid units) from ``p`` (metres) lie behind a blocked
+    cell near ``p`` (:class:`~optplan.world.shadows.Shadows`): the segment to them enters that
+    cell's interior, so the exact rule refuses it at any clearance. Others may still be hidden."""
+    from ..world.shadows import DIST_SLACK, Shadows, direction
+
+    u = grid.to_grid(np.asarray(p, float)[None])
+    sh = Shadows(grid.occ, u, np.zeros((1, 2), dtype=np.int64))
+    out = np.zeros(len(d), dtype=bool)
+    if sh.empty:
+        return out
+    far = np.nonzero(np.hypot(d[:, 0], d[:, 1]) > sh.reach[0] + DIST_SLACK)[0]
+    out[far] = sh.covers(np.zeros(len(far), dtype=np.int64), direction(d[far]))
+    return out
+
+
+class _NotJoined(Exception):
+    """The local graph does not join start and goal (the exact corner legs then decide)."""
+
+
+def _spread(P: np.ndarray, count: int, bounds) -> np.ndarray:
+    """Indices of about ``count`` points of ``P`` spread over ``bounds``: in each cell of a
+    square binning, the point nearest the cell's centre."""
+    if len(P) <= count:
+        return np.arange(len(P))
+    xmin, ymin, xmax, ymax = bounds
+    side = float(np.sqrt((xmax - xmin) * (ymax - ymin) / count))
+    b = np.floor((P - [xmin, ymin]) / side).astype(np.int64)
+    centre = (b + 0.5) * side + [xmin, ymin]
+    d = np.hypot(*(P - centre).T)
+    key = b[:, 0] * (int(np.ceil((ymax - ymin) / side)) + 2) + b[:, 1]
+    order = np.lexsort((d, key))
+    first = np.r_[True, key[order][1:] != key[order][:-1]]
+    return np.sort(order[first])
+
+
+def _legs_of(world, start, goal, clearance: float):
+    """The leg tables of a query (the last one asked on this world is kept: a plan builds
+    its encoding more than once)."""
+    key = (float(clearance), tuple(map(float, start)), tuple(map(float, goal)))
+    got = _DERIVED.of(world).get("general_legs")
+    if got is not None and got[0] == key:
+        return got[1]
+    legs = None
+    if world.is_grid:
+        from ..world.roadmap import corner_count, unreachable_cells
+
+        if corner_count(world, clearance) > EXACT_CORNERS:
+            if unreachable_cells(world, start, goal):
+                from ..errors import InfeasibleQueryError
+
+                raise InfeasibleQueryError("the goal is not reachable from the start through free space "
+                                           "(no 4-connected chain of free cells joins them)")
+            try:
+                legs = _LandmarkLegs(world, start, goal, clearance)
+            except _NotJoined:
+                legs = None
+    if legs is None:
+        legs = _CornerLegs(world, start, goal, clearance)
+    _DERIVED.of(world)["general_legs"] = (key, legs)
+    return legs
+
+
+@dataclass
+class GeneralPath(PathEncoding):
+    """Any path class on any map: ``m`` via points joined by geodesic legs through the roadmap.
+
+    ``x = (x1, y1, ..., xm, ym)`` in metres inside the world bounds. Each via point is snapped
+    to the nearest node of the world's :class:`~optplan.world.roadmap.Roadmap` that the start
+    can reach (start and goal count as nodes: a via point snapped to either adds nothing),
+    and consecutive nodes are joined by their shortest way over the roadmap's visible edges.
+    So every individual decodes to a collision-free path (no repair, no penalty), the
+    metaheuristic chooses the corridor by where it puts the via points, and with ``m`` via
+    points every class whose shortest path wraps around at most ``m`` chosen corners in
+    sequence is reachable (more ``m``, more windings). The roadmap (corners, edges, all-pairs
+    distances) is built once per world and clearance and kept in the world's cache; the
+    start and goal rows are built once per query.
+
+    On grid maps with more than :data:`EXACT_CORNERS` convex corners, all-pairs tables over
+    the corners would grow as corners squared: there the via points snap to at most
+    :data:`LANDMARKS` landmarks spread over the map (and to start and goal), and legs are
+    shortest ways over the :class:`~optplan.world.roadmap.LocalGraph` (``exact`` is then
+    False). Snapping a via point to the start or goal still gives the shortest way over that
+    graph, a few per cent above the exact optimum; refinement closes that in-class gap.
+
+    On circle worlds with many discs the roadmap uses coarser polygons (8-32 vertices per disc,
+    about 2000 nodes in all), so decoded paths are up to ``1/cos(pi/ring) - 1`` longer around
+    discs than the arcs; refinement or the class search then closes that in-class gap.
+
+    Length is a table sum (``leg_length``), exact for the decoded polyline; :meth:`decode`
+    gives paths ``(n, N, 2)`` (repeated goal points pad short ones) for other terms.
+    """
+
+    m: int = 3
+    clearance: float = 0.0
+    penetration_samples = 1
+
+    def __post_init__(self) -> None:
+        if int(self.m) < 1:
+            raise ParameterError(f"number of via points m must be >= 1, got {self.m}")
+        self.m = int(self.m)
+        xmin, ymin, xmax, ymax = self.world.bounds
+        self.lower = np.tile([xmin, ymin], self.m).astype(float)
+        self.upper = np.tile([xmax, ymax], self.m).astype(float)
+        legs = self.legs = _legs_of(self.world, self.start, self.goal, self.clearance)
+        self.exact = legs.exact
+        self.table, self.points = legs.table, legs.points
+        S = len(self.points) - 2
         # via points snap only to nodes the start reaches
-        self.reachable = np.nonzero(np.isfinite(D[S]))[0]
+        self.reachable = np.nonzero(np.isfinite(self.table[S]))[0]
         from scipy.spatial import cKDTree
 
         self._tree = cKDTree(self.points[self.reachable])
+
+    @property
+    def roadmap(self):
+        """The world's :class:`~optplan.world.roadmap.Roadmap` (exact legs only)."""
+        return self.legs.roadmap
+
+    @property
+    def succ(self) -> np.ndarray:
+        """Next node tables of the exact legs (``(K, K)`` over the snap nodes)."""
+        return self.legs.succ
 
     def nodes_of(self, X: np.ndarray) -> np.ndarray:
         """Roadmap node sequence ``(n, m + 2)`` of each individual: start, snapped vias, goal."""
@@ -580,9 +770,7 @@ class GeneralPath(PathEncoding):
         return self.table[idx[:, :-1], idx[:, 1:]].sum(axis=1)
 
     def _walk(self, i: np.ndarray, j: np.ndarray) -> np.ndarray:
-        from ..world.roadmap import walk_legs
-
-        return walk_legs(self.succ, i, j)
+        return self.legs.walk(i, j)
 
     def decode(self, X: np.ndarray, n_points: int | None = None) -> np.ndarray:
         """Paths ``(n, N, 2)``; ``N`` fits the batch's longest leg, or is ``n_points`` when given
@@ -596,10 +784,10 @@ class GeneralPath(PathEncoding):
                 raise ParameterError(f"n_points={n_points} is shorter than a decoded leg ({legs.shape[1]} nodes)")
             legs = np.concatenate([legs, np.repeat(legs[:, -1:], L - legs.shape[1], axis=1)], axis=1)
         seq = legs[:, :-1].reshape(n, -1)                                 # each leg without its end
-        seq = np.concatenate([seq, idx[:, -1:]], axis=1)
+        seq = np.concatenate([seq, self.legs.snap_path[idx[:, -1:]]], axis=1)
         if n_points is not None and seq.shape[1] < n_points:
             seq = np.concatenate([seq, np.repeat(seq[:, -1:], n_points - seq.shape[1], axis=1)], axis=1)
-        return self.points[seq]
+        return self.legs.path_points[seq]
 
     def points_bound(self) -> int:
         """Points enough for any decoded path: ``(m + 1) * most_edges_per_leg + 1``, the most
@@ -631,13 +819,19 @@ class GeneralPath(PathEncoding):
         general encoding's stand-in for the column encoding's collision-free random start."""
         S, G = len(self.points) - 2, len(self.points) - 1
         v = self.reachable[rng.integers(len(self.reachable), size=n)]
+        m1 = (self.m - 1) // 2
+        m2 = self.m - 1 - m1
+        if not self.exact:
+            # the nodes along a leg are not snap nodes here: the other via points sit on the ends;
+            # the first individual is the shortest way over the graph itself (v = goal)
+            v[:1] = G
+            nodes = np.concatenate([np.full((n, m1), S), v[:, None], np.full((n, m2), G)], axis=1)
+            return self.points[nodes].reshape(n, -1)
         a = self._walk(np.full(n, S), v)                       # (n, La), padded with v
         b = self._walk(v, np.full(n, G))                       # (n, Lb), padded with G
         la = (a != v[:, None]).sum(axis=1) + 1                 # nodes on start -> v, v included
         lb = (b != G).sum(axis=1) + 1                          # nodes on v -> goal, goal included
         # v itself takes the middle slot; the others spread evenly over either part (by node count)
-        m1 = (self.m - 1) // 2
-        m2 = self.m - 1 - m1
         ka = np.rint(np.arange(1, m1 + 1)[None, :] / (m1 + 1) * (la - 1)[:, None]).astype(np.int64)
         kb = np.rint(np.arange(1, m2 + 1)[None, :] / (m2 + 1) * (lb - 1)[:, None]).astype(np.int64)
         nodes = np.concatenate([np.take_along_axis(a, ka, axis=1), v[:, None],

@@ -404,7 +404,7 @@ class GeneralVias(Variables):
         self.encoding = GeneralPath(self.ctx.world, self.ctx.start, self.ctx.goal, m=self.m, clearance=self.clearance)
         self.dim = self.encoding.dim
         self.lower, self.upper = self.encoding.lower, self.encoding.upper
-        self.n_points = self.encoding.points_bound()
+        self.n_points = None   # decoded paths fit each batch (goal copies pad them: no term changes)
 
     def decode(self, X):
         return repeats_to_end(self.encoding.decode(X, self.n_points), self.ctx.goal)
