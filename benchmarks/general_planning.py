@@ -4,6 +4,7 @@ and the fused pipeline, each gap split into the class gap and the in-class gap.
     python benchmarks/general_planning.py --part encoding [--split dev|heldout|fresh] [--runs 5]
     python benchmarks/general_planning.py --part refine   [--split dev|heldout|fresh]
     python benchmarks/general_planning.py --part fused    [--split dev|heldout|fresh]
+    python benchmarks/general_planning.py --part defaults [--split defaults]
 
 Maps come from :func:`optplan.worldgen.maps.generate_map`. ``dev`` seeds (0-99) are the ones
 the code was developed on; ``heldout`` seeds (7000+) were not looked at before measuring;
@@ -19,6 +20,11 @@ the code was developed on; ``heldout`` seeds (7000+) were not looked at before m
 * ``fused``: msiar-gwo, missa, pso with ``encoding="general"`` + ``refine="casadi"``, same
   budget (15,000 evaluations), on random 20x20 maps with 20 % blocked cells: share within 1 %
   of the exact optimum, and for comparison the paper encodings + casadi.
+* ``defaults`` (issue 43): what a new user gets, ``op.plan(grid, s, g, algorithm=X)`` with no
+  option but the seed (default budget, default encoding), for every metaheuristic and the
+  path GAs, on random (20 %), rooms and maze grids of 20-48 cells at the ``defaults`` seeds
+  (7700+, drawn after the default was chosen): best-of-``runs`` gap to the exact optimum,
+  and the share of ``refine="casadi"`` runs within 1 % of it (goals: <= 1 % and >= 95 %).
 
 Every row reports the class gap (corridor chosen by the global stage) and the in-class gap
 (shape) separately (:func:`optplan.solvers.gaps.class_gaps`). Timings are not reported here.
@@ -36,7 +42,8 @@ from optplan.worldgen.maps import generate_map, map_query
 
 ALGORITHMS = ["ssa", "missa", "pso", "ipso", "ba", "iba", "ga", "gwo", "msiar-gwo", "woa", "aro", "dbo", "igwo"]
 FUSED = ["msiar-gwo", "missa", "pso"]
-SEED_BASE = {"dev": 0, "heldout": 7000, "fresh": 9000}
+SEED_BASE = {"dev": 0, "heldout": 7000, "fresh": 9000, "defaults": 7700}
+DEFAULT_PLANNERS = ALGORITHMS + ["iga"]
 
 
 def encoding_maps(split: str) -> list:
@@ -106,7 +113,7 @@ def part_refine(split: str, maps: int, runs: int, evals: int) -> None:
         for label, grid, s, g in random20_maps(split, maps):
             exact = op.shortest_path(grid, s, g, method="visibility")
             for seed in range(runs):
-                pure = op.plan(grid, s, g, algorithm=algo, max_evals=evals, seed=seed)
+                pure = op.plan(grid, s, g, algorithm=algo, encoding="paper", max_evals=evals, seed=seed)
                 n += 1
                 if not pure.feasible:
                     continue
@@ -132,15 +139,15 @@ def part_fused(split: str, maps: int, runs: int, evals: int) -> None:
           "| median in-class gap % |")
     print("|---|---|---|---|---|---|---|")
     summary = {}
-    for encoding in ("general", None):
+    for encoding in ("general", "paper"):
         for algo in FUSED:
             within = opt = n = 0
             cg, ig = [], []
             for label, grid, s, g in random20_maps(split, maps):
                 exact = op.shortest_path(grid, s, g, method="visibility")
                 for seed in range(runs):
-                    kw = {"encoding": encoding} if encoding else {}
-                    r = op.plan(grid, s, g, algorithm=algo, max_evals=evals, seed=seed, refine="casadi", **kw)
+                    r = op.plan(grid, s, g, algorithm=algo, max_evals=evals, seed=seed, refine="casadi",
+                                encoding=encoding)
                     n += 1
                     d = class_gaps(grid, s, g, r.path, exact)
                     if d["gap"] is None:
@@ -150,7 +157,7 @@ def part_fused(split: str, maps: int, runs: int, evals: int) -> None:
                     cg.append(d["class_gap"])
                     ig.append(d["in_class_gap"])
             summary[(encoding, algo)] = (within, n)
-            print(f"| {algo} | {encoding or 'paper'} | {n} | {within}/{n} | {opt}/{n} | {100 * np.median(cg):.2f} | "
+            print(f"| {algo} | {encoding} | {n} | {within}/{n} | {opt}/{n} | {100 * np.median(cg):.2f} | "
                   f"{100 * np.median(ig):.2f} |", flush=True)
     w = sum(summary[("general", a)][0] for a in FUSED)
     n = sum(summary[("general", a)][1] for a in FUSED)
@@ -158,16 +165,68 @@ def part_fused(split: str, maps: int, runs: int, evals: int) -> None:
           "(goal >= 90 %)")
 
 
+def default_maps(split: str) -> list:
+    """(label, grid, start, goal) for the defaults figure: random, rooms and maze grids."""
+    b = SEED_BASE[split]
+    specs = [("random", 20, {"density": 0.20}), ("random", 32, {"density": 0.20}), ("rooms", 24, {}),
+             ("rooms", 40, {}), ("maze", 25, {}), ("maze", 41, {}), ("random", 48, {"density": 0.20})]
+    out = []
+    for k, (kind, n, kw) in enumerate(specs):
+        grid = generate_map(kind, n, seed=b + k, **kw)
+        s, g = map_query(grid, seed=b + k)
+        out.append((f"{kind}{n}-s{b + k}", grid, s, g))
+    return out
+
+
+def part_defaults(split: str, runs: int) -> None:
+    print(f"defaults: op.plan(grid, s, g, algorithm=X, seed=k) and the same with refine='casadi', "
+          f"{runs} seeds per (map, planner), split {split}\n")
+    print("| planner | encoding used | runs | feasible | worst best-of-5 gap % | median gap % "
+          "| casadi within 1 % | casadi median gap % |")
+    print("|---|---|---|---|---|---|---|---|")
+    maps = [(label, grid, s, g, op.shortest_path(grid, s, g, method="visibility").length)
+            for label, grid, s, g in default_maps(split)]
+    worst_all, within_all, n_all = 0.0, 0, 0
+    for algo in DEFAULT_PLANNERS:
+        feas = n = within = 0
+        best, gaps, rgaps, used = [], [], [], set()
+        for label, grid, s, g, exact in maps:
+            mine = []
+            for seed in range(runs):
+                r = op.plan(grid, s, g, algorithm=algo, seed=seed)
+                ref = op.plan(grid, s, g, algorithm=algo, seed=seed, refine="casadi")
+                used.add(r.encoding or "-")
+                n += 1
+                feas += r.feasible
+                gap = r.length / exact - 1 if r.feasible else np.inf
+                rgap = ref.length / exact - 1 if ref.feasible else np.inf
+                mine.append(gap)
+                gaps.append(gap)
+                rgaps.append(rgap)
+                within += rgap <= 0.01
+            best.append(min(mine))
+        worst_all = max(worst_all, max(best))
+        within_all += within
+        n_all += n
+        print(f"| {algo} | {', '.join(sorted(used))} | {n} | {feas}/{n} | {100 * max(best):.2f} | "
+              f"{100 * np.median(gaps):.2f} | {within}/{n} | {100 * np.median(rgaps):.2f} |", flush=True)
+    print(f"\nworst best-of-{runs} gap over every planner and map: {100 * worst_all:.2f} % (goal <= 1 %); "
+          f"refine='casadi' within 1 %: {within_all}/{n_all} = {100 * within_all / max(n_all, 1):.1f} % (goal >= 95 %)")
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--part", choices=["encoding", "refine", "fused"], required=True)
+    ap.add_argument("--part", choices=["encoding", "refine", "fused", "defaults"], required=True)
     ap.add_argument("--split", choices=sorted(SEED_BASE), default="heldout")
-    ap.add_argument("--runs", type=int, default=None, help="seeds per (map, algorithm) (encoding 5, others 3)")
+    ap.add_argument("--runs", type=int, default=None, help="seeds per (map, algorithm) (encoding and defaults 5, "
+                    "others 3)")
     ap.add_argument("--maps", type=int, default=10, help="random 20x20 maps for refine / fused (default 10)")
     ap.add_argument("--evals", type=int, default=15000, help="evaluation budget per run (default 15000)")
     a = ap.parse_args(argv)
     if a.part == "encoding":
         part_encoding(a.split, a.runs or 5, a.evals)
+    elif a.part == "defaults":
+        part_defaults(a.split if a.split != "heldout" else "defaults", a.runs or 5)
     elif a.part == "refine":
         part_refine(a.split, a.maps, a.runs or 3, a.evals)
     else:

@@ -55,7 +55,7 @@ def part_local(args) -> int:
                     planners=["dwa", "missa-dwa"])
     else:
         runs = args.runs if args.runs != 50 else 20
-        gopts = {"pop": 60, "iters": args.iters or 300}
+        gopts = {"encoding": "paper", "pop": 60, "iters": args.iters or 300}
         paper_local("hou2024 Table 4 analog: random unknown obstacles (MISSA global path)",
                     [f"hou2024_table4_{k}" for k in range(4)], runs, global_planner="missa", global_options=gopts)
         paper_local(f"hou2024 §4.5 analog: dynamic environments 1-4 (MISSA global path; movers {args.movers})",

@@ -55,7 +55,7 @@ def part_local(args) -> int:
                     ["yang2023_idwa_crossing"], args.runs)
         paper_local(f"yang2023 §7.3 analog: fusion on the 25x25 dynamic map (IPSO global path; movers {args.movers})",
                     ["yang2023_fusion"], args.runs, global_planner="ipso",
-                    global_options={"pop": 50, "iters": args.iters or 300}, mover_motion=args.movers)
+                    global_options={"encoding": "paper", "pop": 50, "iters": args.iters or 300}, mover_motion=args.movers)
     if args.gif:
         print(write_run_gif("yang2023_idwa_crossing", "idwa", args.gif))
     return 0

@@ -63,7 +63,7 @@ def part_local(args) -> int:
                            ["yuan2021_path_switch"], 1,
                            planners=["dwa", "ba-dwa"])
     else:
-        gopts = {"pop": 50, "iters": args.iters or 100}
+        gopts = {"encoding": "paper", "pop": 50, "iters": args.iters or 100}
         paper_local("yuan2021 §5.2 analog: newly added obstacles (IBA global path)", ["yuan2021_added_obstacles"],
                     args.runs, global_planner="iba", global_options=gopts)
         sets = paper_local("yuan2021 §5.3 analog: path switch (IBA global path)", ["yuan2021_path_switch"],
@@ -96,7 +96,7 @@ def switch_against_replan(seed: int, iters: int = 100) -> dict:
 
     sc = scenario_for("yuan2021_path_switch")
     R = sc.robot.radius
-    plan = plan_global(sc, "iba", None, seed, {"pop": 50, "iters": iters})
+    plan = plan_global(sc, "iba", None, seed, {"encoding": "paper", "pop": 50, "iters": iters})
     known = realize(sc, seed, path=plan.path).true_world()      # the block, as sensed
     pts = densify(np.asarray(plan.path, float), 0.05)
     blocked = np.flatnonzero(~known.is_free(pts, R))
@@ -109,7 +109,8 @@ def switch_against_replan(seed: int, iters: int = 100) -> dict:
     graph.update(known)
     route = graph.route(known, position)
     t2 = time.perf_counter()
-    replan = op.plan(known, position, sc.goal, algorithm="iba", pop=50, iters=iters, clearance=R, seed=seed)
+    replan = op.plan(known, position, sc.goal, algorithm="iba", encoding="paper", pop=50, iters=iters,
+                     clearance=R, seed=seed)
     t3 = time.perf_counter()
     length = (lambda p: float(np.sum(np.hypot(*np.diff(p, axis=0).T))) if p is not None else float("nan"))
     return {"seed": seed, "build_s": t1 - t0, "switch_s": t2 - t1, "replan_s": t3 - t2,

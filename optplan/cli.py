@@ -415,9 +415,10 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--refine-starts", type=int, default=None, metavar="K",
                    help="refine the planner's best path and up to K-1 other distinct paths of its population, "
                         "keep the shortest (1: best path only; default: casadi 3, qp 1)")
-    p.add_argument("--encoding", default=None, choices=["columns", "waypoints", "spline", "general"],
-                   help="path encoding of a metaheuristic (default: the paper's; 'general' represents every "
-                        "path class on every map, and is used automatically when the paper's cannot)")
+    p.add_argument("--encoding", default=None, choices=["general", "paper", "columns", "waypoints", "spline", "cells"],
+                   help="path encoding of a metaheuristic (default: general, every path class on every map, "
+                        "the best measured; 'paper': the paper's own, replaced by general when it cannot "
+                        "represent a solution; 'cells': li2023's chromosome for ga/iga)")
     p.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     p.add_argument("--pop", type=int, default=30, help="population size of metaheuristics")
     p.add_argument("--iters", type=int, default=500, help="iterations of metaheuristics")

@@ -57,7 +57,7 @@ def test_a_map_the_column_encoding_cannot_represent_falls_back_and_says_so():
     occ[1, 5] = occ[8, 5] = False
     grid = op.GridMap(occ)
     s, g = (0.5, 0.5), (9.5, 0.5)
-    r = op.plan(grid, s, g, algorithm="missa", max_evals=2000, seed=0)
+    r = op.plan(grid, s, g, algorithm="missa", encoding="paper", max_evals=2000, seed=0)
     assert r.feasible and r.encoding == "general"
     assert "encoding='general'" in r.message
     with pytest.raises(op.OptplanError):     # asked for explicitly: no silent replacement
@@ -67,7 +67,7 @@ def test_a_map_the_column_encoding_cannot_represent_falls_back_and_says_so():
 def test_paper_encodings_stay_when_they_represent_the_solution():
     grid = generate_map("random", 16, seed=5, density=0.1)
     s, g = map_query(grid, seed=5)
-    r = op.plan(grid, s, g, algorithm="msiar-gwo", max_evals=1500, seed=0)
+    r = op.plan(grid, s, g, algorithm="msiar-gwo", encoding="paper", max_evals=1500, seed=0)
     assert r.encoding in ("columns", "general")
     if r.encoding == "columns":
         assert r.feasible
@@ -79,7 +79,12 @@ def test_general_vias_as_program_variables(rooms):
     prog.minimize(T.length())
     r = prog.solve("pso", max_evals=1500, seed=0)
     assert r.feasible
-    assert r.path.shape[0] == prog.variables.n_points
+    # the decoded path, its repeated points moved to the end (where they change no term)
+    P = r.path
+    moves = np.r_[True, np.any(np.diff(P, axis=0) != 0, axis=1)]
+    k = int(moves.sum())
+    np.testing.assert_array_equal(P[:k], prog.variables.encoding.waypoints(r.x))
+    assert np.all(P[k:] == g)
     assert prog.evaluate(r.path)[0] == pytest.approx(r.cost)
 
 
@@ -157,3 +162,32 @@ def test_legs_between_roadmap_parts_run_through_the_start():
     res = op.plan(grid, s, g, algorithm="pso", encoding="general", max_evals=3000, iters=None, pop=20, seed=0)
     best = op.shortest_path(grid, s, g, method="visibility").length
     assert res.feasible and res.length == pytest.approx(best, rel=1e-9)
+
+
+def test_the_default_encoding_is_general_and_paper_is_one_word_away():
+    grid = generate_map("random", 16, seed=5, density=0.1)
+    s, g = map_query(grid, seed=5)
+    default = op.plan(grid, s, g, algorithm="missa", max_evals=600, seed=0)
+    assert default.encoding == "general" and default.feasible
+    paper = op.plan(grid, s, g, algorithm="missa", encoding="paper", max_evals=600, seed=0)
+    columns = op.plan(grid, s, g, algorithm="missa", encoding="columns", max_evals=600, seed=0)
+    assert paper.encoding == "columns"
+    np.testing.assert_array_equal(paper.path, columns.path)
+    # yang2023's planners: the paper's encoding is spline handles; li2023's GAs keep their chromosome
+    assert op.plan(grid, s, g, algorithm="ipso", encoding="paper", max_evals=600, seed=0).encoding == "spline"
+    assert op.plan(grid, s, g, algorithm="iga", encoding="paper", pop=10, iters=5, seed=0).algorithm == "iga"
+    with pytest.raises(ParameterError, match="paper"):
+        op.plan(grid, s, g, algorithm="missa", encoding="papers", max_evals=600)
+
+
+def test_the_cli_plans_with_the_general_encoding_unless_told(tmp_path, capsys):
+    grid = generate_map("random", 16, seed=5, density=0.1)
+    s, g = map_query(grid, seed=5)
+    path = tmp_path / "m.txt"
+    np.savetxt(path, grid.occ[::-1].astype(int), fmt="%d")
+    base = ["plan", str(path), "--start", str(s[0]), str(s[1]), "--goal", str(g[0]), str(g[1]), "--algo", "missa",
+            "--iters", "20", "--json"]
+    assert main(base) == 0
+    assert json.loads(capsys.readouterr().out)["encoding"] == "general"
+    assert main(base + ["--encoding", "paper"]) == 0
+    assert json.loads(capsys.readouterr().out)["encoding"] == "columns"

@@ -187,10 +187,14 @@ def test_a_method_whose_own_tables_exceed_the_memory_budget_is_refused_with_the_
     tracemalloc.start()
     try:
         with pytest.raises(op.ParameterError, match="distance field"):
-            op.plan(grid, (0.5, 0.5), (399.5, 399.5), algorithm="gwo", max_evals=100, iters=None, pop=10)
+            op.plan(grid, (0.5, 0.5), (399.5, 399.5), algorithm="gwo", encoding="paper", max_evals=100, iters=None,
+                    pop=10)
         assert tracemalloc.get_traced_memory()[1] < 20e6
     finally:
         tracemalloc.stop()
+    # the default (general) encoding needs no distance field: it plans under the same budget
+    r = op.plan(grid, (0.5, 0.5), (399.5, 399.5), algorithm="gwo", max_evals=100, iters=None, pop=10)
+    assert r.feasible and r.encoding == "general"
 
 
 def test_every_case_of_the_hostile_input_script_ends_in_one_line():

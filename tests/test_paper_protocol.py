@@ -15,7 +15,7 @@ from optplan.world.grid import GridMap
 from optplan.world.papermaps import paper_map
 from optplan.world.postprocess import prune_direct
 
-PAPER = {"constraint": "penalty", "init": "own", "fitness_on": "pruned"}
+PAPER = {"constraint": "penalty", "init": "own", "fitness_on": "pruned", "encoding": "paper"}
 
 
 def _wall_map() -> GridMap:

@@ -59,7 +59,7 @@ def test_yang2023_planners_plan_splines_on_grid_maps():
     """yang2023 always plans a cubic spline through free points (eq 1-4), also on its
     25x25 fusion map; other planners keep one node per column."""
     world, s, g = paper_map("yang2023_fusion25")
-    spline = op.plan(world, s, g, algorithm="ipso", seed=0, pop=20, iters=30)
+    spline = op.plan(world, s, g, algorithm="ipso", seed=0, pop=20, iters=30, encoding="paper")
     nodes = op.plan(world, s, g, algorithm="ipso", seed=0, pop=20, iters=30, encoding="columns")
     assert len(spline.path) > world.width + 1 >= len(nodes.path)   # densely sampled curve vs grid nodes
     assert spline.feasible == bool(op.validate_path(world, spline.path))
@@ -76,7 +76,7 @@ def test_column_planners_cannot_beat_the_encodings_exact_optimum():
     opt = op.shortest_path(world, s, g, method="visibility").length
     assert floor > 1.03 * opt
     for algo in ("ssa", "missa"):
-        r = op.plan(world, s, g, algorithm=algo, seed=1, pop=20, iters=30)
+        r = op.plan(world, s, g, algorithm=algo, seed=1, pop=20, iters=30, encoding="paper")
         assert r.feasible and r.length >= floor - 1e-9
 
 

@@ -245,7 +245,8 @@ def test_paper_program_is_the_fitness_the_planner_optimises():
     from optplan.world.papermaps import paper_map
 
     world, s, g = paper_map("hou2024_env1")
-    res = op.plan(world, s, g, algorithm="gwo", pop=10, iters=20, seed=0, preset="li2023", postprocess="none")
+    res = op.plan(world, s, g, algorithm="gwo", pop=10, iters=20, seed=0, preset="li2023", postprocess="none",
+                  encoding="paper")
     prog = op.paper_program("li2023", world, s, g)
     assert prog.evaluate(res.path)[0] == pytest.approx(float(res.history[-1]), rel=1e-12)
 
@@ -257,7 +258,8 @@ def test_op_plan_solves_the_paper_program_through_the_program_solvers():
     from optplan.world.papermaps import paper_map
 
     world, s, g = paper_map("hou2024_env1")
-    res = op.plan(world, s, g, algorithm="gwo", pop=10, iters=20, seed=0, preset="li2023", postprocess="none")
+    res = op.plan(world, s, g, algorithm="gwo", pop=10, iters=20, seed=0, preset="li2023", postprocess="none",
+                  encoding="paper")
     prog = op.paper_program("li2023", world, s, g, variables=op.ColumnNodes())
     assert prog.acceleration is None
     own = prog.solve("gwo", pop=10, iters=20, seed=0)

@@ -80,7 +80,7 @@ def test_waypoints_on_a_grid_feasibility_rule(routes):
 def test_spline_encoding_is_the_spline_through_variables(routes):
     w = circles()
     kw = dict(pop=8, iters=20, seed=2)
-    res = op.plan(w, S, G, algorithm="gwo", preset="li2023", postprocess="none", **kw)   # circle default: spline
+    res = op.plan(w, S, G, algorithm="gwo", preset="li2023", postprocess="none", encoding="paper", **kw)  # spline
     assert routes == [("gwo", "SplineThrough(k=3, samples=100)", "feasibility")]
     prog = op.paper_program("li2023", w, S, G, variables=SplineThrough(3, 100), per_segment=1)
     own = prog.solve("gwo", start="algorithm", **kw)
@@ -125,7 +125,7 @@ def test_routes_that_stay_direct_say_why(routes):
     from optplan.world.papermaps import paper_map
 
     world, s, g = paper_map("chen2025_20")
-    res = op.plan(world, s, g, algorithm="gwo", pop=6, iters=5, seed=0, fitness_on="pruned")
+    res = op.plan(world, s, g, algorithm="gwo", pop=6, iters=5, seed=0, fitness_on="pruned", encoding="paper")
     assert routes == [] and res.feasible
 
 
@@ -200,7 +200,7 @@ def test_a_budget_object_is_a_swarm_solver_option(routes):
 
     w = circles()
     b = Budget(iterations=40, stagnation=5)
-    res = op.plan(w, S, G, algorithm="pso", pop=8, seed=3, budget=b, postprocess="none")
+    res = op.plan(w, S, G, algorithm="pso", pop=8, seed=3, budget=b, postprocess="none", encoding="paper")
     assert routes and routes[0][0] == "pso"
     prog = op.paper_program("yang2023", w, S, G, variables=SplineThrough(3, 100), per_segment=1)  # pso's paper
     own = prog.solve("pso", pop=8, seed=3, budget=b, start="algorithm")

@@ -16,7 +16,7 @@ from optplan.world.papermaps import paper_map
 @pytest.fixture(scope="module")
 def circle_case():
     world, s, g = paper_map("yang2023_env1")
-    seed = op.plan(world, s, g, algorithm="pso", seed=1, pop=20, iters=40)
+    seed = op.plan(world, s, g, algorithm="pso", seed=1, pop=20, iters=40, encoding="paper")   # a spline to refine
     assert seed.feasible
     return world, seed.path
 

@@ -34,8 +34,8 @@ def test_refinement_keeps_the_optimum_on_a_circle_world():
 
 def test_refined_metaheuristic_path_is_valid_and_not_longer():
     world, s, g = paper_map("yang2023_env1")
-    pure = op.plan(world, s, g, algorithm="pso", seed=1, pop=20, iters=40)
-    ref = op.plan(world, s, g, algorithm="pso", seed=1, pop=20, iters=40, refine="casadi")
+    pure = op.plan(world, s, g, algorithm="pso", seed=1, pop=20, iters=40, encoding="paper")
+    ref = op.plan(world, s, g, algorithm="pso", seed=1, pop=20, iters=40, refine="casadi", encoding="paper")
     assert pure.feasible
     assert ref.refined and op.validate_path(world, ref.path) and ref.length <= pure.length + 1e-9
 

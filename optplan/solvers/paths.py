@@ -32,6 +32,11 @@ GRAPH_PLANNERS = ("aco", "iaco", "ga", "iga")  # grid-graph / cell-sequence plan
 # (yang2023: a cubic spline through free points, eq 1-4, §2.2, also in §7.3)
 GRID_ENCODING = {k: p.grid_encoding for k, p in PAPERS.items() if p.grid_encoding != "columns"}
 ENCODINGS = ("columns", "waypoints", "spline", "general")
+# what a metaheuristic plans with when no encoding is given: the general encoding, the best
+# measured (benchmarks/general_planning.py --part defaults); "paper" names each paper's own
+# (GRID_ENCODING on grids, spline handles on circle worlds), as optplan reproduce uses it
+DEFAULT_ENCODING = "general"
+PAPER_ENCODING = "paper"
 
 
 def algorithm_names() -> list[str]:
@@ -93,15 +98,16 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
     paper's penalised fitness exactly (the program's clearance constraint carries the
     paper's penalty weights, :meth:`~optplan.terms.Constraint.penalised`).
 
-    ``encoding`` defaults to one node per column on grids (spline handles for the
-    yang2023 planners ``pso``/``ipso``, :data:`GRID_ENCODING`) and spline handles on
-    circle worlds. ``"general"`` (:class:`GeneralPath`: ``waypoints`` via points joined by
-    geodesic roadmap legs) represents every path class on every map. ``ga``/``iga`` also take
+    ``encoding`` defaults to ``"general"`` (:class:`GeneralPath`: ``waypoints`` via points
+    joined by geodesic roadmap legs), which represents every path class on every map and was
+    the best measured (:data:`DEFAULT_ENCODING`). ``"paper"`` is the paper's own: one node per
+    column on grids (spline handles for the yang2023 planners ``pso``/``ipso``,
+    :data:`GRID_ENCODING`) and spline handles on circle worlds. ``ga``/``iga`` also take
     ``"cells"`` on grids: li2023's own chromosome, a general cell sequence
-    (:mod:`optplan.solvers.gridpath.cell_ga`). When the default
-    (paper) encoding cannot represent a solution — no collision-free path with one node
-    per column exists, or the paper encoding's best path is infeasible — the run is done
-    again with the general encoding (same budget) and the result says so (``encoding``,
+    (:mod:`optplan.solvers.gridpath.cell_ga`); their default stays their own chromosome
+    (``iga``'s operators exist only there). When the paper's encoding (``"paper"``) cannot
+    represent a solution — no collision-free path with one node per column exists, or the
+    paper encoding's best path is infeasible — the run is done again with the general encoding (same budget) and the result says so (``encoding``,
     ``message``); an explicitly requested encoding is never replaced. Under ``max_evals``
     (a hard cap on evaluations) an infeasible result is not re-planned; its message
     names the general encoding instead.
@@ -127,6 +133,8 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
     """
     name = algorithm.lower()
     alternatives, alternative_separation = check_alternatives(alternatives, alternative_separation)
+    if name in ("ga", "iga") and encoding == PAPER_ENCODING:
+        encoding = None   # li2023's GAs: their own chromosome is their paper's (and their default)
     s = world.check_query_point(start, "start", clearance)
     g = world.check_query_point(goal, "goal", clearance)
     if name in ("aco", "iaco"):  # an ant colony keeps pheromone, not a population of paths: no alternatives
@@ -190,11 +198,15 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
     paper = PAPER_OF.get(name, "length")
     preset = preset or paper
     t0 = time.perf_counter()
-    chosen = encoding is not None
+    # the paper's own encoding may be replaced by the general one when it cannot represent a
+    # solution; an encoding named explicitly is never replaced
+    chosen = encoding not in (None, PAPER_ENCODING)
     if encoding is None:
+        encoding = DEFAULT_ENCODING
+    elif encoding == PAPER_ENCODING:
         encoding = GRID_ENCODING.get(paper, "columns") if world.is_grid else "spline"
     if encoding not in ENCODINGS:
-        raise ParameterError(f"encoding must be one of {', '.join(ENCODINGS)}, got {encoding!r}")
+        raise ParameterError(f"encoding must be one of {', '.join((*ENCODINGS, PAPER_ENCODING))}, got {encoding!r}")
     note = ""
     if world.is_grid and encoding != "general":
         from ..formulations.presets import get_preset, uses_penetration
