@@ -178,7 +178,7 @@ def default_maps(split: str) -> list:
     return out
 
 
-def part_defaults(split: str, runs: int) -> None:
+def part_defaults(split: str, runs: int, planners=None) -> None:
     print(f"defaults: op.plan(grid, s, g, algorithm=X, seed=k) and the same with refine='casadi', "
           f"{runs} seeds per (map, planner), split {split}\n")
     print("| planner | encoding used | runs | feasible | worst best-of-5 gap % | median gap % "
@@ -187,7 +187,7 @@ def part_defaults(split: str, runs: int) -> None:
     maps = [(label, grid, s, g, op.shortest_path(grid, s, g, method="visibility").length)
             for label, grid, s, g in default_maps(split)]
     worst_all, within_all, n_all = 0.0, 0, 0
-    for algo in DEFAULT_PLANNERS:
+    for algo in planners or DEFAULT_PLANNERS:
         feas = n = within = 0
         best, gaps, rgaps, used = [], [], [], set()
         for label, grid, s, g, exact in maps:
@@ -222,11 +222,12 @@ def main(argv=None) -> int:
                     "others 3)")
     ap.add_argument("--maps", type=int, default=10, help="random 20x20 maps for refine / fused (default 10)")
     ap.add_argument("--evals", type=int, default=15000, help="evaluation budget per run (default 15000)")
+    ap.add_argument("--planners", nargs="+", default=None, help="defaults part: only these planners")
     a = ap.parse_args(argv)
     if a.part == "encoding":
         part_encoding(a.split, a.runs or 5, a.evals)
     elif a.part == "defaults":
-        part_defaults(a.split if a.split != "heldout" else "defaults", a.runs or 5)
+        part_defaults(a.split if a.split != "heldout" else "defaults", a.runs or 5, a.planners)
     elif a.part == "refine":
         part_refine(a.split, a.maps, a.runs or 3, a.evals)
     else:

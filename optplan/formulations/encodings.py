@@ -22,6 +22,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..world.derived import DerivedStore
+from .variables import repeats_to_end
 
 _DERIVED = DerivedStore("formulations.encodings")  # this module's data derived from worlds
 
@@ -773,8 +774,9 @@ class GeneralPath(PathEncoding):
         return self.legs.walk(i, j)
 
     def decode(self, X: np.ndarray, n_points: int | None = None) -> np.ndarray:
-        """Paths ``(n, N, 2)``; ``N`` fits the batch's longest leg, or is ``n_points`` when given
-        (at least :meth:`points_bound`); short paths end in repeated goal points."""
+        """Paths ``(n, N, 2)``; ``N`` fits the batch's longest legs, or is ``n_points`` when given
+        (at least :meth:`points_bound`); short paths end in repeated goal points, and no point
+        repeats before them."""
         idx = self.nodes_of(X)
         n = len(idx)
         legs = self._walk(idx[:, :-1].ravel(), idx[:, 1:].ravel())       # (n * (m+1), L)
@@ -787,7 +789,9 @@ class GeneralPath(PathEncoding):
         seq = np.concatenate([seq, self.legs.snap_path[idx[:, -1:]]], axis=1)
         if n_points is not None and seq.shape[1] < n_points:
             seq = np.concatenate([seq, np.repeat(seq[:, -1:], n_points - seq.shape[1], axis=1)], axis=1)
-        return self.legs.path_points[seq]
+        # a short leg's padding repeats its end inside the path: move repeats to the end, where
+        # they change no term (inside, a zero-length segment would hide a turn from turn terms)
+        return repeats_to_end(self.legs.path_points[seq], self.goal)
 
     def points_bound(self) -> int:
         """Points enough for any decoded path: ``(m + 1) * most_edges_per_leg + 1``, the most

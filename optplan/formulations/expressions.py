@@ -350,7 +350,9 @@ def _turn_angles(P, m):
     a, b = d[:-1], d[1:]
     cross = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
     dot = a[:, 0] * b[:, 0] + a[:, 1] * b[:, 1]
-    return m.abs(m.atan2(cross, dot))
+    # + 0.0 turns -0.0 into 0.0: next to a zero-length segment (repeats at a path's end) both
+    # are zeros, and atan2(-0.0, -0.0) is -pi, a U-turn that is not there
+    return m.abs(m.atan2(cross + 0.0, dot + 0.0))
 
 
 def length() -> Expr:

@@ -407,7 +407,7 @@ class GeneralVias(Variables):
         self.n_points = None   # decoded paths fit each batch (goal copies pad them: no term changes)
 
     def decode(self, X):
-        return repeats_to_end(self.encoding.decode(X, self.n_points), self.ctx.goal)
+        return self.encoding.decode(X, self.n_points)   # repeats already at the end
 
     def relaxed(self):
         return Points(max(8, 4 * (self.m + 1))).bind(self.ctx)

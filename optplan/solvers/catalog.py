@@ -64,9 +64,10 @@ def runs_on(name: str, world) -> bool:
 def planner_kind(name: str, world, encoding=None) -> str:
     """``graph``, ``aco``, ``cell-ga`` (the grid GAs on their own chromosome) or ``swarm``: the
     kind the planner declares (:mod:`optplan.solvers.capabilities`), except that ``ga`` runs as
-    a swarm off its cell chromosome (circle worlds, other encodings)."""
+    a swarm off its cell chromosome (by default, circle worlds, other encodings)."""
     kind = planner_capabilities(name).kind
-    if kind == "cell-ga" and name == "ga" and not (world.is_grid and encoding in (None, "columns", "cells")):
+    # ga's default is the general encoding (a swarm); "paper" is li2023's chromosome
+    if kind == "cell-ga" and name == "ga" and not (world.is_grid and encoding in ("paper", "columns", "cells")):
         return "swarm"
     return kind
 

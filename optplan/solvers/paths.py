@@ -104,8 +104,9 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
     column on grids (spline handles for the yang2023 planners ``pso``/``ipso``,
     :data:`GRID_ENCODING`) and spline handles on circle worlds. ``ga``/``iga`` also take
     ``"cells"`` on grids: li2023's own chromosome, a general cell sequence
-    (:mod:`optplan.solvers.gridpath.cell_ga`); their default stays their own chromosome
-    (``iga``'s operators exist only there). When the paper's encoding (``"paper"``) cannot
+    (:mod:`optplan.solvers.gridpath.cell_ga`), and ``"paper"`` gives them li2023's chromosome
+    (one cell per column, or the cell sequence where that cannot represent a solution). ``iga``
+    always plans on it (its operators exist only there); ``ga`` defaults to the general encoding. When the paper's encoding (``"paper"``) cannot
     represent a solution — no collision-free path with one node per column exists, or the
     paper encoding's best path is infeasible — the run is done again with the general encoding (same budget) and the result says so (``encoding``,
     ``message``); an explicitly requested encoding is never replaced. Under ``max_evals``
@@ -133,8 +134,10 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
     """
     name = algorithm.lower()
     alternatives, alternative_separation = check_alternatives(alternatives, alternative_separation)
+    if name == "ga" and encoding is None:
+        encoding = DEFAULT_ENCODING   # the vector GA over the general encoding, as every metaheuristic
     if name in ("ga", "iga") and encoding == PAPER_ENCODING:
-        encoding = None   # li2023's GAs: their own chromosome is their paper's (and their default)
+        encoding = None   # li2023's GAs on their own chromosome (iga's operators exist only there)
     s = world.check_query_point(start, "start", clearance)
     g = world.check_query_point(goal, "goal", clearance)
     if name in ("aco", "iaco"):  # an ant colony keeps pheromone, not a population of paths: no alternatives
