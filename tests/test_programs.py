@@ -364,3 +364,16 @@ def test_the_casadi_smoother_minimises_the_smoothing_programs_energy():
     assert out.success
     prog = op.smoothing_program(world, (0.5, 0.5), (9.5, 9.5), n=30, w_smooth=0.5, clearance=0.1)
     assert prog.evaluate(out.path)[0] == pytest.approx(out.objective, rel=1e-12)
+
+
+def test_repeated_end_points_add_no_turn_to_the_program_terms():
+    """A path that reaches the goal moving left and down, padded with goal copies: the zero-length
+    segments give cross = dot = -0.0, and atan2(-0.0, -0.0) = -pi counted a U-turn there."""
+    from optplan.world.metrics import turn_angles_deg
+
+    w = op.CircleWorld(bounds=(0, 0, 10, 10), circles=[])
+    P = np.array([[9.0, 9.0], [5.0, 8.0], [1.0, 1.0], [1.0, 1.0], [1.0, 1.0]])
+    prog = op.PathProgram(w, P[0], P[-1], variables=op.Points(3))
+    prog.minimize(T.turn_angles().sum() + T.turn_count())
+    want = np.radians(turn_angles_deg(P)).sum() + 1.0
+    assert prog.path_costs(P[None])[0] == pytest.approx(want, abs=1e-12)
