@@ -113,3 +113,18 @@ def test_the_shadow_prefilter_of_the_ends_hides_only_refused_segments(seed):
     for c in (0.0, 0.02):
         assert not np.any(hidden & grid.segments_free(np.broadcast_to(p, lg.nodes.shape), lg.nodes, c))
     assert hidden.mean() > 0.5
+
+
+def test_landmark_rows_are_per_map_and_the_ends_rows_per_query(landmarks_everywhere):
+    grid = generate_map("random", 40, seed=12, density=0.2)
+    (s1, g1), (s2, g2) = map_query(grid, seed=1), map_query(grid, seed=2)
+    a, b = E.GeneralPath(grid, s1, g1), E.GeneralPath(grid, s2, g2)
+    assert a.legs.mark_pred is b.legs.mark_pred              # one set of landmark rows for the map
+    np.testing.assert_allclose(a.table[:-2, :-2], b.table[:-2, :-2])
+    for enc in (a, b):                                        # legs from and to the ends, both ways
+        r = enc.reachable
+        legs = enc._walk(np.repeat(r, len(r)), np.tile(r, len(r)))
+        P = enc.legs.path_points[legs]
+        np.testing.assert_allclose(path_length(P), enc.table[np.repeat(r, len(r)), np.tile(r, len(r))],
+                                   rtol=1e-9)
+        assert np.all(legs[:, 0] == enc.legs.snap_path[np.repeat(r, len(r))])

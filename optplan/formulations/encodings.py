@@ -560,13 +560,15 @@ class _CornerLegs:
 class _LandmarkLegs:
     """Legs on grid maps with many corners: via points snap to a few dozen to :data:`LANDMARKS`
     landmarks (lattice points of the :class:`~optplan.world.roadmap.LocalGraph` spread over the
-    map) or to the start or goal, and a leg is the shortest way over the local graph (start
-    and goal joined to every node they see), from one Dijkstra row per landmark and end.
+    map) or to the start or goal, and a leg is the shortest way over the local graph.
 
-    Set-up is one pass over near node pairs and a Dijkstra row per landmark and end: no all-pairs
-    table over the corners. Legs bend at lattice points as well as at corners, so they are a
-    few per cent longer than the exact geodesics; every one is collision-free by the exact
-    segment rule, as every edge of the graph is."""
+    Per map (kept with the graph): a Dijkstra row per landmark over the local graph. Per query:
+    the start and goal joined to every node they see, and a Dijkstra row from each. A leg that
+    ends at the start or goal is walked on that end's row (the graph is undirected), any other
+    on its first landmark's row; so legs between landmarks do not pass through the start or
+    goal. No all-pairs table over the corners. Legs bend at lattice points as well as at
+    corners, so they are a few per cent longer than the exact geodesics; every one is
+    collision-free by the exact segment rule, as every edge of the graph is."""
 
     exact = False
 
@@ -596,41 +598,55 @@ class _LandmarkLegs:
                 w = np.r_[w, max(float(np.hypot(*(goal - start))), 1e-12)]
             graph = coo_matrix((w, (I[:, 0], I[:, 1])), shape=(N + 2, N + 2)).tocsr()
             graph = (graph + graph.T).tocsr()   # both directions stored: Dijkstra runs faster than undirected
-            count = int(np.clip(LANDMARK_ROWS // max(N, 1), *LANDMARKS))
-            marks = _spread(lg.nodes[lg.lattice], count, world.bounds)
-            sources = np.r_[lg.lattice[marks], S, G].astype(np.int64)
-            dist, pred = dijkstra(graph, directed=True, indices=sources, return_predecessors=True)
-            if np.isfinite(dist[-2, G]):
+            end_dist, end_pred = dijkstra(graph, directed=True, indices=[S, G], return_predecessors=True)
+            if np.isfinite(end_dist[0, G]):
                 break
             radius = 2.0 * lg.radius   # widen the local edges, a few times at most
         else:
             raise _NotJoined
+        marks, mark_dist, mark_pred = lg.landmark_rows(int(np.clip(LANDMARK_ROWS // max(N, 1), *LANDMARKS)))
+        K = len(marks)
         self.graph_radius = lg.radius
-        self.table = dist[:, sources]
-        self.pred = pred.astype(np.int64)
-        self.sources = sources
-        self.points = np.vstack([lg.nodes[sources[:-2]], start[None], goal[None]])
+        self.sources = np.r_[marks, S, G].astype(np.int64)       # snap node -> path point
+        T = np.empty((K + 2, K + 2))
+        T[:K, :K] = mark_dist[:, marks]
+        T[K:, :] = end_dist[:, self.sources]
+        T[:K, K:] = T[K:, :K].T
+        self.table = T
+        self.K = K
+        self.mark_pred, self.end_pred = mark_pred, end_pred
+        self.points = np.vstack([lg.nodes[marks], start[None], goal[None]])
         self.path_points = np.vstack([lg.nodes, start[None], goal[None]])
-        self.snap_path = sources
+        self.snap_path = self.sources
 
     def walk(self, i: np.ndarray, j: np.ndarray) -> np.ndarray:
         """Path-point sequences ``(n, L)`` of the legs ``i[r] -> j[r]`` (snap indices), each
-        padded with its end: the predecessors of row ``i`` walked back from ``j``, reversed."""
+        padded with its end: a row's predecessors walked back from the other end of the leg."""
         i = np.asarray(i, dtype=np.int64).ravel()
         j = np.asarray(j, dtype=np.int64).ravel()
-        first, cur = self.sources[i], self.sources[j].copy()
+        K = self.K
+        # a leg to an end from a landmark is walked on the end's row, then read backwards
+        flip = (i < K) & (j >= K)
+        row = np.where(flip, j, i)
+        first, cur = self.sources[row], self.sources[np.where(flip, i, j)].copy()
         back = [cur.copy()]
         while np.any(cur != first):
-            go = cur != first
-            nxt = self.pred[i[go], cur[go]]
+            go = np.nonzero(cur != first)[0]
+            r = row[go]
+            on_end = r >= K
+            nxt = np.empty(len(go), dtype=np.int64)
+            nxt[on_end] = self.end_pred[r[on_end] - K, cur[go[on_end]]]
+            nxt[~on_end] = self.mark_pred[r[~on_end], cur[go[~on_end]]]
             if np.any(nxt < 0):
                 raise ParameterError("roadmap leg between unconnected nodes")
             cur[go] = nxt
             back.append(cur.copy())
-        back = np.stack(back[::-1], axis=1)                      # (n, L): first ... end, first-padded
-        shift = (back == first[:, None]).sum(axis=1) - 1        # leading copies of ``first`` to drop
-        col = np.minimum(np.arange(back.shape[1])[None, :] + shift[:, None], back.shape[1] - 1)
-        return np.take_along_axis(back, col, axis=1)
+        back = np.stack(back, axis=1)                       # (n, L): other end ... row's node, padded with it
+        fwd = back[:, ::-1]                                 # row's node (repeated) ... other end
+        shift = (fwd == first[:, None]).sum(axis=1) - 1     # leading copies of the row's node to drop
+        col = np.minimum(np.arange(fwd.shape[1])[None, :] + shift[:, None], fwd.shape[1] - 1)
+        fwd = np.take_along_axis(fwd, col, axis=1)
+        return np.where(flip[:, None], back, fwd)
 
 
 def _hidden_from(grid, p: np.ndarray, d: np.ndarray) -> np.ndarray:
@@ -651,22 +667,6 @@ def _hidden_from(grid, p: np.ndarray, d: np.ndarray) -> np.ndarray:
 
 class _NotJoined(Exception):
     """The local graph does not join start and goal (the exact corner legs then decide)."""
-
-
-def _spread(P: np.ndarray, count: int, bounds) -> np.ndarray:
-    """Indices of about ``count`` points of ``P`` spread over ``bounds``: in each cell of a
-    square binning, the point nearest the cell's centre."""
-    if len(P) <= count:
-        return np.arange(len(P))
-    xmin, ymin, xmax, ymax = bounds
-    side = float(np.sqrt((xmax - xmin) * (ymax - ymin) / count))
-    b = np.floor((P - [xmin, ymin]) / side).astype(np.int64)
-    centre = (b + 0.5) * side + [xmin, ymin]
-    d = np.hypot(*(P - centre).T)
-    key = b[:, 0] * (int(np.ceil((ymax - ymin) / side)) + 2) + b[:, 1]
-    order = np.lexsort((d, key))
-    first = np.r_[True, key[order][1:] != key[order][:-1]]
-    return np.sort(order[first])
 
 
 def _legs_of(world, start, goal, clearance: float):

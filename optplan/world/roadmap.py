@@ -231,6 +231,25 @@ class LocalGraph:
             ok[sl] = grid.segments_free(self.nodes[P[sl, 0]], self.nodes[P[sl, 1]], self.clearance)
         self.edges = P[ok].astype(np.int64)
         self.weights = np.maximum(np.hypot(d[ok, 0], d[ok, 1]) * grid.resolution, 1e-12)
+        self._rows: dict = {}
+
+    def landmark_rows(self, count: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """About ``count`` landmarks (lattice points spread over the map: in each cell of a square
+        binning, the point nearest the cell's centre) with their Dijkstra rows over the graph,
+        ``(landmarks (K,), dist (K, N), pred (K, N))``, computed once per count."""
+        got = self._rows.get(int(count))
+        if got is None:
+            from scipy.sparse import coo_matrix
+            from scipy.sparse.csgraph import dijkstra
+
+            N = len(self.nodes)
+            P = self.nodes[self.lattice]
+            marks = self.lattice[_spread(P, int(count))] if len(P) else np.zeros(0, dtype=np.int64)
+            graph = coo_matrix((self.weights, (self.edges[:, 0], self.edges[:, 1])), shape=(N, N)).tocsr()
+            graph = (graph + graph.T).tocsr()
+            dist, pred = dijkstra(graph, directed=True, indices=marks, return_predecessors=True)
+            got = self._rows[int(count)] = (marks, dist.reshape(len(marks), N), pred.reshape(len(marks), N))
+        return got
 
     @classmethod
     def of(cls, grid, clearance: float = 0.0, radius: float | None = None) -> "LocalGraph":
@@ -240,6 +259,21 @@ class LocalGraph:
         if lg is None:
             lg = _DERIVED.of(grid)[key] = cls(grid, clearance, radius)
         return lg
+
+
+def _spread(P: np.ndarray, count: int) -> np.ndarray:
+    """Indices of about ``count`` of the points ``P`` spread over their bounding box: in each
+    cell of a square binning, the point nearest the cell's centre."""
+    if len(P) <= count:
+        return np.arange(len(P))
+    lo, hi = P.min(axis=0), P.max(axis=0)
+    side = float(np.sqrt(max(np.prod(hi - lo), 1e-12) / count))
+    b = np.floor((P - lo) / side).astype(np.int64)
+    d = np.hypot(*(P - (lo + (b + 0.5) * side)).T)
+    key = b[:, 0] * (int(np.ceil((hi[1] - lo[1]) / side)) + 2) + b[:, 1]
+    order = np.lexsort((d, key))
+    first = np.r_[True, key[order][1:] != key[order][:-1]]
+    return np.sort(order[first])
 
 
 def corner_count(grid, clearance: float = 0.0) -> int:
