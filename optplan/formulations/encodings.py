@@ -22,7 +22,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..world.derived import DerivedStore
-from .variables import repeats_to_end
+from ..world.polyline import repeats_to_end
 
 _DERIVED = DerivedStore("formulations.encodings")  # this module's data derived from worlds
 

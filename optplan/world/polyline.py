@@ -43,3 +43,22 @@ def segment_point_distances(path: np.ndarray, points: np.ndarray) -> np.ndarray:
     t = np.clip(((q - a) * u).sum(-1) / np.maximum((u * u).sum(-1), 1e-12), 0, 1)
     e = q - a - t[..., None] * u
     return np.hypot(e[..., 0], e[..., 1])
+
+
+def repeats_to_end(P: np.ndarray, goal: np.ndarray) -> np.ndarray:
+    """Paths ``P`` ``(n, N, 2)`` ending at ``goal`` with every repeated point dropped and the
+    paths padded back to ``N`` points with copies of the goal: zero-length segments only at
+    the end, where they change no term (a repeat inside a path would hide its turn from
+    the turn terms, which measure the angle between consecutive segments)."""
+    n = len(P)
+    # keep a point when it differs from the previous one, move the rest to the end
+    keep = np.ones(P.shape[:2], bool)
+    keep[:, 1:] = np.any(P[:, 1:] != P[:, :-1], axis=2)
+    keep[:, -1] = True
+    order = np.argsort(~keep, axis=1, kind="stable")
+    P = np.take_along_axis(P, order[..., None], axis=1)
+    count = keep.sum(axis=1)
+    tail = np.arange(P.shape[1])[None, :] >= count[:, None]
+    P[tail] = np.broadcast_to(goal, (n, P.shape[1], 2))[tail]
+    # the goal kept last: the sorted goal point is the last kept one already
+    return P
