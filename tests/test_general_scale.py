@@ -9,7 +9,7 @@ import optplan as op
 from optplan.errors import InfeasibleQueryError
 from optplan.formulations import encodings as E
 from optplan.world.metrics import path_length
-from optplan.world.roadmap import LocalGraph, corner_count, unreachable_cells
+from optplan.world.roadmap import LocalGraph, corner_count, h_signature, unreachable_cells
 from optplan.worldgen.maps import generate_map, map_query
 
 
@@ -128,3 +128,43 @@ def test_landmark_rows_are_per_map_and_the_ends_rows_per_query(landmarks_everywh
         np.testing.assert_allclose(path_length(P), enc.table[np.repeat(r, len(r)), np.tile(r, len(r))],
                                    rtol=1e-9)
         assert np.all(legs[:, 0] == enc.legs.snap_path[np.repeat(r, len(r))])
+
+
+@pytest.mark.parametrize("seed", [3, 4])
+def test_the_class_search_with_lazy_corner_edges_finds_the_roadmaps_class_optimum(monkeypatch, seed):
+    """Large maps search the homotopy class over corner edges found as the search goes (no
+    roadmap of every edge): the same class optimum as over the roadmap."""
+    from optplan.solvers import homotopy as H
+
+    grid = generate_map("random", 32, seed=seed, density=0.2)
+    s, g = map_query(grid, seed=seed)
+    free = np.argwhere(~grid.occ)
+    via = grid.to_world(free[len(free) // 3][::-1] + 0.5)
+    a = op.shortest_path(grid, s, via, method="visibility").path
+    b = op.shortest_path(grid, via, g, method="visibility").path
+    detour = np.vstack([a, b[1:]])
+    _, small, _ = H.class_shortest_path(grid, s, g, detour)
+    monkeypatch.setattr(H, "ROADMAP_CORNERS", 0)
+    path, large, _ = H.class_shortest_path(grid, s, g, detour)
+    assert large == pytest.approx(small, rel=1e-9)
+    assert op.validate_path(grid, path).ok
+    np.testing.assert_array_equal(h_signature(grid, path), h_signature(grid, detour))
+
+
+def test_class_gaps_say_when_the_class_search_gives_up(monkeypatch):
+    from optplan.solvers import homotopy as H
+    from optplan.solvers.gaps import class_gaps
+
+    grid = generate_map("random", 32, seed=3, density=0.2)
+    s, g = map_query(grid, seed=3)
+    free = np.argwhere(~grid.occ)
+    via = grid.to_world(free[len(free) // 3][::-1] + 0.5)
+    detour = np.vstack([op.shortest_path(grid, s, via, method="visibility").path,
+                        op.shortest_path(grid, via, g, method="visibility").path[1:]])
+    full = class_gaps(grid, s, g, detour)
+    assert full["class_length"] is not None and not full["optimal_class"]
+    monkeypatch.setattr(H, "MAX_STATES", 10)
+    with pytest.raises(op.ParameterError, match="search states"):
+        H.class_shortest_path(grid, s, g, detour)
+    cut = class_gaps(grid, s, g, detour)
+    assert cut["gap"] == pytest.approx(full["gap"]) and cut["class_length"] is None and cut["class_gap"] is None

@@ -23,6 +23,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..world.derived import DerivedStore
 from ..world.polyline import repeats_to_end
+from ..world.roadmap import ROADMAP_CORNERS
 
 _DERIVED = DerivedStore("formulations.encodings")  # this module's data derived from worlds
 
@@ -491,7 +492,7 @@ def _join_through_ends(D: np.ndarray, succ: np.ndarray, M: int) -> None:
 
 # grid maps with more convex corners than this get the local graph and landmarks
 # (:class:`_LandmarkLegs`) instead of all-pairs geodesics over every corner (:class:`_CornerLegs`)
-EXACT_CORNERS = 2000
+EXACT_CORNERS = ROADMAP_CORNERS
 # the landmarks via points snap to on large maps: about LANDMARK_ROWS / graph nodes of them
 # (a Dijkstra row each: time and memory stay bounded), within LANDMARKS
 LANDMARK_ROWS = 3_000_000

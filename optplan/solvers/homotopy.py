@@ -27,25 +27,31 @@ from ..errors import ParameterError
 from ..world.geometry import validate_path
 from ..world.metrics import path_length
 from ..world.queries import check_start_goal
-from ..world.roadmap import Roadmap, ray_crossings
+from ..world.roadmap import (ROADMAP_CORNERS, Roadmap, component_rays, corner_count, h_signature,
+                              ray_crossings)
 from .result import make_plan_result
 
 
-class _ClassSearch:
-    """A* over (node, signature) on one roadmap for one start and goal."""
+# states (node, signature) the class search may hold before it gives up with a ParameterError
+# (a few seconds of search)
+MAX_STATES = 200_000
+SIGNATURE_HASH_SEED = 20120901   # fixed: the same words on every run
+
+
+class _RoadmapNeighbours:
+    """The roadmap's edges plus start and goal joined to every node they see (and each other):
+    node ``M`` is the start, ``M + 1`` the goal."""
 
     def __init__(self, roadmap: Roadmap, start: np.ndarray, goal: np.ndarray) -> None:
-        self.rm, self.s, self.g = roadmap, np.asarray(start, float), np.asarray(goal, float)
         M = len(roadmap.nodes)
-        self.M = M
-        self.points = np.vstack([roadmap.nodes, self.s[None], self.g[None]]) if M else np.stack([self.s, self.g])
-        # adjacency: roadmap edges, plus start and goal joined to every node they see (and each other)
+        self.points = np.vstack([roadmap.nodes, start[None], goal[None]]) if M else np.stack([start, goal])
+        self.start, self.goal = M, M + 1
         A, B = roadmap.edges[:, 0], roadmap.edges[:, 1]
         ends = []
         for e in (M, M + 1):
             seen = np.nonzero(roadmap.visible(np.broadcast_to(self.points[e], (M, 2)), roadmap.nodes))[0] if M else []
             ends.append(np.stack([np.full(len(seen), e), seen], axis=1))
-        if roadmap.visible(self.s[None], self.g[None])[0]:
+        if roadmap.visible(start[None], goal[None])[0]:
             ends.append(np.array([[M, M + 1]]))
         E = np.vstack([np.stack([A, B], axis=1)] + [x.reshape(-1, 2) for x in ends]).astype(np.int64)
         src = np.concatenate([E[:, 0], E[:, 1]])
@@ -53,36 +59,59 @@ class _ClassSearch:
         order = np.argsort(src, kind="stable")
         self.nbr = dst[order]
         self.ptr = np.searchsorted(src[order], np.arange(M + 3))
+
+    def __call__(self, u: int) -> tuple[np.ndarray, np.ndarray]:
+        v = self.nbr[self.ptr[u]:self.ptr[u + 1]]
+        return v, np.hypot(*(self.points[v] - self.points[u]).T)
+
+
+class _ClassSearch:
+    """A* over (node, signature) for one start and goal: ``graph(u)`` gives the neighbours of
+    node ``u`` and the edge lengths, ``graph.points`` the node positions, ``graph.start`` and
+    ``graph.goal`` the end nodes; ``rays`` the h-signature's ray origins."""
+
+    def __init__(self, graph, rays: np.ndarray) -> None:
+        self.graph, self.rays = graph, rays
+        self.points = graph.points
         self._cross: dict[int, np.ndarray] = {}
+        # a signature is kept as two 64-bit linear hashes (sum of count x random word per
+        # component, wrapping): a state costs a few words, however many components there are,
+        # and two different signatures share both words with probability ~2^-128
+        self.words = np.random.default_rng(SIGNATURE_HASH_SEED).integers(0, 2 ** 63, size=(len(rays), 2),
+                                                                        dtype=np.uint64)
+
+    def hash(self, X: np.ndarray) -> np.ndarray:
+        """The two hash words ``(n, 2)`` of signatures or crossings ``X`` ``(n, K)``."""
+        with np.errstate(over="ignore"):
+            return np.asarray(X).astype(np.int64).astype(np.uint64) @ self.words
 
     def neighbours(self, u: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Neighbour indices, edge lengths and edge signatures ``(deg, K)`` of node ``u``."""
-        v = self.nbr[self.ptr[u]:self.ptr[u + 1]]
+        """Neighbour indices, edge lengths and the hash words of each edge's crossings ``(deg, 2)``."""
+        v, w = self.graph(u)
         if u not in self._cross:
             P = self.points
-            self._cross[u] = ray_crossings(np.broadcast_to(P[u], (len(v), 2)), P[v], self.rm.rays)
-        return v, np.hypot(*(self.points[v] - self.points[u]).T), self._cross[u]
+            self._cross[u] = self.hash(ray_crossings(np.broadcast_to(P[u], (len(v), 2)), P[v], self.rays))
+        return v, w, self._cross[u]
 
     def run(self, target: np.ndarray, bound: float) -> tuple[list[int], float] | None:
         """Shortest node sequence from start to goal with signature ``target`` and length at most
         ``bound``; ``None`` when there is none."""
-        s, g = self.M, self.M + 1
-        heur = np.hypot(*(self.points - self.g).T)
+        s, g = self.graph.start, self.graph.goal
+        heur = np.hypot(*(self.points - self.points[g]).T)
         tol = 1e-9 * max(1.0, bound)
-        K = len(target)
-        zero = np.zeros(K, dtype=np.int64)
-        key0 = (s, zero.tobytes())
+        th = self.hash(np.asarray(target)[None])[0]
+        tkey = (int(th[0]), int(th[1]))
+        key0 = (s, 0, 0)
         best = {key0: 0.0}
         parent = {key0: None}
-        sig_of = {key0: zero}
-        heap = [(heur[s], 0.0, s, key0[1])]
-        tkey = target.astype(np.int64).tobytes()
+        heap = [(heur[s], 0.0, key0)]
+        mask = (1 << 64) - 1
         while heap:
-            f, cost, u, sk = heapq.heappop(heap)
-            key = (u, sk)
+            f, cost, key = heapq.heappop(heap)
             if cost > best.get(key, np.inf) + tol:
                 continue
-            if u == g and sk == tkey:
+            u, h1, h2 = key
+            if u == g and (h1, h2) == tkey:
                 seq = [u]
                 k = parent[key]
                 while k is not None:
@@ -94,15 +123,17 @@ class _ClassSearch:
             ok = nc + heur[v] <= bound + tol
             if not ok.any():
                 continue
-            sig = sig_of[key]
+            if len(best) > MAX_STATES:
+                raise ParameterError(
+                    f"the shortest path in this h-signature class needs more than {MAX_STATES} search states "
+                    f"(node, signature over {len(self.rays)} obstacle components) within the seed's length: too "
+                    "many classes this close to the seed on this map; pass a shorter seed or a smaller crop")
             for j in np.nonzero(ok)[0]:  # one search node at a time: A* is sequential by nature
-                ns = sig + X[j]
-                nk = (int(v[j]), ns.tobytes())
+                nk = (int(v[j]), (h1 + int(X[j, 0])) & mask, (h2 + int(X[j, 1])) & mask)
                 if nc[j] < best.get(nk, np.inf) - tol:
                     best[nk] = nc[j]
                     parent[nk] = key
-                    sig_of[nk] = ns
-                    heapq.heappush(heap, (nc[j] + heur[v[j]], nc[j], int(v[j]), nk[1]))
+                    heapq.heappush(heap, (nc[j] + heur[v[j]], nc[j], nk))
         return None
 
 
@@ -114,7 +145,9 @@ def class_shortest_path(world, start, goal, homotopy, clearance: float = 0.0) ->
 
     Raises:
         ParameterError: ``homotopy`` is not an ``(N, 2)`` path from start to goal that passes
-            the exact collision test.
+            the exact collision test, or the search would need more than :data:`MAX_STATES`
+            states: on large cluttered maps the classes shorter than a long detour are too
+            many to search.
     """
     P = np.asarray(homotopy, dtype=float)
     if P.ndim != 2 or P.shape[1] != 2 or len(P) < 2 or not np.all(np.isfinite(P)):
@@ -127,16 +160,24 @@ def class_shortest_path(world, start, goal, homotopy, clearance: float = 0.0) ->
     if not check.ok:
         raise ParameterError(f"homotopy path is not collision-free ({check.reason}); its h-signature class is "
                              "defined only for feasible paths: pass a feasible path")
-    rm = Roadmap.of(world, clearance)
-    target = rm.signature(P)
+    rays = component_rays(world, clearance)
+    target = h_signature(world, P, clearance)
     seed_len = float(path_length(P[None])[0])
-    found = _ClassSearch(rm, s, g).run(target, seed_len)
+    if world.is_grid and corner_count(world, clearance) > ROADMAP_CORNERS:
+        # a large map: no roadmap of every edge, the edges of the corners the search visits
+        from .graph.visibility import CornerNeighbours
+
+        graph = CornerNeighbours(world, s, g, clearance, bound=seed_len * (1 + 1e-9))
+        graph.start, graph.goal = 0, 1
+    else:
+        graph = _RoadmapNeighbours(Roadmap.of(world, clearance), s, g)
+    found = _ClassSearch(graph, rays).run(target, seed_len)
     if found is None:
         return P.copy(), seed_len, "no roadmap path in the class is shorter than the seed; the seed is returned"
     seq, length = found
-    pts = np.vstack([rm.nodes, s[None], g[None]])[seq]
+    pts = graph.points[seq].copy()
     pts[0], pts[-1] = s, g
-    return pts, float(length), f"shortest path of h-signature {target.tolist()} ({len(rm.rays)} components)"
+    return pts, float(length), f"shortest path of h-signature {target.tolist()} ({len(rays)} components)"
 
 
 def homotopy_shortest_path(world, start, goal, homotopy, clearance: float = 0.0):

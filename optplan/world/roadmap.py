@@ -39,6 +39,10 @@ from .derived import DerivedStore
 
 _DERIVED = DerivedStore("world.roadmap")  # this module's data derived from worlds
 
+# grid maps with more convex corners than this are "large": all-pairs tables over the corners
+# (the general encoding) and a roadmap of every edge (the homotopy search) would grow as
+# corners squared there, so their users build what a run visits instead
+ROADMAP_CORNERS = 2000
 # segments checked per segments_free call (bounds the work arrays of the exact rule)
 EDGE_CHUNK = 20_000
 # circle worlds: polygon vertices per grown circle

@@ -396,6 +396,41 @@ class _Visible:
         return [(J[cut[i]:cut[i + 1]], step[cut[i]:cut[i + 1]]) for i in range(B)]
 
 
+class CornerNeighbours:
+    """The corner graph of a grid map (node 0 the start, 1 the goal, then the corners of
+    :func:`corner_nodes`) with each node's edges found when first asked for, by the pruning
+    of the tiled search (:class:`_Visible`): every node ``v`` that node ``u`` sees, the line
+    tangent at both ends, with ``|u - v| + |v - goal| <= bound`` (metres; the ellipse of a
+    search bounded by ``bound``, taken from ``u``). For searches whose states are not the
+    corners themselves (the shortest path in a homotopy class): no edge of the whole graph
+    is computed ahead, so large cluttered maps cost what the search visits."""
+
+    def __init__(self, grid, start, goal, clearance: float = 0.0, bound: float = np.inf) -> None:
+        self.grid = grid
+        rule = _EdgeRule(grid, clearance)
+        nodes, quad = corner_nodes(grid, rule.clearance)
+        P = np.vstack([grid.to_grid(np.asarray(start, float)[None]), grid.to_grid(np.asarray(goal, float)[None]),
+                       nodes])
+        Q = np.vstack([[0, 0], [0, 0], quad]).astype(np.int64)
+        self.points = grid.to_world(P)
+        self.points[0], self.points[1] = start, goal
+        self._vis = _Visible(rule, P, Q, np.hypot(*(P - P[1]).T), float(bound) / grid.resolution)
+        self._dist = np.full(len(P), np.inf)
+        self._pred = np.full(len(P), -1, dtype=np.int64)
+        self._closed = np.zeros(len(P), dtype=bool)
+        self._edges: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+
+    def __call__(self, u: int) -> tuple[np.ndarray, np.ndarray]:
+        """Neighbours of node ``u`` and the edge lengths, metres."""
+        got = self._edges.get(u)
+        if got is None:
+            self._dist[u] = 0.0
+            J, step = self._vis.edges(np.array([u]), self._dist, self._pred, self._closed)[0]
+            self._dist[u] = np.inf
+            got = self._edges[u] = (J[J != u], step[J != u] * self.grid.resolution)
+        return got
+
+
 def _astar_tiled(rule: _EdgeRule, P: np.ndarray, Q: np.ndarray,
                  bound: float = np.inf) -> tuple[np.ndarray, np.ndarray]:
     """The search of :func:`_astar_over_corners` (the same graph, the same order of
