@@ -2,6 +2,7 @@
 
     python benchmarks/graph_speed.py            # every table
     python benchmarks/graph_speed.py --quick    # 32x32 to 128x128 only, fewer repeats
+    python benchmarks/graph_speed.py --skip-visibility --repeats 15   # the A* tables, more rounds
 
 networkx is the anchor for A*: it is not a dependency of optplan. When it is not
 importable the script installs it for itself into ``/tmp/networkx-anchor`` (``pip
@@ -13,13 +14,21 @@ Table 1 (A*, 8-connected cell centres, no corner cutting): seeded maps from
 one query between free cells near opposite corners, and seeded city maps
 (``optplan.worldgen.city``: blocks of buildings between streets). Columns: our
 ``shortest_path(method="astar")`` cold (first query on a fresh map: move table
-and neighbour structure built); the A* search alone (``cell_path``: the path
-between the two points, what networkx returns too) and the whole API call
-(the path validated and its metrics computed), warm; ``method="dijkstra"``;
-``networkx.astar_path`` on the same graph (built once from the same move table,
-not timed, with the octile heuristic); scipy's compiled ``csgraph.dijkstra``
-(a whole shortest-path tree from the start); and the ratios networkx / ours.
+and neighbour structure built); the A* search alone (``astar_cells``, cell to
+cell, and ``cell_path``: the path between the two points) and the whole API
+call (the path validated by the exact rule and its metrics computed, the exact
+``min_clearance`` on its first read, not timed), warm, node to node (cell
+centres) and point to point (off-centre points in the same cells);
+``method="dijkstra"``; ``networkx.astar_path`` between the same cells (the graph
+built once from the same move table, not timed, with the octile heuristic);
+scipy's compiled ``csgraph.dijkstra`` (a whole shortest-path tree from the
+start: the compiled limit); and the ratios networkx / ours.
 Times are the best of interleaved rounds (the two cores are shared).
+
+Table 1b: the same per query over the scenario rows of the Moving AI maps of
+``../shared/data`` (room-32-32-4 is the 32x32 map of issue 43). A summary then
+gives, per map size, the lowest networkx / API ratio node to node and point to
+point over the maps, and scipy's times.
 
 Table 2 (the exact any-angle search ``method="visibility"``): the Moving AI
 maps of ``../shared/data`` (the scen row with the longest optimum), seeded
@@ -192,46 +201,57 @@ def interleaved(fns: dict, repeats: int) -> dict:
     return best
 
 
-def astar_table(sizes, repeats: int) -> None:
-    try:
-        from optplan.solvers.graph.astar import cell_path  # the search without validation and metrics
-    except ImportError:  # before the exact-ends change
-        cell_path = None
-    from optplan.solvers.graph.astar import astar_cells
-    print("## A* on 8-connected grids (one query between far free cell centres)\n")
+def point_query(grid, s, g):
+    """The point-to-point twin of a node-to-node query: off-centre points in the same cells."""
+    r = grid.resolution
+    return s + np.array([0.23, -0.31]) * r, g + np.array([-0.4, 0.17]) * r
+
+
+def astar_table(sizes, repeats: int) -> dict:
+    """Table 1; returns ``{size: [(map, nx / API node-to-node, nx / API point-to-point,
+    scipy tree ms, API node-to-node ms), ...]}`` for the summary."""
+    from optplan.solvers.graph.astar import astar_cells, cell_path
+    from scipy.sparse.csgraph import dijkstra
+
+    print("## A* on 8-connected grids (one query between far free cells)\n")
     if nx is None:
         print("networkx is not available (--no-anchors, or it could not be installed): its column is empty.\n")
     print(f"times: best of {repeats} interleaved rounds after a first (cold) call on a fresh map. "
           "nodes = `astar_cells` (cell to cell, a list of cells: the job networkx's astar_path does); "
           "search = `cell_path` (between the two exact points: the end cells joined, the path as points); "
-          "API = `shortest_path`, which also validates the path and computes its metrics\n")
-    print("| map | size | length [m] | astar cold API [ms] | astar nodes [ms] | astar search [ms] | astar API [ms] "
-          "| dijkstra API [ms] | networkx astar_path [ms] | scipy dijkstra tree [ms] | networkx / astar nodes "
-          "| networkx / astar search | networkx / astar API |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
-    from scipy.sparse.csgraph import dijkstra
-
-    lowest: dict[str, tuple[float, str]] = {}  # column -> (lowest networkx / ours, where)
+          "API = the whole `shortest_path(method=\"astar\")` call (points checked, search, the path checked "
+          "by the exact rule, its metrics; `min_clearance` is computed on its first read and not timed), "
+          "node to node (cell centres) and point to point (off-centre points in the same cells); "
+          "networkx = `astar_path` between the same cells; scipy = csgraph's compiled `dijkstra` "
+          "(the whole shortest-path tree from the start cell: the compiled limit)\n")
+    print("| map | size | length [m] | cold API [ms] | nodes [ms] | search [ms] | API node-to-node [ms] "
+          "| API point-to-point [ms] | dijkstra API [ms] | networkx [ms] | scipy csgraph [ms] "
+          "| networkx / nodes | networkx / API node-to-node | networkx / API point-to-point |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    per_size: dict = {}
     for name, grid in grid_cases(sizes):
         s, g = far_query(grid)
+        ps, pg = point_query(grid, s, g)
         t0 = time.perf_counter()
         r = shortest_path(grid, s, g, method="astar")
         cold = time.perf_counter() - t0
+        rp = shortest_path(grid, ps, pg, method="astar")
         rd = shortest_path(grid, s, g, method="dijkstra")
+        assert r.feasible and rp.feasible and rd.feasible, name
         assert abs(rd.length - r.length) < 1e-9, (name, rd.length, r.length)
         W = grid.width
         si, gi = (int(v) for v in (np.floor(grid.to_grid([s, g])) @ [1, W]))
         A = scipy_graph(grid)
         D = dijkstra(A, directed=True, indices=si)
         assert abs(D[gi] * grid.resolution - r.length) < 1e-9
-        fns = {"api": lambda: shortest_path(grid, s, g, method="astar"),
-               "dijkstra": lambda: shortest_path(grid, s, g, method="dijkstra"),
-               "scipy": lambda: dijkstra(A, directed=True, indices=si)}
         table = move_table(grid)
         assert abs(astar_cells(table, [si], [gi])[1] * grid.resolution - r.length) < 1e-9, name
-        fns["nodes"] = lambda: astar_cells(table, [si], [gi])
-        if cell_path is not None:
-            fns["search"] = lambda: cell_path(grid, s, g)
+        fns = {"api": lambda: shortest_path(grid, s, g, method="astar"),
+               "api_p": lambda: shortest_path(grid, ps, pg, method="astar"),
+               "dijkstra": lambda: shortest_path(grid, s, g, method="dijkstra"),
+               "scipy": lambda: dijkstra(A, directed=True, indices=si),
+               "nodes": lambda: astar_cells(table, [si], [gi]),
+               "search": lambda: cell_path(grid, s, g)}
         if nx is not None:
             G = networkx_graph(grid)
             h = octile_heuristic(W)
@@ -243,14 +263,94 @@ def astar_table(sizes, repeats: int) -> None:
         cell = lambda k: f"{1e3 * t[k]:.2f}" if k in t else "-"
         ratio = lambda k: f"{t['nx'] / t[k]:.2f}" if "nx" in t and k in t else "-"
         print(f"| {name} | {grid.width}x{grid.height} | {r.length:.4f} | {1e3 * cold:.2f} | {cell('nodes')} "
-              f"| {cell('search')} | {cell('api')} | {cell('dijkstra')} | {cell('nx')} | {cell('scipy')} "
-              f"| {ratio('nodes')} | {ratio('search')} | {ratio('api')} |", flush=True)
-        for k in ("nodes", "search"):
-            if "nx" in t and k in t:
-                lowest[k] = min(lowest.get(k, (math.inf, "")), (t["nx"] / t[k], f"{name} {grid.width}x{grid.height}"))
-    if lowest:
-        print("\nlowest networkx / astar (goal, issue 30: >= 2x on every map size): "
-              + "; ".join(f"{k} {v:.2f} ({where})" for k, (v, where) in lowest.items()))
+              f"| {cell('search')} | {cell('api')} | {cell('api_p')} | {cell('dijkstra')} | {cell('nx')} "
+              f"| {cell('scipy')} | {ratio('nodes')} | {ratio('api')} | {ratio('api_p')} |", flush=True)
+        per_size.setdefault(f"{grid.width}x{grid.height}", []).append(
+            (name, t["nx"] / t["api"] if "nx" in t else math.nan, t["nx"] / t["api_p"] if "nx" in t else math.nan,
+             1e3 * t["scipy"], 1e3 * t["api"]))
+    return per_size
+
+
+def scen_queries(limit: int):
+    """The Moving AI maps of ``../shared/data`` with up to ``limit`` of their scenario rows each."""
+    for rel, scen in (("mapf/room-32-32-4.map", "mapf/room-32-32-4-random-1.scen"),
+                      ("dao/arena.map", "dao/arena.map.scen"), ("dao/den312d.map", "dao/den312d.map.scen")):
+        if (DATA / rel).exists():
+            grid = op.load_map(DATA / rel)
+            rows = [e for e in load_scen(DATA / scen) if (e.start_x, e.start_y) != (e.goal_x, e.goal_y)]
+            rows = rows[:: max(len(rows) // limit, 1)][:limit]
+            yield Path(rel).stem, grid, [(np.array(e.start_world(grid.resolution)),
+                                          np.array(e.goal_world(grid.resolution))) for e in rows]
+
+
+def scen_table(repeats: int, limit: int, per_size: dict) -> None:
+    """Per-query times over Moving AI scenario rows (the measurement of issue 43: a 32x32 map);
+    each map's ratios join ``per_size`` under its size."""
+    from scipy.sparse.csgraph import dijkstra
+
+    print("\n## A* per query on the Moving AI maps (scenario rows)\n")
+    print(f"up to {limit} rows of each map's scenario file (every k-th), each batch timed whole, best of "
+          f"{repeats} interleaved rounds, divided by the number of queries; API as in the table above\n")
+    print("| map | size | queries | API node-to-node [ms/query] | API point-to-point [ms/query] "
+          "| networkx [ms/query] | scipy csgraph [ms/query] | networkx / API node-to-node "
+          "| networkx / API point-to-point |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for name, grid, queries in scen_queries(limit):
+        W = grid.width
+        cells = [tuple(int(v) for v in (np.floor(grid.to_grid([s, g])) @ [1, W])) for s, g in queries]
+        points = [point_query(grid, s, g) for s, g in queries]
+        A = scipy_graph(grid)
+        for (s, g), (ps, pg) in zip(queries, points):  # warm, and checked
+            assert shortest_path(grid, s, g).feasible and shortest_path(grid, ps, pg).feasible
+
+        def api():
+            for s, g in queries:
+                shortest_path(grid, s, g, method="astar")
+
+        def api_p():
+            for s, g in points:
+                shortest_path(grid, s, g, method="astar")
+
+        def sp():
+            for si, _ in cells:
+                dijkstra(A, directed=True, indices=si)
+
+        fns = {"api": api, "api_p": api_p, "scipy": sp}
+        if nx is not None:
+            G = networkx_graph(grid)
+            h = octile_heuristic(W)
+
+            def nxq():
+                for si, gi in cells:
+                    nx.astar_path(G, si, gi, heuristic=h, weight="weight")
+
+            fns["nx"] = nxq
+        t = {k: v / len(queries) for k, v in interleaved(fns, repeats).items()}
+        cell = lambda k: f"{1e3 * t[k]:.3f}" if k in t else "-"
+        ratio = lambda k: f"{t['nx'] / t[k]:.2f}" if "nx" in t else "-"
+        print(f"| {name} | {grid.width}x{grid.height} | {len(queries)} | {cell('api')} | {cell('api_p')} "
+              f"| {cell('nx')} | {cell('scipy')} | {ratio('api')} | {ratio('api_p')} |", flush=True)
+        per_size.setdefault(f"{grid.width}x{grid.height}", []).append(
+            (f"Moving AI {name}", t["nx"] / t["api"] if "nx" in t else math.nan,
+             t["nx"] / t["api_p"] if "nx" in t else math.nan, 1e3 * t["scipy"], 1e3 * t["api"]))
+
+
+def summary(per_size: dict) -> None:
+    """Per map size: the lowest networkx / API ratios over the maps, and scipy's times."""
+    if not per_size:
+        return
+    print("\n## Summary per map size (goal, issue 43 item 4: networkx / API >= 2 node to node and point "
+          "to point)\n")
+    print("| size | lowest networkx / API node-to-node (map) | lowest networkx / API point-to-point (map) "
+          "| scipy csgraph [ms] (min-max over maps) | API node-to-node / scipy (min-max) |")
+    print("|---|---|---|---|---|")
+    for size, rows in per_size.items():
+        n2n = min(rows, key=lambda r: r[1])
+        p2p = min(rows, key=lambda r: r[2])
+        sc = [r[3] for r in rows]
+        rel = [r[4] / r[3] for r in rows]
+        print(f"| {size} | {n2n[1]:.2f} ({n2n[0]}) | {p2p[2]:.2f} ({p2p[0]}) | {min(sc):.2f}-{max(sc):.2f} "
+              f"| {min(rel):.1f}-{max(rel):.1f} |")
 
 
 def visibility_cases(quick: bool):
@@ -341,6 +441,8 @@ def main() -> None:
     ap.add_argument("--skip-visibility", action="store_true")
     ap.add_argument("--skip-astar", action="store_true")
     ap.add_argument("--timeout", type=float, default=120.0, help="seconds per visibility query (default 120)")
+    ap.add_argument("--repeats", type=int, default=None,
+                    help="interleaved rounds of the A* tables (default 5, --quick 3); more on a busy machine")
     ap.add_argument("--no-anchors", action="store_true", help="do not import or install networkx")
     ap.add_argument("--anchor-dir", type=Path, default=Path("/tmp/networkx-anchor"),
                     help="where networkx is installed when this environment has none")
@@ -350,7 +452,10 @@ def main() -> None:
         nx = import_networkx(a.anchor_dir, install=True)
     sizes = (32, 64, 128) if a.quick else (32, 64, 128, 256, 512)
     if not a.skip_astar:
-        astar_table(sizes, 3 if a.quick else 5)
+        repeats = a.repeats or (3 if a.quick else 5)
+        per_size = astar_table(sizes, repeats)
+        scen_table(repeats, 50 if a.quick else 200, per_size)
+        summary(per_size)
     if not a.skip_visibility:
         visibility_table(a.quick, a.timeout)
 

@@ -94,8 +94,48 @@ class OptimizeResult(_ToDict):
         return self.f
 
 
+class _Deferrable:
+    """Fields that a builder may leave to be computed on their first read
+    (:func:`defer_fields`). Instances with no deferred field behave exactly like the plain
+    dataclass: ``__getattr__`` is only reached for a name missing from the instance."""
+
+    def __getattr__(self, name: str) -> Any:
+        deferred = self.__dict__.get("_deferred")
+        compute = deferred.get(name) if deferred else None
+        if compute is None:
+            raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+        value = compute()
+        self.__dict__[name] = value
+        deferred.pop(name, None)
+        return value
+
+    def __getstate__(self) -> dict[str, Any]:
+        # pickles and copies hold values, never the computation (nor the world it reads)
+        for name in list(self.__dict__.get("_deferred", ())):
+            getattr(self, name)
+        state = dict(self.__dict__)
+        state.pop("_deferred", None)
+        return state
+
+
+def defer_fields(result, **compute):
+    """Let the fields ``compute`` names be computed on their first read, each by its
+    zero-argument callable, which must return the value the field would have held. Every
+    way of reading the field (attribute, ``to_dict``, ``repr``, ``==``,
+    ``dataclasses.replace``, pickling, copying) gives that value; assigning the field
+    sets it as usual. Returns ``result``."""
+    names = {f.name for f in fields(result)}
+    unknown = set(compute) - names
+    if unknown:
+        raise TypeError(f"{type(result).__name__} has no field {', '.join(sorted(unknown))}")
+    for name in compute:
+        result.__dict__.pop(name, None)
+    result.__dict__.setdefault("_deferred", {}).update(compute)
+    return result
+
+
 @dataclass
-class PlanResult(_ToDict):
+class PlanResult(_Deferrable, _ToDict):
     """Outcome of a global path planner.
 
     Attributes:
@@ -106,7 +146,8 @@ class PlanResult(_ToDict):
         length: path length in metres (``inf`` when there is no path).
         turn_angle_deg: sum of absolute heading changes, degrees.
         n_turns: number of vertices where the heading changes.
-        min_clearance: smallest distance from the path to an obstacle, metres.
+        min_clearance: smallest distance from the path to an obstacle, metres (graph search
+            computes it on its first read, :func:`defer_fields`: the same value).
         runtime_s: wall time in seconds.
         history: best objective per iteration (empty for graph search).
         refined: ``True`` when a refinement stage changed the path.

@@ -12,29 +12,41 @@ import numpy as np
 
 from ..checks import metres
 from ..errors import ParameterError
-from ..results import PlanResult
-from ..world.geometry import validate_path
-from ..world.metrics import path_metrics
+from ..results import PlanResult, defer_fields
+from ..world.geometry import validate_path_segments
+from ..world.metrics import min_clearance, path_metrics
 
 
 def make_plan_result(world, path, algorithm: str, runtime_s: float, *, clearance: float = 0.0,
-                     history=None, seed=None, nfev: int = 0, message: str = "", refined: bool = False) -> PlanResult:
+                     history=None, seed=None, nfev: int = 0, message: str = "", refined: bool = False,
+                     defer_clearance: bool = False) -> PlanResult:
     """Validate ``path`` exactly and package it with its metrics.
 
-    An empty or invalid path yields ``feasible=False`` and a message that says why.
+    An empty or invalid path yields ``feasible=False`` and a message that says why. The exact
+    check's segment verdicts (without clearance) also serve the exact clearance metric, so
+    the segment rule runs once. ``defer_clearance``: ``min_clearance`` (a distance query over
+    every segment, most of the cost for graph search) is computed on its first read
+    (:func:`~optplan.results.defer_fields`), from a copy of the path: the same value.
     """
     P = np.asarray(path, dtype=float).reshape(-1, 2) if path is not None else np.zeros((0, 2))
+    history = np.asarray(history if history is not None else [], float)
     if len(P) == 0:
         return PlanResult(algorithm, P, False, float("inf"), float("nan"), 0, float("nan"), runtime_s,
-                          np.asarray(history if history is not None else [], float), refined, seed,
-                          message or "no path found", nfev)
-    check = validate_path(world, P, clearance)
-    m = path_metrics(world, P)
+                          history, refined, seed, message or "no path found", nfev)
+    check, seg_ok = validate_path_segments(world, P, clearance)
+    m = path_metrics(None, P)   # everything but the clearance, which needs the world
     msg = message
     if not check:
         msg = (msg + "; " if msg else "") + f"infeasible: {check.reason}"
-    return PlanResult(algorithm, P, bool(check), m.length, m.turn_angle_deg, m.n_turns, m.min_clearance, runtime_s,
-                      np.asarray(history if history is not None else [], float), refined, seed, msg, nfev)
+    res = PlanResult(algorithm, P, bool(check), m.length, m.turn_angle_deg, m.n_turns, float("nan"), runtime_s,
+                     history, refined, seed, msg, nfev)
+    # a check with a clearance ran the rule at that clearance: the metric then runs its own pass
+    free = seg_ok if seg_ok is not None and float(clearance) == 0.0 else None
+    if defer_clearance:
+        kept = P.copy()   # the result's path may be edited in place before the value is read
+        return defer_fields(res, min_clearance=lambda: min_clearance(world, kept, free=free))
+    res.min_clearance = min_clearance(world, P, free=free)
+    return res
 
 
 def check_optional_metres(value, name: str, meaning: str) -> float | None:

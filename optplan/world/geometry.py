@@ -350,7 +350,7 @@ def _segments_clear_grid_units(grid, ga: np.ndarray, gb: np.ndarray, r: float) -
     return ok
 
 
-def segments_clearance(grid, a, b) -> np.ndarray:
+def segments_clearance(grid, a, b, *, free=None) -> np.ndarray:
     """Exact smallest distance (metres) from each segment ``a[i] -> b[i]`` to the blocked
     cells and the map border of ``grid``.
 
@@ -359,6 +359,10 @@ def segments_clearance(grid, a, b) -> np.ndarray:
     segment that breaks the rule gets a value <= 0: minus the deepest penetration
     among its end points and its samples every 1/20 cell (a crossing has no single
     depth). Shape ``(n, 2)`` in, ``(n,)`` out.
+
+    ``free``: the verdict of ``segments_free(grid, a, b)`` (clearance 0, the same ``a``
+    and ``b``) when the caller already has it (:func:`validate_path_segments`); it is
+    then not computed again. Without it the rule runs here.
     """
     A, B = np.broadcast_arrays(_as_points(a), _as_points(b))
     A, B = A.reshape(-1, 2), B.reshape(-1, 2)
@@ -367,7 +371,12 @@ def segments_clearance(grid, a, b) -> np.ndarray:
     if n == 0:
         return out
     ga, gb = grid.to_grid(A), grid.to_grid(B)
-    free = segments_free(grid, A, B)
+    if free is None:
+        free = segments_free(grid, A, B)
+    else:
+        free = np.asarray(free, dtype=bool).reshape(-1)
+        if free.shape != (n,):
+            raise ParameterError(f"free must hold one verdict per segment ({n}), got shape {free.shape}")
     # the border is closest at an end point (distance to it is linear along a segment)
     border = np.minimum.reduce([ga[:, 0], ga[:, 1], grid.width - ga[:, 0], grid.height - ga[:, 1],
                                 gb[:, 0], gb[:, 1], grid.width - gb[:, 0], grid.height - gb[:, 1]])
@@ -550,6 +559,16 @@ def validate_path(world, path, clearance: float = 0.0) -> PathCheck:
     Returns:
         A :class:`PathCheck` (truthy when valid) naming the failing segments.
     """
+    return validate_path_segments(world, path, clearance)[0]
+
+
+def validate_path_segments(world, path, clearance: float = 0.0) -> tuple[PathCheck, np.ndarray | None]:
+    """:func:`validate_path` (the same test, the same :class:`PathCheck`) and the verdict of
+    the segment rule on each segment ``path[i] -> path[i + 1]`` that it computed on the way
+    (``world.segments_free(path[:-1], path[1:], clearance)``; ``None`` when the path was
+    refused before the segments were looked at). With ``clearance == 0`` that verdict is
+    what :func:`segments_clearance` (``free=``) and the exact clearance metric need, so a
+    result's check and its clearance share one pass of the rule."""
     from .queries import check_world
 
     check_world(world)
@@ -557,12 +576,12 @@ def validate_path(world, path, clearance: float = 0.0) -> PathCheck:
     try:
         P = np.asarray(path, dtype=float)
     except (TypeError, ValueError):
-        return PathCheck(False, reason=f"a path must be an (N, 2) array of numbers, got {type(path).__name__}")
+        return PathCheck(False, reason=f"a path must be an (N, 2) array of numbers, got {type(path).__name__}"), None
     if P.ndim != 2 or P.shape[1] != 2 or len(P) == 0:
-        return PathCheck(False, reason=f"a path must be an (N, 2) array with N >= 1, got shape {P.shape}")
+        return PathCheck(False, reason=f"a path must be an (N, 2) array with N >= 1, got shape {P.shape}"), None
     if not np.all(np.isfinite(P)):
         bad = np.nonzero(~np.isfinite(P).all(axis=1))[0]
-        return PathCheck(False, bad_points=bad, reason=f"path has non-finite coordinates at point {bad[0]}")
+        return PathCheck(False, bad_points=bad, reason=f"path has non-finite coordinates at point {bad[0]}"), None
     pts_ok = np.asarray(world.is_free(P, c), dtype=bool)
     if getattr(world, "is_grid", False) and len(P) > 2:
         # an inner vertex on a diagonal meeting of two blocked cells is passed through
@@ -585,7 +604,7 @@ def validate_path(world, path, clearance: float = 0.0) -> PathCheck:
                   "collides" + (f" or comes closer than {c:g} m to an obstacle" if c else ""))
     else:
         reason = ""
-    return PathCheck(not reason, bad_segs, bad_pts, reason)
+    return PathCheck(not reason, bad_segs, bad_pts, reason), seg_ok
 
 
 def convex_corners(grid) -> tuple[np.ndarray, np.ndarray]:

@@ -73,17 +73,25 @@ def max_curvature(paths) -> np.ndarray:
     return k.max(axis=-1)
 
 
-def min_clearance(world, path, samples_per_metre: float = 20.0) -> float:
+def min_clearance(world, path, samples_per_metre: float = 20.0, *, free=None) -> float:
     """Smallest clearance along a path (metres): the exact distance from its segments to
     the obstacles and the border when the world can measure it
     (``world.segments_clearance``: grids and circle worlds), <= 0 where the path enters
     an obstacle. Other worlds are sampled at vertices and ``samples_per_metre`` points
-    per metre along every segment (an upper bound of the exact value)."""
+    per metre along every segment (an upper bound of the exact value).
+
+    ``free`` (grids): the segment rule's verdict on ``path[i] -> path[i + 1]`` without
+    clearance, as ``validate_path_segments(world, path)`` computed it; it is reused
+    instead of running the rule again (the same value)."""
     P = np.asarray(path, dtype=float)
     if len(P) == 0:
         return float("nan")
     if len(P) == 1:
         return float(world.clearance(P).min())
+    if free is not None and getattr(world, "is_grid", False):
+        from .geometry import segments_clearance
+
+        return float(segments_clearance(world, P[:-1], P[1:], free=free).min())
     if hasattr(world, "segments_clearance"):
         return float(world.segments_clearance(P[:-1], P[1:]).min())
     seg = np.diff(P, axis=0)

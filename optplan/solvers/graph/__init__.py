@@ -88,10 +88,11 @@ def shortest_path(world, start, goal, method: str = "astar", *, corner_cutting: 
     if method == "visibility":
         path, length = visibility_path(world, s, g, points, clearance=clearance)
         return make_plan_result(world, path, method, time.perf_counter() - t0, clearance=clearance,
-                                message=f"exact any-angle optimum {length:.9f} m" if clearance == 0 else
+                                defer_clearance=True, message=f"exact any-angle optimum {length:.9f} m" if clearance == 0 else
                                 "shortest path over the corners of the obstacles grown by the clearance as squares")
     found = cell_path(world, s, g, method=method, corner_cutting=corner_cutting, clearance=clearance)
     how = ("start and goal share a free cell: the straight segment" if found.direct else
            f"{found.expanded} cells expanded" if method == "astar" else f"{found.expanded} cells reached")
     return make_plan_result(world, found.path, method, time.perf_counter() - t0, clearance=clearance,
-                            message=how + (" (corner cutting)" if corner_cutting else ""))
+                            defer_clearance=True, message=how + (" (corner cutting)" if corner_cutting else ""))
+
