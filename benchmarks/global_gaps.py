@@ -76,7 +76,8 @@ def lengths(world, start, goal, algorithm: str, runs: int, pop: int, iters: int 
     the mean number of objective evaluations per run."""
     out, nfev, t0 = [], [], time.perf_counter()
     for seed in range(runs):
-        r = op.plan(world, start, goal, algorithm=algorithm, seed=seed, pop=pop, iters=iters, **params)
+        r = op.plan(world, start, goal, algorithm=algorithm, seed=seed, pop=pop, iters=iters,
+                    **{"encoding": "paper", **params})   # the papers' encodings
         nfev.append(r.nfev)
         if r.feasible:
             out.append(r.length)

@@ -39,13 +39,13 @@ from optplan.formulations.encodings import clear_shared_tables
 from optplan.world.papermaps import paper_map
 
 CASES = [
-    ("missa", "hou2024_env1", dict(pop=60, iters=300), 0.1),
-    ("ssa", "hou2024_env1", dict(pop=60, iters=300), None),
+    ("missa", "hou2024_env1", dict(encoding="paper", pop=60, iters=300), 0.1),
+    ("ssa", "hou2024_env1", dict(encoding="paper", pop=60, iters=300), None),
     ("aco", "hou2024_env1", dict(pop=60, iters=300), None),
-    ("iga", "li2023_90", dict(pop=50, iters=200), 0.3),
-    ("ga", "li2023_90", dict(pop=50, iters=200), None),
-    ("msiar-gwo", "chen2025_40", dict(pop=30, iters=500), None),
-    ("ipso", "yang2023_env1", dict(pop=50, iters=300), None),
+    ("iga", "li2023_90", dict(encoding="paper", pop=50, iters=200), 0.3),
+    ("ga", "li2023_90", dict(encoding="paper", pop=50, iters=200), None),
+    ("msiar-gwo", "chen2025_40", dict(encoding="paper", pop=30, iters=500), None),
+    ("ipso", "yang2023_env1", dict(encoding="paper", pop=50, iters=300), None),
 ]
 
 

@@ -25,9 +25,9 @@ import pickle
 from concurrent.futures import ProcessPoolExecutor
 
 EXPERIMENTS = {
-    "li2023": ("iga-dwa", [f"li2023_exp2_{m}" for m in (2, 3, 4, 5)], "iga", {"pop": 50, "iters": 100}),
-    "yang2023": ("idwa", ["yang2023_fusion"], "ipso", {"pop": 50, "iters": 300}),
-    "hou2024": ("missa-dwa", [f"hou2024_dynamic{k}" for k in (1, 2, 3, 4)], "missa", {"pop": 60, "iters": 300}),
+    "li2023": ("iga-dwa", [f"li2023_exp2_{m}" for m in (2, 3, 4, 5)], "iga", {"encoding": "paper", "pop": 50, "iters": 100}),
+    "yang2023": ("idwa", ["yang2023_fusion"], "ipso", {"encoding": "paper", "pop": 50, "iters": 300}),
+    "hou2024": ("missa-dwa", [f"hou2024_dynamic{k}" for k in (1, 2, 3, 4)], "missa", {"encoding": "paper", "pop": 60, "iters": 300}),
 }
 
 

@@ -27,10 +27,10 @@ cw = op.CircleWorld(bounds=(0, 0, 10, 10), circles=[(3, 3, 1.0), (6, 6, 1.2), (7
 cases = [
   ("grid msiar-gwo", gw, gs, gg, dict(encoding="paper", algorithm="msiar-gwo", pop=20, iters=40)),
   ("grid missa", hw, hs, hg, dict(encoding="paper", algorithm="missa", pop=20, iters=40)),
-  ("grid iga", hw, hs, hg, dict(algorithm="iga", pop=20, iters=40)),
+  ("grid iga", hw, hs, hg, dict(encoding="paper", algorithm="iga", pop=20, iters=40)),
   ("grid iba refine qp", gw, gs, gg, dict(encoding="paper", algorithm="iba", pop=20, iters=40, refine="qp")),
   ("grid missa refine casadi", hw, hs, hg, dict(encoding="paper", algorithm="missa", pop=20, iters=40, refine="casadi")),
-  ("grid iga refine casadi", hw, hs, hg, dict(algorithm="iga", pop=20, iters=40, refine="casadi")),
+  ("grid iga refine casadi", hw, hs, hg, dict(encoding="paper", algorithm="iga", pop=20, iters=40, refine="casadi")),
   ("grid gwo clearance", gw, gs, gg, dict(encoding="paper", algorithm="gwo", pop=20, iters=40, clearance=0.2)),
   ("circle pso", cw, (0.5, 0.5), (9.5, 9.5), dict(encoding="paper", algorithm="pso", pop=20, iters=40)),
   ("circle ipso refine casadi", cw, (0.5, 0.5), (9.5, 9.5), dict(encoding="paper", algorithm="ipso", pop=20, iters=40, refine="casadi")),

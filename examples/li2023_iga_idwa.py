@@ -127,7 +127,7 @@ def part_local(args) -> int:
                     ["li2023_exp1"], 1,
                     planners=["dwa", "iga-dwa"])
     else:
-        gopts = {"pop": 50, "iters": args.iters or 100}
+        gopts = {"encoding": "paper", "pop": 50, "iters": args.iters or 100}
         paper_local("li2023 Experiment I analog: static 11x11 map (IGA global path)", ["li2023_exp1"], args.runs,
                     global_planner="iga", global_options=gopts)
         movers = (2, 3, 4, 5)

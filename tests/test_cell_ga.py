@@ -120,8 +120,8 @@ def test_path_gas_fall_back_to_the_cell_sequence_when_columns_cannot_hold_a_path
     grid = generate_map("rooms", 20, 10)
     s, g = map_query(grid, 10)
     assert not _columns_represent(grid, s, g, 0.0)
-    # li2023's chromosome: iga's default, ga's with encoding="paper" (ga defaults to the general encoding)
-    r = op.plan(grid, s, g, algorithm=algorithm, seed=0, iters=30, **({"encoding": "paper"} if algorithm == "ga" else {}))
+    # li2023's chromosome: encoding="paper" (both default to the general encoding)
+    r = op.plan(grid, s, g, algorithm=algorithm, seed=0, iters=30, encoding="paper")
     assert r.feasible and r.encoding == "cells" and "encoding='cells'" in r.message
     assert op.validate_path(grid, r.path)
     with pytest.raises(op.InfeasibleQueryError, match="encoding='cells'"):

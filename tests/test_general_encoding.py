@@ -88,10 +88,20 @@ def test_general_vias_as_program_variables(rooms):
     assert prog.evaluate(r.path)[0] == pytest.approx(r.cost)
 
 
-def test_iga_refuses_an_encoding(rooms):
+def test_iga_runs_its_loop_on_via_points_and_refuses_other_encodings(rooms):
+    """li2023's GA loop on the general encoding's via points (iga's default): every chromosome
+    decodes to a collision-free path, and the run reaches the exact optimum on this map."""
     grid, s, g = rooms
+    r = op.plan(grid, s, g, algorithm="iga", pop=20, iters=60, seed=0)
+    best = op.shortest_path(grid, s, g, method="visibility").length
+    assert r.encoding == "general" and r.feasible and "via points" in r.message
+    assert r.length == pytest.approx(best, rel=1e-9)
+    again = op.plan(grid, s, g, algorithm="iga", pop=20, iters=60, seed=0)
+    np.testing.assert_array_equal(r.path, again.path)
     with pytest.raises(ParameterError, match="cell"):
-        op.plan(grid, s, g, algorithm="iga", encoding="general")
+        op.plan(grid, s, g, algorithm="iga", encoding="waypoints")
+    with pytest.raises(ParameterError, match="waypoints"):
+        op.plan(grid, s, g, algorithm="iga", encoding="cells", waypoints=4)
 
 
 def test_cli_encoding_and_gap_split(tmp_path, capsys, rooms):

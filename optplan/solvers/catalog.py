@@ -90,7 +90,12 @@ def planner_options(name: str, world, encoding=None) -> set[str]:
         from .gridpath.ga_path import GAParams, plan_ga
 
         fields = {f.name for f in dataclasses.fields(GAParams)} - {"improved"}
-        return keyword_names(plan_ga, PLAN_OWN) | fields | {"encoding"}   # "columns" and "cells" are its own
+        own = keyword_names(plan_ga, PLAN_OWN) | fields | {"encoding"}   # "columns" and "cells" are its own
+        if name == "iga" and encoding in (None, "general"):
+            from .gridpath.via_ga import plan_via_ga
+
+            own |= keyword_names(plan_via_ga, PLAN_OWN)   # the via points' count
+        return own
     from .metaheuristics import get_algorithm, optimize
     from .paths import plan_path
 

@@ -105,8 +105,10 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
     :data:`GRID_ENCODING`) and spline handles on circle worlds. ``ga``/``iga`` also take
     ``"cells"`` on grids: li2023's own chromosome, a general cell sequence
     (:mod:`optplan.solvers.gridpath.cell_ga`), and ``"paper"`` gives them li2023's chromosome
-    (one cell per column, or the cell sequence where that cannot represent a solution). ``iga``
-    always plans on it (its operators exist only there); ``ga`` defaults to the general encoding. When the paper's encoding (``"paper"``) cannot
+    (one cell per column, or the cell sequence where that cannot represent a solution). By
+    default ``ga`` is a vector GA over the general encoding and ``iga`` runs li2023's GA loop
+    (eq 4-5, §4.1-4.5) on the general encoding's via points
+    (:mod:`optplan.solvers.gridpath.via_ga`). When the paper's encoding (``"paper"``) cannot
     represent a solution — no collision-free path with one node per column exists, or the
     paper encoding's best path is infeasible — the run is done again with the general encoding (same budget) and the result says so (``encoding``,
     ``message``); an explicitly requested encoding is never replaced. Under ``max_evals``
@@ -134,10 +136,17 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
     """
     name = algorithm.lower()
     alternatives, alternative_separation = check_alternatives(alternatives, alternative_separation)
-    if name == "ga" and encoding is None:
-        encoding = DEFAULT_ENCODING   # the vector GA over the general encoding, as every metaheuristic
+    if name in ("ga", "iga") and encoding is None:
+        encoding = DEFAULT_ENCODING   # as every metaheuristic: ga as a vector GA, iga's loop on via points
     if name in ("ga", "iga") and encoding == PAPER_ENCODING:
-        encoding = None   # li2023's GAs on their own chromosome (iga's operators exist only there)
+        encoding = None   # li2023's GAs on their own chromosome
+    if name == "iga" and encoding == "general":
+        from .gridpath.via_ga import plan_via_ga
+
+        return plan_via_ga(world, start, goal, improved=True, seed=seed, pop=pop, iters=iters, clearance=clearance,
+                           preset=preset or "li2023", postprocess=postprocess, max_evals=max_evals,
+                           waypoints=waypoints, alternatives=alternatives,
+                           alternative_separation=alternative_separation, **params)
     s = world.check_query_point(start, "start", clearance)
     g = world.check_query_point(goal, "goal", clearance)
     if name in ("aco", "iaco"):  # an ant colony keeps pheromone, not a population of paths: no alternatives
@@ -193,9 +202,10 @@ def plan_path(world, start, goal, *, algorithm: str, seed=0, pop: int = 30, iter
     from . import metaheuristics
 
     if name == "iga" and encoding is not None:
-        raise ParameterError(f"iga evolves grid chromosomes (li2023 §3): encoding='columns' (one cell per column) "
-                             f"or 'cells' (the paper's general cell sequence), not encoding={encoding!r}. Use "
-                             "'ga' (the vector GA) for other encodings")
+        raise ParameterError(f"iga evolves li2023's grid chromosomes or the general encoding's via points: "
+                             f"encoding='general' (the default), 'paper' / 'columns' (one cell per column) or "
+                             f"'cells' (the paper's general cell sequence), not encoding={encoding!r}. Use 'ga' "
+                             "(the vector GA) for other encodings")
     if name not in _metaheuristic_names():
         raise UnknownAlgorithmError(f"unknown path planner {algorithm!r}; known: {', '.join(algorithm_names())}")
     paper = PAPER_OF.get(name, "length")
