@@ -63,12 +63,13 @@ def runs_on(name: str, world) -> bool:
 
 def planner_kind(name: str, world, encoding=None) -> str:
     """``graph``, ``aco``, ``cell-ga`` (the grid GAs on their own chromosome) or ``swarm``: the
-    kind the planner declares (:mod:`optplan.solvers.capabilities`), except that ``ga`` runs as
-    a swarm off its cell chromosome (by default, circle worlds, other encodings)."""
+    kind the planner declares (:mod:`optplan.solvers.capabilities`), except that ``ga`` runs on
+    li2023's cell chromosome when a grid plan asks for it (``encoding`` ``paper``, ``columns``
+    or ``cells``); it is a swarm otherwise."""
     kind = planner_capabilities(name).kind
-    # ga's default is the general encoding (a swarm); "paper" is li2023's chromosome
-    if kind == "cell-ga" and name == "ga" and not (world.is_grid and encoding in ("paper", "columns", "cells")):
-        return "swarm"
+    # ga's default is the general encoding (a swarm); "paper", "columns", "cells": li2023's chromosome
+    if name == "ga" and world.is_grid and encoding in ("paper", "columns", "cells"):
+        return "cell-ga"
     return kind
 
 

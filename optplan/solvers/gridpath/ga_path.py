@@ -46,8 +46,8 @@ from ..result import check_alternatives, make_plan_result
 from ..capabilities import PlannerCapabilities
 
 CAPABILITIES = {
-    # ga runs on its cell chromosome on grids (columns) and as a swarm elsewhere
-    "ga": PlannerCapabilities("ga", "cell-ga", alternatives=True),
+    # ga is a vector GA over the general encoding (a swarm) unless asked for li2023's chromosome
+    "ga": PlannerCapabilities("ga", "swarm", alternatives=True),
     "iga": PlannerCapabilities("iga", "cell-ga", grid_only="IGA evolves sequences of grid cells", alternatives=True),
 }
 
