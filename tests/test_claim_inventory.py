@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+import numpy as np
 import pytest
 
 from optplan.bench import claim_inventory as inv
@@ -111,7 +112,10 @@ def test_chen2025_table7_reads_as_its_own_tally():
     assert len(t7) == 18 * 7
     s = t7["chen2025.t7.F8.woa"]   # WOA better than MSIAR-GWO in F8: WOA is the claim's better group
     assert s.judged and all(":less:woa:msiar-gwo:f" in c for c in s.claims) and len(s.claims) == 2
-    assert t7["chen2025.t7.F9.aro"].reason == "tie" and t7["chen2025.t7.F1.rsmgwo"].reason == "not implemented"
+    assert t7["chen2025.t7.F9.aro"].reason == "tie" and t7["chen2025.t7.F1.rsmgwo"].reason == "tie"
+    # AGWO and RSMGWO run since issue 44 item 5: RSMGWO better than MSIAR-GWO in F8 ("-")
+    s = t7["chen2025.t7.F8.rsmgwo"]
+    assert s.judged and all(":less:rsmgwo:msiar-gwo:f" in c for c in s.claims) and len(s.claims) == 2
 
 
 def test_the_added_claims_keep_the_existing_ones_first_and_unchanged():
@@ -165,3 +169,18 @@ def test_the_script_prints_the_table(capsys):
     finally:
         sys.argv = argv
     assert capsys.readouterr().out.strip() == inv.unjudged_markdown("yuan2021")
+
+
+def test_a_reduction_of_negative_means_keeps_its_direction():
+    """F8's optimum is below zero: a lower mean is still the better one (the sign of
+    1 - mean(a) / mean(b) flips there)."""
+    from optplan.bench.claims import judge_less
+
+    better = np.array([-12569.0, -12500.0, -12550.0, -12560.0, -12540.0, -12530.0])
+    worse = np.array([-3077.0, -3100.0, -3000.0, -3050.0, -3200.0, -2900.0])
+    figure, verdict = judge_less(better, worse, None)
+    assert verdict == "holds" and figure.startswith("+")
+    figure, verdict = judge_less(worse, better, None)
+    assert verdict == "reversed" and figure.startswith("-")
+    assert judge_less(np.array([1.0, 1.1, 0.9, 1.05, 0.95, 1.0]), np.array([2.0, 2.1, 1.9, 2.05, 1.95, 2.0]),
+                      0.5)[1] == "holds"

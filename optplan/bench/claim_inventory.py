@@ -33,8 +33,8 @@ PAPERS = ("hou2024", "yang2023", "yuan2021", "li2023", "chen2025")
 
 # why a statement is not judged: key -> what it means (the coverage table counts by key)
 REASONS = {
-    "not implemented": "a baseline the paper names whose rule cannot be recovered from it (chen2025 AGWO and "
-                       "RSMGWO, yang2023 IPSO1 and IPSO2: see the fidelity notes)",
+    "not implemented": "a baseline the paper names whose rule cannot be recovered (yang2023 IPSO2: see its "
+                       "fidelity note)",
     "extreme": "the best or worst value over the runs, or the one run a figure draws: the claim kinds compare "
                "means, spreads and success shares over runs",
     "absolute": "an absolute value on the paper's own map, robot or machine: the maps here are stand-ins, so only "
@@ -175,6 +175,9 @@ def _hou2024() -> list[Statement]:
 
 # -------------------------------------------------------------------------------------- yang2023
 
+_IPSO1 = ("IPSO1 is Li et al. 2020 (yang2023's [18]): its positive feedback as eq 7-8, its disturbance and "
+          "schedule reconstructed (docs/fidelity/yang2023.md)")
+
 def _yang2023() -> list[Statement]:
     p = "yang2023"
     out = []
@@ -187,11 +190,12 @@ def _yang2023() -> list[Statement]:
                            "judged at equal iterations and at equal evaluations"))
         out.append(_not(p, f"{p}.t{t}.best.pso", where, f"IPSO's shortest path is below PSO's ({best[0]} vs "
                         f"{best[1]} m)", "extreme"))
-        for o in ("ipso1", "ipso2"):
-            out.append(_not(p, f"{p}.t{t}.mean.{o}", where, f"IPSO's mean length is below {o.upper()}'s",
-                            "not implemented"))
-            out.append(_not(p, f"{p}.t{t}.best.{o}", where, f"IPSO's shortest path is below {o.upper()}'s",
-                            "not implemented"))
+        out.append(_judged(p, f"{p}.t{t}.mean.ipso1", where, "IPSO's mean length is below IPSO1's",
+                           [cid("yang2023_global", env, "less", "ipso", "ipso1")], _IPSO1))
+        out.append(_not(p, f"{p}.t{t}.best.ipso1", where, "IPSO's shortest path is below IPSO1's", "extreme"))
+        out.append(_not(p, f"{p}.t{t}.mean.ipso2", where, "IPSO's mean length is below IPSO2's", "not implemented"))
+        out.append(_not(p, f"{p}.t{t}.best.ipso2", where, "IPSO's shortest path is below IPSO2's",
+                        "not implemented"))
         out.append(_not(p, f"{p}.t{t}.values", f"Table {t}", "the mean and shortest lengths of the four algorithms",
                         "absolute"))
     out.append(_not(p, f"{p}.s7.1.best-of-four", "§7.1", "IPSO's mean and shortest lengths are the best of the four "
@@ -208,11 +212,17 @@ def _yang2023() -> list[Statement]:
                            f"iterations than PSO ({iters[0]} vs {iters[1]})",
                            [cid("yang2023_convergence", env, "less", "ipso", "pso", "convergence_iter")],
                            "the paper shows one run per algorithm; judged over 20 seeds"))
-        for o in ("ipso1", "ipso2"):
-            out.append(_not(p, f"{p}.t3.env{e}.length.{o}", where, f"in environment {e} IPSO converges to a "
-                            f"shorter path than {o.upper()}", "not implemented"))
-            out.append(_not(p, f"{p}.t3.env{e}.iters.{o}", where, f"in environment {e} IPSO converges in fewer "
-                            f"iterations than {o.upper()}", "not implemented"))
+        out.append(_judged(p, f"{p}.t3.env{e}.length.ipso1", where, f"in environment {e} IPSO converges to a "
+                           "shorter path than IPSO1", [cid("yang2023_convergence", env, "less", "ipso", "ipso1")],
+                           "the paper shows one run per algorithm; judged over 20 seeds. " + _IPSO1))
+        out.append(_judged(p, f"{p}.t3.env{e}.iters.ipso1", where, f"in environment {e} IPSO converges in fewer "
+                           "iterations than IPSO1",
+                           [cid("yang2023_convergence", env, "less", "ipso", "ipso1", "convergence_iter")],
+                           "the paper shows one run per algorithm; judged over 20 seeds. " + _IPSO1))
+        out.append(_not(p, f"{p}.t3.env{e}.length.ipso2", where, f"in environment {e} IPSO converges to a "
+                        "shorter path than IPSO2", "not implemented"))
+        out.append(_not(p, f"{p}.t3.env{e}.iters.ipso2", where, f"in environment {e} IPSO converges in fewer "
+                        "iterations than IPSO2", "not implemented"))
     out += [
         _not(p, f"{p}.t3.values", "Table 3", "converged lengths and iterations of the four algorithms", "absolute"),
         _not(p, f"{p}.f12.escape", "§7.1, Fig 12", "IPSO's converged length drops again late, at iteration 343 "
@@ -378,6 +388,11 @@ def _li2023() -> list[Statement]:
 # -------------------------------------------------------------------------------------- chen2025
 
 _IMPL = ("gwo", "aro", "dbo", "woa", "igwo")
+# the two baselines chen2025 names without a reference: the published algorithms identified for them
+_NEW = ("agwo", "rsmgwo")
+_ALL = _IMPL + _NEW
+_AGWO = ("AGWO is Qais et al. 2018's augmented GWO, RSMGWO Zhang et al. 2020's (chen2025 cites neither; "
+         "docs/fidelity/chen2025.md)")
 _FSPECS = ("chen2025_functions", "chen2025_functions_unshifted")
 _MARK = {"+": "better than", "=": "not significantly different from", "-": "worse than"}
 
@@ -388,14 +403,21 @@ def _fclaims(f: str, kind: str = "less", others=_IMPL, better_is_msiar: bool = T
             for s in _FSPECS for o in others]
 
 
+def _table7_ids(f: str, others=_ALL) -> list[str]:
+    """The ids of Table 7's "+" and "-" claims on ``f`` against ``others`` (the ranking they make)."""
+    return [c for o, mark in zip(CHEN2025_TABLE7_BASELINES, CHEN2025_TABLE7[f]) if o in others and mark != "="
+            for c in _fclaims(f, others=(o,), better_is_msiar=mark == "+")]
+
+
 def _chen2025() -> list[Statement]:
     p = "chen2025"
     both = "judged on the shifted functions (the headline) and as printed"
+    new = f"{both}; {_AGWO}"
     out = [
         _not(p, f"{p}.t4.f1-4.optimum", "§4.1, Table 4", "MSIAR-GWO, like RSMGWO, reaches the exact optimum of F1-F4",
              "target value"),
         _not(p, f"{p}.f6.f1-4.fast", "§4.1, Fig 6a-d", "MSIAR-GWO reaches the minimum of F1-F4 within 150 iterations, "
-             "faster than RSMGWO", "not implemented", "also: function runs store no convergence iteration"),
+             "faster than RSMGWO", "no metric", "function runs store the final value, not the convergence speed"),
         _not(p, f"{p}.t4.f1-4.gwo-igwo", "§4.1, Table 4", "GWO and IGWO stay clearly off the optimum of F1-F4",
              "target value"),
         _judged(p, f"{p}.t4.f5-7.mean", "§4.1, Table 4", "MSIAR-GWO's mean is first in F5-F7 (against GWO, ARO, "
@@ -404,13 +426,13 @@ def _chen2025() -> list[Statement]:
                 "GWO, ARO, DBO, WOA, IGWO)", [c for f in ("F5", "F6", "F7") for c in _fclaims(f, "less_spread")], both),
         _not(p, f"{p}.t4.f5-7.best-worst", "§4.1, Table 4", "MSIAR-GWO's best and worst values are first in F5-F7",
              "extreme"),
-        _not(p, f"{p}.t4.f5-7.agwo-rsmgwo", "§4.1, Table 4", "in F5-F7 MSIAR-GWO also beats AGWO and RSMGWO",
-             "not implemented"),
+        _judged(p, f"{p}.t4.f5-7.agwo-rsmgwo", "§4.1, Table 4", "in F5-F7 MSIAR-GWO also beats AGWO and RSMGWO",
+                [c for f in ("F5", "F6", "F7") for k in ("less", "less_spread") for c in _fclaims(f, k, _NEW)],
+                "mean and standard deviation, as for the other baselines; " + new),
         _not(p, f"{p}.f6.f5-7.late", "§4.1, Fig 6e-g", "after 50 iterations MSIAR-GWO keeps converging faster than "
              "the others in F5-F7", "no metric", "function runs store the final value, not the convergence speed"),
-        _not(p, f"{p}.t5.f8.rank", "§4.1, Table 5", "in F8 MSIAR-GWO ranks third, after RSMGWO and WOA",
-             "not implemented", "a ranking with RSMGWO; its pairs with the implemented baselines are Table 7's F8 "
-             "entries"),
+        _judged(p, f"{p}.t5.f8.rank", "§4.1, Table 5", "in F8 MSIAR-GWO ranks third, after RSMGWO and WOA",
+                _table7_ids("F8"), "as its pairs with every baseline, Table 7's F8 entries; " + new),
         _not(p, f"{p}.t5.f9.optimum", "§4.1, Table 5", "AGWO, ARO, RSMGWO and MSIAR-GWO reach the optimum of F9",
              "target value"),
         _not(p, f"{p}.t5.f11.optimum", "§4.1, Table 5", "ARO, DBO, WOA, AGWO, RSMGWO and MSIAR-GWO reach the optimum "
@@ -426,14 +448,15 @@ def _chen2025() -> list[Statement]:
                 [c for f in ("F12", "F13") for c in _fclaims(f, "less_spread")], both),
         _not(p, f"{p}.t5.f12-13.best-worst", "§4.1, Table 5", "MSIAR-GWO's best and worst values are first in F12 and "
              "F13", "extreme"),
-        _not(p, f"{p}.t5.f12-13.agwo-rsmgwo", "§4.1, Table 5", "in F12 and F13 MSIAR-GWO also beats AGWO and RSMGWO",
-             "not implemented"),
+        _judged(p, f"{p}.t5.f12-13.agwo-rsmgwo", "§4.1, Table 5", "in F12 and F13 MSIAR-GWO also beats AGWO and "
+                "RSMGWO", [c for f in ("F12", "F13") for k in ("less", "less_spread") for c in _fclaims(f, k, _NEW)],
+                "mean and standard deviation, as for the other baselines; " + new),
         _not(p, f"{p}.t6.f14.same-best", "§4.1, Table 6", "MSIAR-GWO, ARO, DBO and IGWO reach the same best value in "
              "F14", "extreme"),
         _judged(p, f"{p}.t6.f14.igwo", "§4.1, Table 6", "IGWO's mean in F14 is slightly better than MSIAR-GWO's",
                 _fclaims("F14", others=("igwo",), better_is_msiar=False), both),
-        _not(p, f"{p}.t6.f14.second", "§4.1, Table 6", "MSIAR-GWO is second best in F14", "not implemented",
-             "a ranking with AGWO and RSMGWO; its pairs with the implemented baselines are Table 7's F14 entries"),
+        _judged(p, f"{p}.t6.f14.second", "§4.1, Table 6", "MSIAR-GWO is second best in F14", _table7_ids("F14"),
+                "as its pairs with every baseline, Table 7's F14 entries (IGWO above, the others below); " + new),
         _not(p, f"{p}.t6.f15.every-run", "§4.1, Table 6", "MSIAR-GWO, ARO, DBO and IGWO hit the minimum of F15 in all "
              "20 runs, so their spread is the smallest", "target value"),
         _not(p, f"{p}.t6.f15-16.near", "§4.1, Table 6", "every algorithm's best value in F15 and F16 is close to the "
@@ -442,12 +465,12 @@ def _chen2025() -> list[Statement]:
              "in local optima)", "extreme"),
         _judged(p, f"{p}.t6.f18.accuracy", "§4.1, Table 6", "in F18 MSIAR-GWO is more accurate than GWO, ARO, DBO and "
                 "WOA", _fclaims("F18", others=("gwo", "aro", "dbo", "woa")), both),
-        _not(p, f"{p}.t6.f18.accuracy-agwo-rsmgwo", "§4.1, Table 6", "in F18 MSIAR-GWO is more accurate than AGWO "
-             "and RSMGWO", "not implemented"),
+        _judged(p, f"{p}.t6.f18.accuracy-agwo-rsmgwo", "§4.1, Table 6", "in F18 MSIAR-GWO is more accurate than "
+                "AGWO and RSMGWO", _fclaims("F18", others=_NEW), new),
         _judged(p, f"{p}.t6.f18.std", "§4.1, Table 6", "in F18 MSIAR-GWO's standard deviation is clearly the smallest "
                 "(against GWO, ARO, DBO, WOA, IGWO)", _fclaims("F18", "less_spread"), both),
-        _not(p, f"{p}.t6.f18.std-agwo-rsmgwo", "§4.1, Table 6", "in F18 MSIAR-GWO's standard deviation is below "
-             "AGWO's and RSMGWO's", "not implemented"),
+        _judged(p, f"{p}.t6.f18.std-agwo-rsmgwo", "§4.1, Table 6", "in F18 MSIAR-GWO's standard deviation is "
+                "below AGWO's and RSMGWO's", _fclaims("F18", "less_spread", _NEW), new),
         _not(p, f"{p}.f8.stable", "§4.1, Fig 8", "MSIAR-GWO searches the fixed-dimension functions more stably",
              "qualitative"),
         *(_not(p, f"{p}.t{t}.values", f"Table {t}", f"best, mean, worst and standard deviation of every algorithm in "
@@ -458,12 +481,13 @@ def _chen2025() -> list[Statement]:
         for o, mark in zip(CHEN2025_TABLE7_BASELINES, row):
             sid, where = f"{p}.t7.{f}.{o}", "§4.2, Table 7"
             says = f"rank-sum test in {f}: MSIAR-GWO is {_MARK[mark]} {o.upper()}"
-            if o not in _IMPL:
+            if o not in _ALL:
                 out.append(_not(p, sid, where, says, "not implemented"))
             elif mark == "=":
                 out.append(_not(p, sid, where, says, "tie"))
             else:
-                out.append(_judged(p, sid, where, says, _fclaims(f, others=(o,), better_is_msiar=mark == "+"), both))
+                out.append(_judged(p, sid, where, says, _fclaims(f, others=(o,), better_is_msiar=mark == "+"),
+                                   new if o in _NEW else both))
     out += [
         _not(p, f"{p}.t7.tally", "§4.2, Table 7", "wins, ties and losses of MSIAR-GWO against each baseline "
              "(e.g. 18/0/0 against GWO)", "summary", "the tally of Table 7's entries, each listed"),
@@ -498,8 +522,9 @@ def _chen2025() -> list[Statement]:
                 "smallest (against GWO, ARO, DBO, WOA, IGWO)",
                 [cid(ps, "chen2025_40", "less_spread", "msiar-gwo", o) for o in _IMPL],
                 "the paper's own Table 11 prints DBO's (2.5526) and WOA's (2.7714) below MSIAR-GWO's (4.0058)"),
-        _not(p, f"{p}.t11.std-agwo-rsmgwo", "§4.3.2, Table 11", "on the 40x40 map MSIAR-GWO's standard deviation is "
-             "below AGWO's and RSMGWO's", "not implemented"),
+        _judged(p, f"{p}.t11.std-agwo-rsmgwo", "§4.3.2, Table 11", "on the 40x40 map MSIAR-GWO's standard deviation "
+                "is below AGWO's and RSMGWO's", [cid(ps, "chen2025_40", "less_spread", "msiar-gwo", o) for o in _NEW],
+                _AGWO),
         _not(p, f"{p}.t11.best", "§4.3.2, Table 11", "on the 40x40 map MSIAR-GWO's best length is the shortest",
              "extreme"),
     ]
@@ -511,14 +536,14 @@ def _chen2025() -> list[Statement]:
         for o, r in zip(CHEN2025_TABLE7_BASELINES, reds):
             sid, where = f"{p}.t{t}.mean.{o}", f"§4.3.2, Table {t}"
             says = f"on the {size}x{size} map MSIAR-GWO's mean length is {r:.2f} % below {o.upper()}'s"
-            if o not in _IMPL:
+            if o not in _ALL:
                 out.append(_not(p, sid, where, says, "not implemented"))
                 continue
             ids = [cid(ps, m, "less", "msiar-gwo", o)]
-            if o == "gwo":
+            if o in ("gwo", *_NEW):
                 ids.append(cid(ps, m, "less", "msiar-gwo-evals", o))
-            out.append(_judged(p, sid, where, says, ids,
-                               "judged at equal iterations and at equal evaluations" if o == "gwo" else ""))
+            detail = "judged at equal iterations and at equal evaluations" if o in ("gwo", *_NEW) else ""
+            out.append(_judged(p, sid, where, says, ids, f"{detail}; {_AGWO}" if o in _NEW else detail))
     out += [
         _not(p, f"{p}.t9-11.values", "Tables 8-11", "best, mean and standard deviation of every algorithm's lengths "
              "per map", "absolute"),

@@ -83,19 +83,23 @@ class Claim:
 
 
 def _reduction(a: np.ndarray, b: np.ndarray) -> float:
-    if a.mean() == b.mean():   # equal, including both exactly 0 (every run at the optimum)
+    """How much lower the mean of ``a`` is than that of ``b``, relative to ``|mean(b)|``:
+    ``1 - mean(a) / mean(b)`` for positive values, and still positive when ``a`` is lower for
+    negative ones (functions whose optimum is below zero: F8, F17, F18)."""
+    ma, mb = a.mean(), b.mean()
+    if ma == mb:   # equal, including both exactly 0 (every run at the optimum)
         return 0.0
-    return float(1.0 - a.mean() / b.mean())
+    return float((mb - ma) / abs(mb)) if mb != 0 else float(np.sign(mb - ma) * np.inf)
 
 
 def _bootstrap_reduction(a: np.ndarray, b: np.ndarray, seed: int = 0) -> tuple[float, float]:
-    """95 % percentile interval of ``1 - mean(a) / mean(b)`` (vectorised resampling)."""
+    """95 % percentile interval of :func:`_reduction` (vectorised resampling)."""
     rng = np.random.default_rng(seed)
     ia = rng.integers(0, len(a), size=(BOOTSTRAP, len(a)))
     ib = rng.integers(0, len(b), size=(BOOTSTRAP, len(b)))
     ma, mb = a[ia].mean(axis=1), b[ib].mean(axis=1)
     with np.errstate(divide="ignore", invalid="ignore"):
-        r = np.where(ma == mb, 0.0, 1.0 - ma / mb)
+        r = np.where(ma == mb, 0.0, (mb - ma) / np.abs(mb))
     return float(np.percentile(r, 2.5)), float(np.percentile(r, 97.5))
 
 
@@ -248,6 +252,10 @@ def render_claims(res, fmt: str = "markdown") -> str:
     return f"\n## Claims of the paper ({res.spec.name})\n\n{table.render(fmt)}\n"
 
 
+_IPSO1_NOTE = ("IPSO1's positive feedback follows Li et al. 2020 eq 7-8; its disturbance and schedule are "
+               "reconstructed (docs/fidelity/yang2023.md)")
+_AGWO_NOTE = ("AGWO is Qais et al. 2018's augmented GWO, RSMGWO Zhang et al. 2020's; chen2025 cites neither and "
+              "RSMGWO's EPD factor is reconstructed (docs/fidelity/chen2025.md)")
 _TIMING = "timings were measured on a machine shared with other jobs: times are inflated and noisy"
 _PROTO = "paper protocol"
 _TUNED_ON = ("F6", "F12")
@@ -311,11 +319,16 @@ CLAIMS: tuple[Claim, ...] = (
           "less", "iba-mu0.1", "iba-mu0", "n_turns", 1 - 9.1 / 12.6),
     Claim("yuan2021_table2", "§5.1 (2)", "the smoothing term lengthens the path (39.21 vs 37.45, -4.70 %)",
           "yuan2021_25", "less", "iba-mu0", "iba-mu0.1", "length", None),
-    # yang2023 §7.1 (IPSO1 and IPSO2 are not implemented)
+    # yang2023 §7.1 (IPSO2 is not implemented; IPSO1 below)
     Claim("yang2023_global", "Table 1", "IPSO average length below PSO (15.0966 vs 15.7687, 4.26 %)",
           "yang2023_env1", "less", "ipso", "pso", claimed=1 - 15.0966 / 15.7687),
     Claim("yang2023_global", "Table 2", "IPSO average length below PSO (22.0474 vs 22.4382, 1.74 %)",
           "yang2023_env2", "less", "ipso", "pso", claimed=1 - 22.0474 / 22.4382),
+    # yang2023 §7.1 against IPSO1 (Li et al. 2020, its [18]; partly reconstructed, docs/fidelity/yang2023.md)
+    Claim("yang2023_global", "Table 1", "IPSO average length below IPSO1 (15.0966 vs 15.5512)",
+          "yang2023_env1", "less", "ipso", "ipso1", claimed=1 - 15.0966 / 15.5512, note=_IPSO1_NOTE),
+    Claim("yang2023_global", "Table 2", "IPSO average length below IPSO1 (22.0474 vs 22.2542)",
+          "yang2023_env2", "less", "ipso", "ipso1", claimed=1 - 22.0474 / 22.2542, note=_IPSO1_NOTE),
     # yang2023 Table 3 (one convergence curve per algorithm in the paper; 20 seeds here)
     Claim("yang2023_convergence", "Table 3", "IPSO converges to a shorter path than PSO (14.5134 vs 14.8496 m)",
           "yang2023_env1", "less", "ipso", "pso", claimed=1 - 14.5134 / 14.8496),
@@ -325,6 +338,12 @@ CLAIMS: tuple[Claim, ...] = (
           "yang2023_env2", "less", "ipso", "pso", claimed=1 - 21.2950 / 21.7977),
     Claim("yang2023_convergence", "Table 3", "IPSO converges in fewer iterations than PSO (137 vs 171)",
           "yang2023_env2", "less", "ipso", "pso", metric="convergence_iter", claimed=1 - 137 / 171),
+    *(Claim("yang2023_convergence", "Table 3", f"IPSO converges to a shorter path than IPSO1 ({a:.4f} vs {b:.4f} m)", m,
+            "less", "ipso", "ipso1", claimed=1 - a / b, note=_IPSO1_NOTE)
+      for m, a, b in (("yang2023_env1", 14.5134, 14.7031), ("yang2023_env2", 21.2950, 21.5781))),
+    *(Claim("yang2023_convergence", "Table 3", f"IPSO converges in fewer iterations than IPSO1 ({a} vs {b})", m,
+            "less", "ipso", "ipso1", metric="convergence_iter", claimed=1 - a / b, note=_IPSO1_NOTE)
+      for m, a, b in (("yang2023_env1", 94, 138), ("yang2023_env2", 137, 159))),
     # li2023 §6.1, Tables 1-2
     *(Claim("li2023_global", "Table 1", f"IGA path {c:.1%} shorter than TGA", m, "less", "iga", "ga", claimed=c)
       for m, c in (("li2023_30", 0.027), ("li2023_60", 0.048), ("li2023_90", 0.049))),
@@ -348,6 +367,12 @@ CLAIMS: tuple[Claim, ...] = (
                          (11, "chen2025_40", {"gwo": 88.9720, "aro": 71.8339, "dbo": 73.8673, "igwo": 85.1341, "woa": 74.8505}))
       for o, b in rows.items()
       for a in ({"chen2025_20": 28.5610, "chen2025_30": 44.0835, "chen2025_40": 68.6196}[m],)),
+    *(Claim("chen2025_paths", f"Table {t}", f"MSIAR-GWO mean length below {o.upper()} ({a:.2f} vs {b:.2f})", m,
+            "less", "msiar-gwo", o, claimed=1 - a / b, note=_AGWO_NOTE)
+      for t, m, a, rows in ((9, "chen2025_20", 28.5610, {"agwo": 30.5612, "rsmgwo": 29.6183}),
+                            (10, "chen2025_30", 44.0835, {"agwo": 51.8773, "rsmgwo": 51.6112}),
+                            (11, "chen2025_40", 68.6196, {"agwo": 88.7081, "rsmgwo": 87.9394}))
+      for o, b in rows.items()),
     *(Claim("chen2025_paths", f"Table {t}", "MSIAR-GWO varies less than GWO", m, "less_spread", "msiar-gwo", "gwo")
       for t, m in ((9, "chen2025_20"), (10, "chen2025_30"), (11, "chen2025_40"))),
     # Table 8: one A* path per map (the signed-rank test against it); the paper's 20x20 and 40x40 maps
@@ -365,6 +390,13 @@ CLAIMS: tuple[Claim, ...] = (
       for t, fs, quote in ((4, ("F5", "F6", "F7"), "MSIAR-GWO is always in first place in F5-F7"),
                            (5, ("F12", "F13"), "in F12 and F13 MSIAR-GWO shows an absolute advantage"))
       for f in fs for o in ("gwo", "aro", "dbo", "woa", "igwo")),
+    # the same tables' "MSIAR-GWO also beats AGWO and RSMGWO" (issue 44 item 5)
+    *(Claim(spec, f"Table {t}", quote + (" (MSIAR-GWO was tuned on this function)" if f in _TUNED_ON else ""),
+            f, "less", "msiar-gwo", o, "f", note=_AGWO_NOTE + ("; " + _TUNED_NOTE if f in _TUNED_ON else ""))
+      for spec in ("chen2025_functions", "chen2025_functions_unshifted")
+      for t, fs, quote in ((4, ("F5", "F6", "F7"), "in F5-F7 MSIAR-GWO also beats AGWO and RSMGWO"),
+                           (5, ("F12", "F13"), "in F12 and F13 MSIAR-GWO also beats AGWO and RSMGWO"))
+      for f in fs for o in ("agwo", "rsmgwo")),
     # the papers' local experiments, at the specs' settings (the papers' own mover motion where
     # they draw it); success = the goal reached without a collision
     Claim("yang2023_local_crossing", "§7.2, Fig 13", "DWA fails to avoid the two crossing movers",
@@ -392,7 +424,9 @@ CLAIMS: tuple[Claim, ...] = (
 # (label ``<improved>-evals``), and each length / rotation claim against that baseline is judged
 # again there. yuan2021's IBA spends what BA does; li2023's IGA spends fewer than TGA.
 EQUAL_EVALS = {("yang2023_global", "ipso", "pso"): 15050, ("yang2023_convergence", "ipso", "pso"): 75150,
-               ("hou2024_global", "missa", "ssa"): 18060, ("chen2025_paths", "msiar-gwo", "gwo"): 15030}
+               ("hou2024_global", "missa", "ssa"): 18060, ("chen2025_paths", "msiar-gwo", "gwo"): 15030,
+               # AGWO and RSMGWO spend GWO's 30 evaluations per iteration
+               ("chen2025_paths", "msiar-gwo", "agwo"): 15030, ("chen2025_paths", "msiar-gwo", "rsmgwo"): 15030}
 
 
 def _at_equal_evaluations(claims: tuple[Claim, ...]) -> tuple[Claim, ...]:
@@ -427,7 +461,9 @@ CHEN2025_TABLE7 = {
 # Table 7's last row: wins / ties / losses of MSIAR-GWO against each baseline
 CHEN2025_TABLE7_TALLY = {"gwo": (18, 0, 0), "aro": (14, 4, 0), "dbo": (14, 4, 0), "woa": (15, 2, 1),
                          "igwo": (14, 1, 3), "agwo": (16, 2, 0), "rsmgwo": (11, 6, 1)}
-_CHEN2025_IMPLEMENTED = ("gwo", "aro", "dbo", "woa", "igwo")
+_CHEN2025_IMPLEMENTED = ("gwo", "aro", "dbo", "woa", "igwo", "agwo", "rsmgwo")
+# the two chen2025 names no reference: the published algorithms identified for them (issue 44 item 5)
+_CHEN2025_IDENTIFIED = ("agwo", "rsmgwo")
 # the functions whose Table 7 entries the Table 4-5 mean claims above already judge
 _CHEN2025_MEAN_JUDGED = ("F5", "F6", "F7", "F12", "F13")
 _CHEN2025_FUNCTION_SPECS = ("chen2025_functions", "chen2025_functions_unshifted")
@@ -445,12 +481,13 @@ def _table7_claims() -> tuple[Claim, ...]:
             for o, mark in zip(CHEN2025_TABLE7_BASELINES, row):
                 if o not in _CHEN2025_IMPLEMENTED or mark == "=":
                     continue
+                note = _AGWO_NOTE if o in _CHEN2025_IDENTIFIED else ""
                 if mark == "+":
                     out.append(Claim(spec, "Table 7", f"rank-sum: MSIAR-GWO better than {o.upper()} in {f} (+)",
-                                     f, "less", "msiar-gwo", o, "f"))
+                                     f, "less", "msiar-gwo", o, "f", note=note))
                 else:
                     out.append(Claim(spec, "Table 7", f"rank-sum: {o.upper()} better than MSIAR-GWO in {f} (-)",
-                                     f, "less", o, "msiar-gwo", "f"))
+                                     f, "less", o, "msiar-gwo", "f", note=note))
     return tuple(out)
 
 
@@ -492,7 +529,9 @@ def _added_claims() -> tuple[Claim, ...]:
               "yang2023_idwa_crossing", "less", "astar/idwa", "astar/dwa", "path_length"),
         # chen2025 §4.1, Tables 4-6: the standard deviation the text names with the means judged above
         *(Claim(spec, f"Table {t}", quote + (" (MSIAR-GWO was tuned on this function)" if f in _TUNED_ON else ""),
-                f, "less_spread", "msiar-gwo", o, "f", note=_TUNED_NOTE if f in _TUNED_ON else "")
+                f, "less_spread", "msiar-gwo", o, "f",
+                note="; ".join(n for n in (_AGWO_NOTE if o in _CHEN2025_IDENTIFIED else "",
+                                           _TUNED_NOTE if f in _TUNED_ON else "") if n))
           for spec in _CHEN2025_FUNCTION_SPECS for t, fs, quote in spread_quotes
           for f in fs for o in _CHEN2025_IMPLEMENTED),
         # chen2025 §4.2, Table 7
@@ -505,7 +544,7 @@ def _added_claims() -> tuple[Claim, ...]:
               (9, "chen2025_20", "woa", "WOA's paths vary a lot (std 1.9639 vs MSIAR-GWO 0.5917)"),
               (10, "chen2025_30", "aro", "MSIAR-GWO varies less than ARO (std 2.1519 vs 3.3236)"),
               *((11, "chen2025_40", o, f"MSIAR-GWO has the smallest std on 40x40 (vs {o.upper()})")
-                for o in ("aro", "dbo", "woa", "igwo")))),
+                for o in ("aro", "dbo", "woa", "igwo", "agwo", "rsmgwo")))),
     )
 
 

@@ -30,9 +30,9 @@ def register(cls: type[Algorithm]) -> type[Algorithm]:
 
 
 def _load_families() -> None:
-    from . import bat, dbo, ga, gwo, pso, random_search, ssa, woa_aro
+    from . import bat, dbo, ga, gwo, gwo_variants, pso, pso_variants, random_search, ssa, woa_aro
 
-    for mod in (random_search, gwo, pso, ssa, bat, woa_aro, dbo, ga):
+    for mod in (random_search, gwo, gwo_variants, pso, pso_variants, ssa, bat, woa_aro, dbo, ga):
         for obj in vars(mod).values():
             if isinstance(obj, type) and issubclass(obj, Algorithm) and obj is not Algorithm \
                     and obj.__module__ == mod.__name__:

@@ -41,8 +41,8 @@ IPSO changes, in the order of yang2023 §4:
   problem, and a random crossover (one coordinate copied from a random
   particle); each is kept only if it improves.
 
-IPSO1 (Li 2020) and IPSO2 (Tan 2022) are not implemented: yang2023 cites them
-without their update rules.
+IPSO1 (Li 2020), yang2023's first baseline, is in ``pso_variants.py`` (partly
+reconstructed); IPSO2 (Tan 2022) is not implemented: no source of its update rules was found.
 """
 from __future__ import annotations
 
