@@ -4,7 +4,11 @@ Solvers: ``dwa`` (Fox's sampled preset), ``qp-dwa`` (sampling + OSQP polish + Ru
 ``mpc`` (CasADi NMPC of the default window program, ``optplan.local_terms.default_local_program``).
 ``dwa:program`` and ``qp-dwa:program`` solve that same window program by sampling, and by
 sampling plus one SQP (OSQP) step: the three program solvers side by side. A ``-creep``
-suffix (``mpc-creep``, ``qp-dwa:program-creep``) turns off their path creep (``local/creep.py``).
+suffix (``mpc-creep``, ``qp-dwa:program-creep``) turns off their path creep (``local/creep.py``);
+a ``+MODEL`` part (``mpc+straight``, ``qp-dwa:program+bounce-creep``) picks how the program
+solvers predict movers (``mover_model``: ``sweep``, the default, ``bounce`` or ``straight``,
+``optplan/local/program_planners.py:MoverTracker``). ``--stop-hold S`` adds ``stop_clear(S)``
+(``optplan/formulations/local_program.py:StopClear``) to their default program.
 Worlds: the BARN-style clutter family (``clutter``: entry corridor, 0.15 m cells, r = 0.2 m,
 0.5 m/s), the same with 2 movers (``clutter-movers``), the shipped dynamic scenarios and the
 papers' local experiments (``papers``). The
@@ -40,15 +44,20 @@ PAPER_SCENARIOS = ("hou2024_table4_1", "li2023_exp1", "li2023_exp2_2", "yang2023
                    "yuan2021_added_obstacles", "yuan2021_path_switch")
 
 
-def _timed_planner(name: str, world: str, seed: int):
+def _timed_planner(name: str, world: str, seed: int, stop_hold: float = 0.0):
     """The planner the closed loop would build for ``world`` (family parameters included),
-    its ``command`` timed per step."""
+    its ``command`` timed per step (``stop_hold``: the program solvers' default program with
+    :func:`~optplan.formulations.local_program.stop_clear` for that many seconds)."""
     sc = family_scenario(world, seed) or op.load_scenario(world)
     base, no_creep = name.removesuffix("-creep"), name.endswith("-creep")
     extra = {"path_creep": None} if no_creep else {}
+    if "+" in base:   # the program solvers' mover model
+        base, extra["mover_model"] = base.split("+", 1)
+    if stop_hold:
+        extra["local_program"] = default_local_program(sc.robot, step=sc.dt, stop_hold=stop_hold)
     if base.endswith(":program"):   # the sampling solver of the default window program
-        planner = make_local_planner(base.split(":")[0], sc.robot, sc.dt,
-                                     local_program=default_local_program(sc.robot, step=sc.dt), **extra)
+        extra.setdefault("local_program", default_local_program(sc.robot, step=sc.dt))
+        planner = make_local_planner(base.split(":")[0], sc.robot, sc.dt, **extra)
     elif base == "mpc":
         planner = make_local_planner(base, sc.robot, sc.dt, **extra)
     else:
@@ -68,13 +77,13 @@ def _timed_planner(name: str, world: str, seed: int):
     return planner, sc, times, modes
 
 
-def run(solvers, worlds, seeds, seed0) -> dict:
+def run(solvers, worlds, seeds, seed0, stop_hold: float = 0.0) -> dict:
     rows = defaultdict(lambda: defaultdict(list))
     for world in worlds:
         run_seeds = range(seed0, seed0 + seeds) if family_scenario(world, 0) is not None else range(1)
         for name in solvers:
             for seed in run_seeds:
-                planner, sc, times, modes = _timed_planner(name, world, seed)
+                planner, sc, times, modes = _timed_planner(name, world, seed, stop_hold)
                 r = op.simulate(world, global_planner="astar", local_planner=planner, seed=seed)
                 row = rows[(world, name)]
                 row["status"].append(r.status)
@@ -103,10 +112,13 @@ def main(argv=None) -> int:
                          "local experiments")
     ap.add_argument("--seeds", type=int, default=20, help="seeds per generated family")
     ap.add_argument("--seed0", type=int, default=5000)
+    ap.add_argument("--stop-hold", type=float, default=0.0,
+                    help="program solvers: their default program with stop_clear for this many seconds "
+                         "(0: the default program as it is)")
     args = ap.parse_args(argv)
     args.worlds = [w for name in args.worlds for w in (PAPER_SCENARIOS if name == "papers" else (name,))]
     t0 = time.perf_counter()
-    rows = run(args.solvers, args.worlds, args.seeds, args.seed0)
+    rows = run(args.solvers, args.worlds, args.seeds, args.seed0, args.stop_hold)
     print(f"\nfamilies: seeds {args.seed0}..{args.seed0 + args.seeds - 1}; {time.perf_counter() - t0:.0f} s")
     print("| world | solver | success | collided | timeout | stuck | time to goal s | length m | BARN | "
           "step ms median | p95 | limits held | fallback-to-sample steps |")

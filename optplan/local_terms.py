@@ -5,7 +5,7 @@ Each is written once, with a batched numpy view (sampling) and a symbolic CasADi
 
 Terms: :func:`goal_distance`, :func:`goal_heading`, :func:`path_distance`, :func:`speed`,
 :func:`smoothness`, :func:`obstacle_cost`, and your own :func:`custom` ``fn(Z, U, m)``.
-Constraints: ``clearance() >= d`` and :func:`can_stop`.
+Constraints: ``clearance() >= d``, :func:`can_stop` and :func:`stop_clear`.
 """
 from __future__ import annotations
 
@@ -20,7 +20,8 @@ from .formulations.local_program import (
     path_distance,
     smoothness,
     speed,
+    stop_clear,
 )
 
 __all__ = ["can_stop", "clearance", "custom", "default_local_program", "goal_distance", "goal_heading",
-           "obstacle_cost", "path_distance", "smoothness", "speed"]
+           "obstacle_cost", "path_distance", "smoothness", "speed", "stop_clear"]

@@ -51,9 +51,19 @@ class Situation:
         path: ``(N, 2)`` global path, metres.
         static_distance: ``(..., 2) -> (...)`` signed distance from a point to the static
             obstacles known now (robot radius not subtracted).
-        movers: ``(k, 5)`` rows ``(x, y, vx, vy, radius)``, predicted at constant velocity.
+        movers: ``(k, 5)`` rows ``(x, y, vx, vy, radius)`` now.
         distance_error: how much ``static_distance`` may overestimate the true distance, m
             (a position within it of an obstacle counts as touching it).
+        mover_ends: ``(k, 2)`` rows ``(behind, ahead)``, or ``None``: where each mover is known
+            to turn round, metres along its direction of motion from where it is now
+            (``behind <= 0 <= ahead``; ``-inf`` / ``inf``: not known on that side). A mover is
+            predicted at constant speed, turning round at its known ends
+            (:func:`mover_intervals`); ``None`` (or infinite ends): straight on.
+        mover_seen: ``(k, 2)`` rows ``(behind, ahead)``, or ``None``: the farthest points of
+            its line each mover has been seen at, behind and ahead of it (``<= 0``, ``>= 0``).
+            Given, a mover may also turn round at any point at or beyond them where no end is
+            known, so it is predicted as an interval of its line; ``None``: an end not known
+            is not predicted (straight on past it).
     """
 
     state: np.ndarray
@@ -62,6 +72,93 @@ class Situation:
     static_distance: Callable[[np.ndarray], np.ndarray]
     movers: np.ndarray = field(default_factory=lambda: np.zeros((0, 5)))
     distance_error: float = 0.0
+    mover_ends: np.ndarray | None = None
+    mover_seen: np.ndarray | None = None
+
+
+def bounce(run: np.ndarray, behind: np.ndarray, ahead: np.ndarray) -> np.ndarray:
+    """Position along its line of a point that has moved ``run`` metres (``>= 0``) from 0 in the
+    positive direction, turning round at ``ahead`` (``>= 0``) and ``behind`` (``<= 0``);
+    an infinite end means no turn on that side. Arrays broadcast against each other.
+
+    Both ends finite: a back-and-forth motion between them (unfolded onto a circle of length
+    twice the span). Only ``ahead`` finite: one turn there, then straight back (the point
+    is not known to turn anywhere behind). Only ``behind`` finite, or none: straight on (a
+    turn behind needs a turn ahead first)."""
+    run, lo, hi = np.broadcast_arrays(*(np.asarray(a, float) for a in (run, behind, ahead)))
+    fin_lo, fin_hi = np.isfinite(lo), np.isfinite(hi)
+    L = np.where(fin_lo, np.minimum(lo, 0.0), 0.0)
+    H = np.where(fin_hi, np.maximum(hi, 0.0), 0.0)
+    span = np.maximum(H - L, 1e-12)
+    u = np.mod(run - L, 2.0 * span)
+    both = L + np.where(u <= span, u, 2.0 * span - u)
+    once = np.where(run <= H, run, 2.0 * H - run)
+    return np.where(fin_hi, np.where(fin_lo, both, once), run)
+
+
+def mover_intervals(speed: np.ndarray, ends: np.ndarray | None, seen: np.ndarray | None,
+                    t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(lo, hi)``, each ``(k, T)``: the stretch of its line each of ``k`` movers may be on
+    ``t`` ``(T,)`` seconds ahead, metres along its direction of motion from where it is now.
+
+    A mover drives at its constant ``speed`` ``(k,)`` and turns round at its known ends
+    (``ends``, as :attr:`Situation.mover_ends`): then ``lo == hi``, one predicted position
+    (:func:`bounce`). With ``seen`` (:attr:`Situation.mover_seen`) it may also turn round at
+    any point at or beyond the farthest point seen on a side whose end is not known (a
+    shuttle turns only at the ends of its track, and the track holds every point it was seen
+    at), so the stretch is the hull of every such motion: with the end ahead unknown, from
+    where a turn at the farthest point seen ahead ``a0`` brings it back (``2 a0 - run``, not
+    past a known end behind) to straight on (``run``); with the end ahead known at ``a`` and
+    the one behind unknown, from its position ``q`` after the turn at ``a`` to where a turn at
+    the farthest point seen behind ``b0`` brings it (``2 b0 - q``, not past ``a``)."""
+    speed = np.asarray(speed, float).reshape(-1)
+    run = speed[:, None] * np.asarray(t, float).reshape(1, -1)
+    E = np.full((len(speed), 2), [-np.inf, np.inf]) if ends is None else np.asarray(ends, float).reshape(-1, 2)
+    b, a = E[:, :1], E[:, 1:]
+    point = bounce(run, b, a)
+    if seen is None:
+        return point, point
+    V = np.asarray(seen, float).reshape(-1, 2)
+    b0, a0 = np.minimum(V[:, :1], 0.0), np.maximum(V[:, 1:], 0.0)
+    ak, bk = np.isfinite(a), np.isfinite(b)
+    ahead_open = ~ak & (run > a0)                      # it may have turned at an unknown end ahead
+    behind_open = ak & ~bk & (point < b0)              # back past the farthest point seen behind
+    lo = np.where(ahead_open, np.maximum(2.0 * a0 - run, np.where(bk, b, -np.inf)), point)
+    hi = np.where(behind_open, np.minimum(2.0 * b0 - point, a), point)
+    return lo, hi
+
+
+def predicted_movers(movers: np.ndarray, ends: np.ndarray | None, t: np.ndarray,
+                     seen: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """``(A, B)``, each ``(k, T, 2)``: the ends of the stretch each mover ``(k, 5)`` may be on
+    at ``t`` ``(T,)`` seconds ahead (:func:`mover_intervals`; ``A == B`` where its motion is
+    predicted exactly, e.g. every mover when ``seen`` is ``None``)."""
+    M = np.asarray(movers, float).reshape(-1, 5)
+    t = np.asarray(t, float).reshape(-1)
+    speed = np.hypot(M[:, 2], M[:, 3])
+    u = M[:, 2:4] / np.where(speed > 0, speed, 1.0)[:, None]
+    lo, hi = mover_intervals(speed, ends, seen, t)
+    lo, hi = (np.where(speed[:, None] > 0, x, 0.0) for x in (lo, hi))   # a standing mover stays
+    return M[:, None, :2] + lo[..., None] * u[:, None, :], M[:, None, :2] + hi[..., None] * u[:, None, :]
+
+
+def motion_known(sit: "Situation") -> np.ndarray:
+    """``(k,)``: whether each mover's motion is known: both its turning points seen
+    (:attr:`Situation.mover_ends`), so it is predicted exactly, a shuttle between them. A
+    clearance's ``mover_growth`` (a prediction errs more the farther it looks) is the error of
+    a motion not known, and is not added for these."""
+    k = np.asarray(sit.movers, float).reshape(-1, 5).shape[0]
+    if sit.mover_ends is None:
+        return np.zeros(k, dtype=bool)
+    return np.isfinite(np.asarray(sit.mover_ends, float).reshape(-1, 2)).all(axis=1)
+
+
+def _segment_gap(P: np.ndarray, A: np.ndarray, B: np.ndarray) -> np.ndarray:
+    """Distance from points ``P`` ``(S, T, 2)`` to the segments ``A[t] -> B[t]`` ``(T, 2)``
+    (the symbolic rows' formula: a point segment is its point)."""
+    d = B - A
+    k = np.clip(((P - A) * d).sum(axis=-1) / ((d * d).sum(axis=-1) + _SMOOTH), 0.0, 1.0)
+    return np.hypot(*(P - A - k[..., None] * d).transpose(2, 0, 1))
 
 
 # ----------------------------------------------------------------------------- expressions
@@ -301,10 +398,13 @@ class ObstacleCost(LocalTerm):
 
 class Clearance(LocalConstraint):
     """Every predicted position keeps ``margin`` metres between the robot's edge and the
-    static obstacles, and ``margin + mover_margin + mover_growth * t`` from every mover
-    predicted at constant velocity (``t`` seconds ahead: a prediction errs more the farther
-    it looks). Its violation is the deepest shortfall along the window, plus
-    :data:`CONTACT_PENALTY` where the robot would touch a static obstacle."""
+    static obstacles, and ``margin + mover_margin + mover_growth * t`` from every mover as
+    predicted (``t`` seconds ahead: a prediction errs more the farther it looks; the growth is
+    not added for a mover whose motion is known, :func:`motion_known`): at constant speed,
+    turning round at its known ends, and, where a turn is possible but not known, the whole
+    stretch of its line it may be on (:func:`mover_intervals`, from :attr:`Situation.mover_ends`
+    and :attr:`Situation.mover_seen`). Its violation is the deepest shortfall along the
+    window, plus :data:`CONTACT_PENALTY` where the robot would touch a static obstacle."""
 
     name = "clearance"
 
@@ -321,8 +421,10 @@ class Clearance(LocalConstraint):
     def __ge__(self, margin: float) -> "Clearance":
         return Clearance(margin, self.mover_margin, self.mover_growth, self.mover_turns)
 
-    def _mover_need(self, prog, n: int) -> np.ndarray:
-        return self.margin + self.mover_margin + self.mover_growth * prog.h * np.arange(1, n + 1)
+    def _mover_need(self, prog, n: int) -> tuple[float, np.ndarray]:
+        """``(fixed, growth (n,))``: the mover margin is ``fixed + growth[j]`` at state ``j``,
+        the growth only for movers whose motion is not known (:func:`motion_known`)."""
+        return self.margin + self.mover_margin, self.mover_growth * prog.h * np.arange(1, n + 1)
 
     def batched(self, Z, U, sit, prog):
         gap = prog.static_gap(Z, sit)
@@ -331,15 +433,17 @@ class Clearance(LocalConstraint):
         # trades mover clearance for contact with a wall
         touch = gap - sit.distance_error
         short = np.maximum(self.margin - gap, 0.0) + np.where(touch < 0.0, CONTACT_PENALTY - touch, 0.0)
-        need = self._mover_need(prog, Z.shape[1] - 1)
-        for gap in prog.mover_gaps(Z, sit, turns=self.mover_turns):
-            short = np.maximum(short, need - gap)
+        fixed, growth = self._mover_need(prog, Z.shape[1] - 1)
+        known = motion_known(sit) & (not self.mover_turns)
+        for i, gap in enumerate(prog.mover_gaps(Z, sit, turns=self.mover_turns)):
+            short = np.maximum(short, fixed + (0.0 if known[i] else growth) - gap)
         return short.max(axis=1)   # the deepest shortfall along the window
 
     def symbolic(self, Z, U, ps, prog):
         rows = [(e, self.margin) for e in prog.static_rows(Z, ps)]
-        need = self._mover_need(prog, Z.shape[0] - 1)
-        rows += [(e, 0.0) for e in prog.mover_rows(Z, ps, squared=True, margin=need, turns=self.mover_turns)]
+        fixed, growth = self._mover_need(prog, Z.shape[0] - 1)
+        rows += [(e, 0.0) for e in prog.mover_rows(Z, ps, squared=True, margin=fixed, growth=growth,
+                                                    turns=self.mover_turns)]
         return rows
 
 
@@ -362,12 +466,90 @@ class CanStop(LocalConstraint):
         return [(2.0 * prog.robot.a_max * (gap - self.margin) - U[-1, 0] ** 2, 0.0)]
 
 
+class StopClear(LocalConstraint):
+    """Recursive feasibility against movers: braking to a stop at the end of the window, at its
+    acceleration limit, the robot stands clear of every predicted mover (``margin`` metres,
+    edge to edge) for ``hold`` seconds more (sampled at the window's interval times).
+
+    The next window can then always stand still: a plan may not end where the robot would
+    have to stop in a mover's way (on a track it is known to sweep, ahead of one driving
+    straight at the stopping point), only where it can wait. The robot is counted at its
+    stopping point over the whole hold (it gets there within ``v / a`` seconds)."""
+
+    name = "stop_clear"
+
+    def __init__(self, hold: float = 2.0, margin: float = 0.0) -> None:
+        for what, v in (("hold", hold), ("margin", margin)):
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v < 0:
+                raise ParameterError(f"stop_clear {what} must be a finite number >= 0, got {v!r}")
+        self.hold, self.margin = float(hold), float(margin)
+
+    def times(self, prog: "LocalProgram") -> np.ndarray:
+        """Seconds from now at which the stopped robot is checked: the window's end plus
+        ``hold`` in ``K`` steps."""
+        return prog.horizon + self.hold * np.arange(1, prog.K + 1) / prog.K
+
+    def _stop(self, Z, U, prog, symbolic: bool):
+        """The stopping point ``(x, y)`` after braking from the last command: the velocity's
+        direction times its braking distance ``|u|^2 / (2 a)``."""
+        if symbolic:
+            import casadi as ca
+
+            cos, sin, fabs, sqrt = ca.cos, ca.sin, ca.fabs, lambda q: ca.sqrt(q + _SMOOTH ** 2)
+        else:
+            cos, sin, fabs, sqrt = np.cos, np.sin, np.abs, np.sqrt
+        omni = prog.nu == 3
+        a = prog.robot.a_max / math.sqrt(2) if omni else prog.robot.a_max
+        v, vy = U[..., -1, 0] if not symbolic else U[-1, 0], 0.0
+        if omni:
+            vy = U[..., -1, 2] if not symbolic else U[-1, 2]
+        speed = sqrt(v * v + vy * vy) if omni else fabs(v)
+        th = Z[..., -1, 2] if not symbolic else Z[-1, 2]
+        x0, y0 = (Z[..., -1, 0], Z[..., -1, 1]) if not symbolic else (Z[-1, 0], Z[-1, 1])
+        c, s = cos(th), sin(th)
+        return x0 + (v * c - vy * s) * speed / (2 * a), y0 + (v * s + vy * c) * speed / (2 * a)
+
+    def batched(self, Z, U, sit, prog):
+        x, y = self._stop(Z, U, prog, False)
+        P = np.stack([x, y], axis=-1)[:, None, :]                     # (S, 1, 2)
+        t = self.times(prog)
+        M = np.asarray(sit.movers, float).reshape(-1, 5)
+        short = np.zeros(len(Z))
+        if not len(M):
+            return short
+        A, B = predicted_movers(M, sit.mover_ends, t, sit.mover_seen)
+        for i in range(len(M)):
+            gap = _segment_gap(np.broadcast_to(P, (len(Z), len(t), 2)), A[i], B[i]) - M[i, 4] - prog.robot.radius
+            short = np.maximum(short, (self.margin - gap).max(axis=1))
+        return short
+
+    def symbolic(self, Z, U, ps, prog):
+        import casadi as ca
+
+        px, py = self._stop(Z, U, prog, True)
+        n, T, rows = prog.N, len(self.times(prog)), []
+        base = 4 * n   # after the window's stretches (see SymbolicSituation.mover_path)
+        for i in range(ps.movers.shape[0]):
+            r = ps.movers[i, 4]
+            for j in range(T):
+                ax, ay = ps.mover_path[i, base + j], ps.mover_path[i, base + T + j]
+                dx, dy = ps.mover_path[i, base + 2 * T + j] - ax, ps.mover_path[i, base + 3 * T + j] - ay
+                k = ca.fmin(1, ca.fmax(0, ((px - ax) * dx + (py - ay) * dy) / (dx * dx + dy * dy + _SMOOTH)))
+                d2 = (px - ax - k * dx) ** 2 + (py - ay - k * dy) ** 2
+                rows.append((d2 - (prog.robot.radius + r + self.margin) ** 2, 0.0))
+        return rows
+
+
 class SymbolicSituation:
     """The situation as CasADi parameters of one built solver (``opti.parameter``): the
     state ``(6,)``, the subgoal ``(2,)``, the current command ``(nu,)``, each predicted
     position's path line ``(N, 6)`` (unit normal, offset, and whether the reference lies
     beyond the segment, with that end point), the static field's model
-    ``(N, 5)`` (value, gradient, reference point) and ``(max_movers, 5)`` mover slots."""
+    ``(N, 5)`` (value, gradient, reference point), ``(max_movers, 5)`` mover slots and the
+    stretches they are predicted on ``(max_movers, 4 N + 4 H)`` (the ``N`` x and ``N`` y of one
+    end, then of the other, at the window's times; the same point twice where the motion is
+    predicted exactly; then the same at the ``H`` times of :meth:`LocalProgram.hold_times`),
+    and whether each slot's motion is known ``(max_movers,)`` (1 or 0, :func:`motion_known`)."""
 
     def __init__(self, opti, prog: "LocalProgram", max_movers: int) -> None:
         self.state = opti.parameter(6)
@@ -376,6 +558,8 @@ class SymbolicSituation:
         self.lines = opti.parameter(prog.N, 6)
         self.static = opti.parameter(prog.N, 5)
         self.movers = opti.parameter(max_movers, 5)
+        self.mover_path = opti.parameter(max_movers, 4 * (prog.N + len(prog.hold_times())))
+        self.mover_known = opti.parameter(max_movers)
         self.opti = opti
 
     def set(self, values: dict) -> None:
@@ -469,6 +653,14 @@ class LocalProgram:
                           z[2] + u[1] * self.h)
 
     # ------------------------------------------------------------------ obstacles, both views
+    def hold_times(self) -> np.ndarray:
+        """Times after the window at which a :class:`StopClear` constraint checks the movers
+        (none without one)."""
+        for c in self.constraints:
+            if isinstance(c, StopClear):
+                return c.times(self)
+        return np.zeros(0)
+
     def static_gap(self, Z: np.ndarray, sit: Situation) -> np.ndarray:
         """``(S, n)``: distance from the robot's edge to the static obstacles at the states
         ``Z[:, :]`` except the start (the start is where the robot is)."""
@@ -476,19 +668,22 @@ class LocalProgram:
         return np.asarray(sit.static_distance(P), float) - self.robot.radius
 
     def mover_gaps(self, Z: np.ndarray, sit: Situation, turns: bool = False):
-        """``(S, n)`` per mover: distance from the robot's edge to that predicted mover's edge.
+        """``(S, n)`` per mover: distance from the robot's edge to that predicted mover's edge
+        (:func:`predicted_movers`: constant speed, turning round at its known ends; the
+        nearest point of the stretch it may be on where a turn is possible but not known).
         ``turns``: the mover may turn round at any moment, so ``t`` seconds ahead it is
         anywhere on its line within ``|v| t`` of where it is now (a segment, not a point)."""
         P = Z[:, 1:, :2]
         t = self.h * np.arange(1, P.shape[1] + 1)
-        for x, y, vx, vy, r in np.asarray(sit.movers, float).reshape(-1, 5):
+        M = np.asarray(sit.movers, float).reshape(-1, 5)
+        if not turns:
+            A, B = predicted_movers(M, sit.mover_ends, t, sit.mover_seen)
+        for i, (x, y, vx, vy, r) in enumerate(M):
             if turns:   # state j against its own segment m(0) -/+ v t_j
-                A = np.stack([x - vx * t, y - vy * t], axis=1)
-                d = 2.0 * np.stack([vx * t, vy * t], axis=1)
-                k = np.clip(((P - A) * d).sum(axis=-1) / ((d * d).sum(axis=-1) + _SMOOTH), 0.0, 1.0)
-                yield np.hypot(*(P - A - k[..., None] * d).transpose(2, 0, 1)) - r - self.robot.radius
-            else:
-                yield np.hypot(P[..., 0] - (x + vx * t), P[..., 1] - (y + vy * t)) - r - self.robot.radius
+                a = np.stack([x - vx * t, y - vy * t], axis=1)
+                yield _segment_gap(P, a, a + 2.0 * np.stack([vx * t, vy * t], axis=1)) - r - self.robot.radius
+            else:       # against the stretch it is predicted on (a point where its motion is known)
+                yield _segment_gap(P, A[i], B[i]) - r - self.robot.radius
 
     def mover_gap(self, Z: np.ndarray, sit: Situation) -> np.ndarray:
         """``(S, n)``: distance from the robot's edge to the nearest predicted mover's edge."""
@@ -504,16 +699,23 @@ class LocalProgram:
         return [L[j - 1, 0] + L[j - 1, 1] * (Z[j, 0] - L[j - 1, 3]) + L[j - 1, 2] * (Z[j, 1] - L[j - 1, 4])
                 - self.robot.radius for j in range(1, Z.shape[0])]
 
-    def mover_rows(self, Z, ps: "SymbolicSituation", squared: bool, margin=0.0, turns: bool = False) -> list:
+    def mover_rows(self, Z, ps: "SymbolicSituation", squared: bool, margin=0.0, growth=0.0,
+                   turns: bool = False) -> list:
         """Symbolic mover gaps over the parameter slots of the movers: ``|p - m(t)|^2 -
         (R + r + margin_j)^2`` when ``squared`` (a constraint row ``>= 0``; ``margin`` a number
-        or one per predicted state), else the edge distance. ``turns``: as :meth:`mover_gaps`."""
+        or one per predicted state, plus ``growth`` (the same) for a slot whose motion is not
+        known, :func:`motion_known`, or for every slot with ``turns``), else the edge distance.
+        ``m(t)`` is the nearest point of the predicted stretch (parameters,
+        :func:`predicted_movers`). ``turns``: as :meth:`mover_gaps`."""
         import casadi as ca
 
         margins = np.broadcast_to(np.asarray(margin, float), (Z.shape[0] - 1,))
+        growths = np.broadcast_to(np.asarray(growth, float), (Z.shape[0] - 1,))
+        n = Z.shape[0] - 1
         rows = []
         for i in range(ps.movers.shape[0]):
             x, y, vx, vy, r = (ps.movers[i, c] for c in range(5))
+            unknown = 1.0 if turns else 1.0 - ps.mover_known[i]
             for j in range(1, Z.shape[0]):
                 t = self.h * j
                 if turns:   # nearest point of the segment m(0) -/+ v t
@@ -521,9 +723,13 @@ class LocalProgram:
                     k = ca.fmin(1, ca.fmax(0, ((Z[j, 0] - ax) * dx + (Z[j, 1] - ay) * dy)
                                            / (dx * dx + dy * dy + _SMOOTH)))
                     d2 = (Z[j, 0] - ax - k * dx) ** 2 + (Z[j, 1] - ay - k * dy) ** 2
-                else:
-                    d2 = (Z[j, 0] - (x + vx * t)) ** 2 + (Z[j, 1] - (y + vy * t)) ** 2
-                rows.append(d2 - (self.robot.radius + r + margins[j - 1]) ** 2 if squared
+                else:       # nearest point of the predicted stretch A -> B (A == B: a point)
+                    ax, ay = ps.mover_path[i, j - 1], ps.mover_path[i, n + j - 1]
+                    dx, dy = ps.mover_path[i, 2 * n + j - 1] - ax, ps.mover_path[i, 3 * n + j - 1] - ay
+                    k = ca.fmin(1, ca.fmax(0, ((Z[j, 0] - ax) * dx + (Z[j, 1] - ay) * dy)
+                                           / (dx * dx + dy * dy + _SMOOTH)))
+                    d2 = (Z[j, 0] - ax - k * dx) ** 2 + (Z[j, 1] - ay - k * dy) ** 2
+                rows.append(d2 - (self.robot.radius + r + margins[j - 1] + unknown * growths[j - 1]) ** 2 if squared
                             else ca.sqrt(d2 + _SMOOTH) - r - self.robot.radius)
         return rows
 
@@ -531,8 +737,8 @@ class LocalProgram:
         """The parameter values of :class:`SymbolicSituation` for ``sit``, the symbolic
         model taken around the reference states ``ref`` ``(N + 1, 3)``: each predicted
         position's path line (the nearest segment's), the static field's value and gradient
-        (central differences), and the ``max_movers`` nearest movers (the other slots
-        parked far away)."""
+        (central differences), and the ``max_movers`` nearest movers with their predicted
+        stretches (:func:`predicted_movers`; the other slots parked far away)."""
         A, B = _near_path(sit, self.reach)
         d = B - A
         L2 = np.maximum((d * d).sum(axis=1), 1e-18)
@@ -550,12 +756,23 @@ class LocalProgram:
         f = np.asarray(sit.static_distance(probe), float)
         static = np.column_stack([f[:, 0], (f[:, 1] - f[:, 2]) / (2 * eps), (f[:, 3] - f[:, 4]) / (2 * eps), P])
         movers = np.tile([1e6, 1e6, 0.0, 0.0, 0.0], (max_movers, 1))
+        path = np.full((max_movers, 4 * (self.N + len(self.hold_times()))), 1e6)
+        known = np.ones(max_movers)
         M = np.asarray(sit.movers, float).reshape(-1, 5)
-        if len(M):
+        if len(M) and max_movers:
             near = np.argsort(np.hypot(M[:, 0] - sit.state[0], M[:, 1] - sit.state[1]))[:max_movers]
             movers[:len(near)] = M[near]
+            ends, seen = (None if x is None else np.asarray(x, float).reshape(-1, 2)[near]
+                          for x in (sit.mover_ends, sit.mover_seen))
+            blocks = []
+            for t in (self.h * np.arange(1, self.N + 1), self.hold_times()):
+                A, B = predicted_movers(M[near], ends, t, seen)
+                blocks += [A[..., 0], A[..., 1], B[..., 0], B[..., 1]]
+            path[:len(near)] = np.concatenate(blocks, axis=1)
+            known[:len(near)] = motion_known(sit)[near]
         return {"state": np.asarray(sit.state, float), "subgoal": np.asarray(sit.subgoal, float),
-                "command": self.current_command(sit), "lines": lines, "static": static, "movers": movers}
+                "command": self.current_command(sit), "lines": lines, "static": static, "movers": movers,
+                "mover_path": path, "mover_known": known}
 
     # ------------------------------------------------------------------ the one judgement
     def evaluate(self, sit: Situation, U: np.ndarray) -> tuple[np.ndarray, np.ndarray, dict]:
@@ -626,7 +843,8 @@ def custom(fn: Callable, name: str = "custom") -> Custom:
 
 def clearance(mover_margin: float = 0.0, mover_growth: float = 0.0, mover_turns: bool = False) -> Clearance:
     """Clearance constraint; ``clearance() >= d`` keeps ``d`` metres from obstacles and movers,
-    and ``mover_margin + mover_growth * t`` more from movers predicted ``t`` seconds ahead.
+    and ``mover_margin + mover_growth * t`` more from movers predicted ``t`` seconds ahead
+    (``mover_margin`` only from a mover whose motion is known: both its turning points seen).
     ``mover_turns``: a mover may turn round on its line at any moment (shuttling movers), so it
     is kept clear of wherever it can be along its line, not only of where it is heading."""
     return Clearance(0.0, mover_margin, mover_growth, mover_turns)
@@ -638,15 +856,25 @@ def can_stop(margin: float = 0.0) -> CanStop:
     return CanStop(margin)
 
 
+def stop_clear(hold: float = 2.0, margin: float = 0.0) -> StopClear:
+    """Braking to a stop at the end of the window, the robot then stands ``margin`` metres
+    clear of every predicted mover for ``hold`` seconds (see :class:`StopClear`)."""
+    return StopClear(hold, margin)
+
+
 def default_local_program(robot: RobotSpec, horizon: float = 2.0, intervals: int = 10, step: float = 0.1,
-                          margin: float = 0.02) -> LocalProgram:
+                          margin: float = 0.02, stop_hold: float = 0.0) -> LocalProgram:
     """The window program ``mpc`` solves unless given one: reach the subgoal, stay near the
-    global path, keep speed, change commands smoothly; clearance and a stop at the end."""
+    global path, keep speed, change commands smoothly; clearance and a stop at the end
+    (``stop_hold > 0``: and that stop clear of the movers for that many seconds more,
+    :func:`stop_clear`)."""
     lp = LocalProgram(robot, horizon, intervals, step, name="default")
     lp.minimize(1.0 * goal_distance() + 0.3 * goal_heading() + 0.5 * path_distance() - 0.5 * speed()
                 + 0.05 * smoothness() + 0.2 * obstacle_cost())
     lp.subject_to(clearance(mover_margin=0.1, mover_growth=0.1) >= margin)
     lp.subject_to(can_stop(margin))
+    if stop_hold > 0:
+        lp.subject_to(stop_clear(stop_hold, margin + 0.1))
     return lp
 
 

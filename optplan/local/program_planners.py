@@ -14,6 +14,14 @@
 
 Every step's ``Command.info`` carries ``cost`` and ``violation`` under the program, the
 solver's ``status`` and its ``solve_ms``.
+
+The movers of every solver's situation come from one :class:`MoverTracker` per planner: it
+follows each sensed mover along its line of motion and learns where it turns round from what
+it observes. The program then predicts (``mover_model``) a mover seen to turn round as
+bouncing between the ends it was seen to turn at; where no end is known it may turn round
+anywhere beyond the stretch it has been seen on, so it is predicted as a growing stretch of
+its line (``"sweep"``, the default), or straight on (``"bounce"``); ``"straight"`` runs every
+mover straight on at constant velocity (the model before).
 """
 from __future__ import annotations
 
@@ -29,6 +37,7 @@ from ..world.robot import Command, RobotSpec, RobotState
 from .base import LocalContext
 from .hooks import PlannerView, build_part
 from .limiter import RuckigLimiter
+from .sweep_gate import Track
 from .window import dynamic_window, sample_grid
 
 FEASIBLE = 1e-6   # a violation below this counts as none (the batched view's round-off)
@@ -36,13 +45,126 @@ SLACK_WEIGHT = 1e3  # cost of a metre (or m^2 for mover rows) of constraint shor
 TRUST_RADIUS = 0.3  # m: how far a planned position may move from where the field's model was taken
 
 
-def situation_of(ctx: LocalContext) -> Situation:
-    """The window program's :class:`Situation` of a control step."""
+# how the program solvers predict movers (MoverTracker): "bounce" turns a mover round at the
+# ends it was seen to turn at, "sweep" also lets it turn anywhere beyond the stretch it was seen
+# on where no end is known yet, "straight" runs every mover on at constant velocity
+MOVER_MODELS = ("bounce", "sweep", "straight")
+
+
+def situation_of(ctx: LocalContext, mover_ends: np.ndarray | None = None,
+                 mover_seen: np.ndarray | None = None) -> Situation:
+    """The window program's :class:`Situation` of a control step (``mover_ends``, ``mover_seen``:
+    what is known of where the sensed movers turn round, :attr:`Situation.mover_ends`)."""
     s = ctx.state
     return Situation(state=np.array([s.x, s.y, s.theta, s.v, s.w, s.vy], float),
                      subgoal=np.asarray(ctx.subgoal, float), path=np.asarray(ctx.global_path, float),
                      static_distance=ctx.static_distance, movers=np.asarray(ctx.dynamic, float).reshape(-1, 5),
-                     distance_error=float(ctx.distance_error or 0.0))
+                     distance_error=float(ctx.distance_error or 0.0), mover_ends=mover_ends,
+                     mover_seen=mover_seen)
+
+
+class MoverTracker:
+    """Where the sensed movers turn round, learnt from what is observed.
+
+    Every control step each sensed mover is matched to a track (a :class:`~optplan.local.
+    sweep_gate.Track`: its line of motion, its position along it, the extent it was seen on):
+    the same radius, moving along the track's line, within ``match`` metres of it, and, if
+    the track was seen a step ago, within ``match`` of where it was predicted. A reversal of
+    the velocity along the line is a turn round: at constant speed ``c``, a mover seen at
+    ``s1`` and ``dt`` later at ``s2`` on its way back turned at ``(s1 + s2 + c dt) / 2`` (the
+    sweep gate's rule, also across a gap in sensing of at most ``rejoin`` seconds when the
+    mover cannot have turned three times). A mover seen past an end it was thought to turn
+    at (by more than ``slack`` metres) did not turn there, and that end is forgotten. Tracks
+    unseen for ``memory`` seconds are dropped.
+
+    :meth:`observe` gives, per sensed mover, where it turns round ahead of and behind itself
+    along its direction of motion (:attr:`Situation.mover_ends`), and the farthest points it
+    was seen at (:attr:`Situation.mover_seen`): the program then predicts it bouncing between
+    the ends it was seen to turn at, and (``mover_seen`` given) possibly turning round beyond
+    the stretch it was seen on where no end is known.
+    """
+
+    def __init__(self, match: float = 0.3, memory: float = 60.0, rejoin: float = 10.0, slack: float = 0.1) -> None:
+        self.match, self.memory, self.rejoin, self.slack = float(match), float(memory), float(rejoin), float(slack)
+        self.tracks: list[Track] = []
+        self._t: float | None = None
+        self._ends, self._seen = np.zeros((0, 2)), np.zeros((0, 2))
+
+    def reset(self) -> None:
+        self.tracks, self._t = [], None
+        self._ends, self._seen = np.zeros((0, 2)), np.zeros((0, 2))
+
+    def _match(self, p: complex, v: complex, r: float, t: float, dt: float, free: list[Track]) -> Track | None:
+        c = abs(v)
+        best, best_off = None, self.match
+        for k in free:
+            if abs(k.radius - r) > 1e-6 or abs((v * np.conj(k.axis)).imag) > 0.05 * c:
+                continue  # another size, or not moving along this track's line
+            s, off = k.along(p)
+            if off > best_off:
+                continue
+            if t - k.t_seen <= 1.5 * dt + 1e-9 and abs(s - k.predicted(t - k.t_seen)) > self.match:
+                continue  # seen a step ago somewhere else on the line
+            best, best_off = k, off
+        return best
+
+    def observe(self, ctx: LocalContext) -> tuple[np.ndarray, np.ndarray]:
+        """``(ends, seen)``, each ``(k, 2)`` rows ``(behind, ahead)`` for the rows of
+        ``ctx.dynamic``, metres along each mover's velocity from where it is: where it is known
+        to turn round (infinite where no turn is known) and the farthest points it was seen
+        at, after learning from this step's observation (once per step: a second call at the
+        same time gives the same rows)."""
+        t = float(ctx.t)
+        if self._t is not None and abs(t - self._t) < 1e-12:
+            return self._ends, self._seen
+        self._t = t
+        self.tracks = [k for k in self.tracks if t - k.t_seen <= self.memory]
+        rows = np.asarray(ctx.dynamic, float).reshape(-1, 5)
+        out = np.tile([-math.inf, math.inf], (len(rows), 1))
+        seen = np.zeros((len(rows), 2))
+        free = list(self.tracks)
+        for row, (x, y, vx, vy, r) in enumerate(rows):
+            p, v = complex(x, y), complex(vx, vy)
+            c = abs(v)
+            if c < 1e-6:
+                continue  # standing: nothing to learn, predicted where it stands
+            k = self._match(p, v, float(r), t, ctx.dt, free)
+            if k is None:
+                k = Track(origin=p, axis=v / c, radius=float(r), speed=c, s=0.0, heading=1.0, seen_lo=0.0,
+                          seen_hi=0.0, t_seen=t, first_seen=t)
+                self.tracks.append(k)
+            else:
+                free.remove(k)
+            s, _ = k.along(p)
+            heading = 1.0 if (v * np.conj(k.axis)).real > 0 else -1.0
+            elapsed = t - k.t_seen
+            one_turn = elapsed <= 5 * ctx.dt + 1e-9 or (elapsed <= self.rejoin
+                                                        and c * elapsed < 2 * (k.seen_hi - k.seen_lo))
+            if heading != k.heading and 0 < elapsed and one_turn:
+                if k.heading > 0:
+                    k.end_hi = max(0.5 * (k.s + s + c * elapsed), k.seen_hi)
+                else:
+                    k.end_lo = min(0.5 * (k.s + s - c * elapsed), k.seen_lo)
+            if s > k.end_hi + self.slack:   # seen beyond where it was thought to turn: it does not
+                k.end_hi = math.inf
+            if s < k.end_lo - self.slack:
+                k.end_lo = -math.inf
+            k.s, k.heading, k.speed, k.t_seen = s, heading, c, t
+            k.seen_lo, k.seen_hi = min(k.seen_lo, s), max(k.seen_hi, s)
+            if heading > 0:
+                ahead, behind, seen_ahead, seen_behind = k.end_hi - s, k.end_lo - s, k.seen_hi - s, k.seen_lo - s
+            else:
+                ahead, behind, seen_ahead, seen_behind = s - k.end_lo, s - k.end_hi, s - k.seen_lo, s - k.seen_hi
+            out[row] = (min(behind, 0.0), max(ahead, 0.0))
+            seen[row] = (min(seen_behind, 0.0), max(seen_ahead, 0.0))
+        self._ends, self._seen = out, seen
+        return out, seen
+
+
+def _tracker(mover_model: str) -> MoverTracker | None:
+    if mover_model not in MOVER_MODELS:
+        raise ParameterError(f"mover_model must be one of {', '.join(map(repr, MOVER_MODELS))}, got {mover_model!r}")
+    return MoverTracker() if mover_model != "straight" else None
 
 
 # the path creep is on by default for the program solvers: without it mpc stopped for good in
@@ -71,11 +193,15 @@ def _rank(violation: float, cost: float) -> tuple[bool, float]:
 
 class ProgramSampler:
     """Sampling solver of a window program: the dynamic window's ``n_v x n_w`` constant
-    commands (``n_vy`` sideways speeds too on an omni robot), each held over the window."""
+    commands (``n_vy`` sideways speeds too on an omni robot), each held over the window.
+    ``mover_model``: ``"bounce"`` (movers seen to turn round are predicted turning round
+    at the ends they were seen at, :class:`MoverTracker`), ``"sweep"`` (and possibly turning
+    beyond the stretch they were seen on where no end is known) or ``"straight"``."""
 
     def __init__(self, robot: RobotSpec, dt: float, program: LocalProgram | None = None, n_v: int = 11,
-                 n_w: int = 21, n_vy: int = 5, name: str = "dwa") -> None:
+                 n_w: int = 21, n_vy: int = 5, name: str = "dwa", mover_model: str = "sweep") -> None:
         self.robot, self.dt, self.name = robot, float(dt), name
+        self.tracker, self.mover_model = _tracker(mover_model), mover_model
         self.lp = program if program is not None else default_local_program(robot, step=dt)
         if not isinstance(self.lp, LocalProgram):
             raise ParameterError(f"local_program must be an op.LocalProgram, got {type(self.lp).__name__}")
@@ -88,7 +214,16 @@ class ProgramSampler:
         self.n = (int(n_v), int(n_w), int(n_vy))
 
     def reset(self, state: RobotState, global_path: np.ndarray) -> None:
-        pass
+        if self.tracker is not None:
+            self.tracker.reset()
+
+    def situation(self, ctx: LocalContext) -> Situation:
+        """This step's :class:`Situation`, the movers' known turning points learnt first
+        (call it every step: the tracker learns from every observation)."""
+        if self.tracker is None:
+            return situation_of(ctx)
+        ends, seen = self.tracker.observe(ctx)
+        return situation_of(ctx, ends, seen if self.mover_model == "sweep" else None)
 
     def samples(self, ctx: LocalContext) -> np.ndarray:
         """``(S, K, nu)``: the window's constant commands, each repeated over the intervals."""
@@ -111,7 +246,7 @@ class ProgramSampler:
 
     def command(self, ctx: LocalContext) -> Command:
         t0 = time.perf_counter()
-        sit = situation_of(ctx)
+        sit = self.situation(ctx)
         U = self.samples(ctx)
         i, cost, viol = self.best(sit, U)
         u = U[i, 0]
@@ -134,17 +269,21 @@ class MPCPlanner:
         path_creep: parameters of the path creep (``local/creep.py``) that takes over after
             the robot has stood beside obstacles (default: its own defaults), or ``None``
             for none.
+        mover_model: how the program predicts movers: ``"bounce"`` (one seen to turn round
+            turns round at the ends it was seen at, :class:`MoverTracker`), ``"sweep"`` (and it
+            may turn beyond the stretch it was seen on where no end is known) or ``"straight"``.
     """
 
     name = "mpc"
     warm_from_previous = True   # start from the shifted previous plan when the program rates it better
 
     def __init__(self, robot: RobotSpec, dt: float, program: LocalProgram | None = None, max_movers: int = 10,
-                 n_v: int = 9, n_w: int = 15, max_iter: int = 20, path_creep: dict | None = DEFAULT_CREEP) -> None:
+                 n_v: int = 9, n_w: int = 15, max_iter: int = 20, path_creep: dict | None = DEFAULT_CREEP,
+                 mover_model: str = "sweep") -> None:
         self.robot, self.dt = robot, float(dt)
         self.view = PlannerView(robot, self.dt, {})
         self.creep = _creep(path_creep)
-        self.sampler = ProgramSampler(robot, dt, program, n_v=n_v, n_w=n_w, name="mpc")
+        self.sampler = ProgramSampler(robot, dt, program, n_v=n_v, n_w=n_w, name="mpc", mover_model=mover_model)
         lp = self.lp = self.sampler.lp
         if isinstance(max_movers, bool) or not isinstance(max_movers, (int, np.integer)) or max_movers < 0:
             raise ParameterError(f"max_movers must be an integer >= 0, got {max_movers!r}")
@@ -154,7 +293,7 @@ class MPCPlanner:
         self.max_iter = int(max_iter)
         self.repairs = 1   # re-solves with the field's model taken along a plan found too close
         self.trust = TRUST_RADIUS
-        self.inputs = ("state", "subgoal", "command", "lines", "static", "movers")
+        self.inputs = ("state", "subgoal", "command", "lines", "static", "movers", "mover_path", "mover_known")
         self._solvers: dict[int, tuple[Any, int]] = {}
         self._slots = self._solver_slots()
         acc = [lp.rates()[c] / (lp.m * lp.h) for c in range(lp.nu)]
@@ -237,6 +376,7 @@ class MPCPlanner:
     def reset(self, state: RobotState, global_path: np.ndarray) -> None:
         self.previous = None
         self.duals = None
+        self.sampler.reset(state, global_path)
         if self.creep is not None:
             self.creep.reset(self.view, state, global_path)
         self.limiter.reset([state.v, state.w, state.vy][:self.lp.nu])
@@ -257,13 +397,13 @@ class MPCPlanner:
     def command(self, ctx: LocalContext) -> Command:
         t0 = time.perf_counter()
         lp = self.lp
+        sit = self.sampler.situation(ctx)   # every step, so the mover tracker sees every observation
         win = dynamic_window(self.robot, ctx.state, ctx.dt, omni=lp.nu == 3)
         took = self.creep.override(self.view, ctx, win) if self.creep is not None else None
         if took is not None:   # the path creep has the robot (see local/creep.py)
             self.previous, self.duals = None, None
             v, w, extra = took
             return self._limited(win.clip(v, w, 0.0), {"planner": self.name, "status": "creep", **extra}, t0)
-        sit = situation_of(ctx)
         samples = self.sampler.samples(ctx)
         start, i, cost, viol = self._start(sit, samples)
         solve, slots, n_duals = self._solver(len(sit.movers))
@@ -333,9 +473,10 @@ class ProgramQPDWA(MPCPlanner):
     warm_from_previous = False  # a polish of this period's best sample
 
     def __init__(self, robot: RobotSpec, dt: float, program: LocalProgram | None = None, max_movers: int = 10,
-                 n_v: int = 11, n_w: int = 21, max_iter: int = 1, path_creep: dict | None = DEFAULT_CREEP) -> None:
+                 n_v: int = 11, n_w: int = 21, max_iter: int = 1, path_creep: dict | None = DEFAULT_CREEP,
+                 mover_model: str = "sweep") -> None:
         super().__init__(robot, dt, program, max_movers=max_movers, n_v=n_v, n_w=n_w, max_iter=max_iter,
-                         path_creep=path_creep)
+                         path_creep=path_creep, mover_model=mover_model)
         self.sampler.name = self.name
         self.repairs = 0
 
