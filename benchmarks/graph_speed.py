@@ -3,6 +3,7 @@
     python benchmarks/graph_speed.py            # every table
     python benchmarks/graph_speed.py --quick    # 32x32 to 128x128 only, fewer repeats
     python benchmarks/graph_speed.py --skip-visibility --repeats 15   # the A* tables, more rounds
+    python benchmarks/graph_speed.py --whole     # the whole op.shortest_path call, networkx, scipy
 
 networkx is the anchor for A*: it is not a dependency of optplan. When it is not
 importable the script installs it for itself into ``/tmp/networkx-anchor`` (``pip
@@ -29,6 +30,12 @@ Table 1b: the same per query over the scenario rows of the Moving AI maps of
 ``../shared/data`` (room-32-32-4 is the 32x32 map of issue 43). A summary then
 gives, per map size, the lowest networkx / API ratio node to node and point to
 point over the maps, and scipy's times.
+
+``--whole`` prints only the whole ``op.shortest_path(method="astar")`` call against
+networkx's ``astar_path`` and scipy's compiled ``dijkstra`` (the whole tree from the
+start cell, and the tree cut at the goal's distance with ``limit``: what a compiled
+search that stops at the goal settles), per map kind and size, timed in batches of
+calls, then the matrix of networkx / op ratios (issue 43 item 4: >= 2 at every size).
 
 Table 2 (the exact any-angle search ``method="visibility"``): the Moving AI
 maps of ``../shared/data`` (the scen row with the longest optimum), seeded
@@ -271,6 +278,83 @@ def astar_table(sizes, repeats: int) -> dict:
     return per_size
 
 
+def batched(fns: dict, repeats: int, budget: float = 0.02) -> dict:
+    """Per-call time of each callable: :func:`interleaved` over batches of calls that last
+    about ``budget`` seconds each (one call when a call takes longer), so that calls of tens
+    of microseconds are not timed one by one against the clock's and the loop's overhead."""
+    counts = {}
+    for k, fn in fns.items():
+        t = time.perf_counter()
+        fn()
+        counts[k] = max(1, int(budget / max(time.perf_counter() - t, 1e-7)))
+
+    def batch(fn, n):
+        def run():
+            for _ in range(n):
+                fn()
+        return run
+
+    best = interleaved({k: batch(fn, counts[k]) for k, fn in fns.items()}, repeats)
+    return {k: v / counts[k] for k, v in best.items()}
+
+
+def whole_table(sizes, repeats: int) -> None:
+    """The whole ``op.shortest_path(method="astar")`` call against networkx's ``astar_path``
+    and scipy's compiled Dijkstra (issue 43 item 4)."""
+    from scipy.sparse.csgraph import dijkstra
+
+    print("## The whole op.shortest_path call against networkx and scipy (issue 43 item 4)\n")
+    if nx is None:
+        print("networkx is not available (--no-anchors, or it could not be installed): its columns are empty.\n")
+    print(f"per-call times, best of {repeats} interleaved rounds of ~20 ms batches, warm map. "
+          "op = `op.shortest_path(grid, s, g, method=\"astar\")` whole (points checked, search, the path "
+          "checked by the exact rule, length; turn metrics and `min_clearance` on their first read, not timed), "
+          "node to node (cell centres) and point to point (off-centre points in the same cells); networkx = "
+          "`astar_path` between the same cells (the goal of both columns); scipy = csgraph's compiled "
+          "`dijkstra` from the start cell (`indices`): the whole tree, and stopped at the goal's distance "
+          "(`limit`, the early stop of a search to one goal): the compiled limit\n")
+    print("| map | size | op node-to-node [ms] | op point-to-point [ms] | networkx [ms] "
+          "| networkx / op node-to-node | networkx / op point-to-point | scipy tree [ms] "
+          "| scipy to the goal [ms] | op node-to-node / scipy to the goal |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    ratios: dict = {}
+    for name, grid in grid_cases(sizes):
+        s, g = far_query(grid)
+        ps, pg = point_query(grid, s, g)
+        r, rp = op.shortest_path(grid, s, g, method="astar"), op.shortest_path(grid, ps, pg, method="astar")
+        assert r.feasible and rp.feasible, name
+        W = grid.width
+        si, gi = (int(v) for v in (np.floor(grid.to_grid([s, g])) @ [1, W]))
+        A = scipy_graph(grid)
+        D = dijkstra(A, directed=True, indices=si)
+        assert abs(D[gi] * grid.resolution - r.length) < 1e-9, name
+        limit = D[gi] * (1 + 1e-12)
+        assert dijkstra(A, directed=True, indices=si, limit=limit)[gi] == D[gi]
+        fns = {"op": lambda: op.shortest_path(grid, s, g, method="astar"),
+               "op_p": lambda: op.shortest_path(grid, ps, pg, method="astar"),
+               "tree": lambda: dijkstra(A, directed=True, indices=si),
+               "goal": lambda: dijkstra(A, directed=True, indices=si, limit=limit)}
+        if nx is not None:
+            G = networkx_graph(grid)
+            h = octile_heuristic(W)
+            npath = nx.astar_path(G, si, gi, heuristic=h, weight="weight")
+            assert abs(nx.path_weight(G, npath, "weight") * grid.resolution - r.length) < 1e-9, name
+            fns["nx"] = lambda: nx.astar_path(G, si, gi, heuristic=h, weight="weight")
+        t = batched(fns, repeats)
+        ms = lambda k: f"{1e3 * t[k]:.3f}" if k in t else "-"
+        ratio = lambda k: t["nx"] / t[k] if "nx" in t else math.nan
+        ratios[(name, W)] = (ratio("op"), ratio("op_p"))
+        print(f"| {name} | {W}x{grid.height} | {ms('op')} | {ms('op_p')} | {ms('nx')} | {ratio('op'):.2f} "
+              f"| {ratio('op_p'):.2f} | {ms('tree')} | {ms('goal')} | {t['op'] / t['goal']:.1f} |", flush=True)
+    names = list(dict.fromkeys(k[0] for k in ratios))
+    print("\nnetworkx / op.shortest_path, node to node / point to point (goal: >= 2):\n")
+    print("| map | " + " | ".join(f"{n}x{n}" for n in sizes) + " |")
+    print("|---|" + "---|" * len(sizes))
+    for name in names:
+        print(f"| {name} | " + " | ".join(f"{ratios[(name, n)][0]:.2f} / {ratios[(name, n)][1]:.2f}"
+                                       for n in sizes) + " |")
+
+
 def scen_queries(limit: int):
     """The Moving AI maps of ``../shared/data`` with up to ``limit`` of their scenario rows each."""
     for rel, scen in (("mapf/room-32-32-4.map", "mapf/room-32-32-4-random-1.scen"),
@@ -443,6 +527,9 @@ def main() -> None:
     ap.add_argument("--timeout", type=float, default=120.0, help="seconds per visibility query (default 120)")
     ap.add_argument("--repeats", type=int, default=None,
                     help="interleaved rounds of the A* tables (default 5, --quick 3); more on a busy machine")
+    ap.add_argument("--whole", action="store_true",
+                    help="only the table of the whole op.shortest_path call against networkx and scipy")
+    ap.add_argument("--sizes", type=int, nargs="+", default=None, help="map sizes of the A* tables")
     ap.add_argument("--no-anchors", action="store_true", help="do not import or install networkx")
     ap.add_argument("--anchor-dir", type=Path, default=Path("/tmp/networkx-anchor"),
                     help="where networkx is installed when this environment has none")
@@ -450,7 +537,10 @@ def main() -> None:
     global nx
     if not a.skip_astar and not a.no_anchors:
         nx = import_networkx(a.anchor_dir, install=True)
-    sizes = (32, 64, 128) if a.quick else (32, 64, 128, 256, 512)
+    sizes = tuple(a.sizes) if a.sizes else (32, 64, 128) if a.quick else (32, 64, 128, 256, 512)
+    if a.whole:
+        whole_table(sizes, a.repeats or (3 if a.quick else 7))
+        return
     if not a.skip_astar:
         repeats = a.repeats or (3 if a.quick else 5)
         per_size = astar_table(sizes, repeats)

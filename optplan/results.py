@@ -118,13 +118,18 @@ class _Deferrable:
         return state
 
 
+_FIELD_NAMES: dict[type, frozenset[str]] = {}
+
+
 def defer_fields(result, **compute):
     """Let the fields ``compute`` names be computed on their first read, each by its
     zero-argument callable, which must return the value the field would have held. Every
     way of reading the field (attribute, ``to_dict``, ``repr``, ``==``,
     ``dataclasses.replace``, pickling, copying) gives that value; assigning the field
     sets it as usual. Returns ``result``."""
-    names = {f.name for f in fields(result)}
+    names = _FIELD_NAMES.get(type(result))
+    if names is None:   # fields() builds a tuple on every call: a sizeable part of a small result
+        names = _FIELD_NAMES[type(result)] = frozenset(f.name for f in fields(result))
     unknown = set(compute) - names
     if unknown:
         raise TypeError(f"{type(result).__name__} has no field {', '.join(sorted(unknown))}")

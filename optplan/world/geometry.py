@@ -20,6 +20,7 @@ least ``clearance`` metres from every blocked cell and from the map border.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -605,6 +606,114 @@ def validate_path_segments(world, path, clearance: float = 0.0) -> tuple[PathChe
     else:
         reason = ""
     return PathCheck(not reason, bad_segs, bad_pts, reason), seg_ok
+
+
+# ------------------------------------------------- the rule on cell paths, in cell units
+# Graph search returns paths through cell centres. For those the rule needs no segment
+# geometry: the checks below give its verdicts (clearance 0) from cell lookups, exactly, for a
+# few microseconds instead of the general rule's fixed cost of a few hundred
+# (tests/test_shortest_path_speed_43.py compares them with the general rule).
+def padded_bytes(grid) -> bytes:
+    """``grid.padded`` as one byte per cell, row after row (1 = blocked; the frame is
+    blocked), cached on the map: indexing ``bytes`` gives a Python int."""
+    cache = _DERIVED.of(grid)
+    out = cache.get("padded_bytes")
+    if out is None:
+        out = cache["padded_bytes"] = grid.padded.astype(np.uint8).tobytes()
+    return out
+
+
+def grid_point_free(grid, gx: float, gy: float) -> bool:
+    """:func:`points_free` (clearance 0) of one point given in grid units (``GridMap.
+    point_to_grid``) on Python floats: inside the map and in the closure of a free cell."""
+    W, H = grid.width, grid.height
+    if not (0.0 <= gx <= W and 0.0 <= gy <= H):   # also False for NaN
+        return False
+    fx, fy = math.floor(gx), math.floor(gy)
+    pad, Wp = padded_bytes(grid), W + 2
+    # a point on a grid line belongs to the closure of the cells on both sides
+    for iy in {fy, fy - 1 if gy == fy else fy}:
+        for ix in {fx, fx - 1 if gx == fx else fx}:
+            if not pad[min(max(iy + 1, 0), H + 1) * Wp + min(max(ix + 1, 0), W + 1)]:
+                return True
+    return False
+
+
+def in_free_cell(grid, gx: float, gy: float, cell: int) -> bool:
+    """Whether the point ``(gx, gy)`` (grid units) lies in the closed square of the free
+    cell with flat index ``cell`` (``iy * width + ix``).
+
+    Then the segment from the point to any other point of that closed square (its centre,
+    the other end of a path inside the cell) satisfies the rule: the square is convex and
+    free, so the segment enters no blocked interior; it meets the square's boundary, which
+    is made of edges between this free cell and another, only at its ends or along one
+    edge, and an edge of a square holds no lattice vertex strictly inside it."""
+    iy, ix = divmod(int(cell), grid.width)
+    return (0 <= iy < grid.height and ix <= gx <= ix + 1 and iy <= gy <= iy + 1
+            and not padded_bytes(grid)[(iy + 1) * (grid.width + 2) + ix + 1])
+
+
+# the 8 unit moves (dx, dy) whose centre-to-centre segments centre_moves_free decides
+_UNIT_MOVES = ((1, 0), (1, 1), (0, 1), (-1, 1), (-1, 0), (-1, -1), (0, -1), (1, -1))
+
+
+def _unit_move_masks(grid) -> np.ndarray:
+    """``(width * height,)`` uint8, cached on the map: bit ``k`` of entry ``c`` is the rule's
+    verdict on the segment from the centre of cell ``c`` to the centre of its neighbour
+    ``_UNIT_MOVES[k]`` (see :func:`centre_moves_free`)."""
+    cache = _DERIVED.of(grid)
+    out = cache.get("unit_move_masks")
+    if out is None:
+        H, W = grid.height, grid.width
+        free = ~grid.padded          # free[iy + 1, ix + 1]; the frame (outside) is blocked
+
+        def at(dx: int, dy: int) -> np.ndarray:
+            return free[1 + dy:H + 1 + dy, 1 + dx:W + 1 + dx]
+
+        out = np.zeros((H, W), dtype=np.uint8)
+        for k, (dx, dy) in enumerate(_UNIT_MOVES):
+            ok = at(0, 0) & at(dx, dy)
+            if dx and dy:   # not both side cells blocked (they would meet only diagonally)
+                ok &= at(dx, 0) | at(0, dy)
+            out |= ok.astype(np.uint8) << k
+        out = cache["unit_move_masks"] = out.reshape(-1)
+    return out
+
+
+def _unit_move_bits(width: int) -> np.ndarray:
+    """``bits[d + width + 2]``: the bit of the unit move whose flat step is ``d`` (``dx + dy *
+    width``), 0 for any other step (both ends of the table stand for every step beyond)."""
+    bits = np.zeros(2 * width + 5, dtype=np.uint8)
+    for k, (dx, dy) in enumerate(_UNIT_MOVES):
+        bits[dx + dy * width + width + 2] = 1 << k
+    return bits
+
+
+def centre_moves_free(grid, cells) -> np.ndarray:
+    """The rule (clearance 0) on the segments between the centres of consecutive cells of
+    ``cells`` (flat indices ``iy * width + ix``), from cell lookups: one verdict a segment.
+
+    A segment between the centres of two 8-adjacent cells lies in the union of their closed
+    squares and crosses no edge lengthwise; a diagonal one passes through the one lattice
+    vertex the four cells around it share. So it is free exactly when both cells are free
+    and, for a diagonal, the two side cells are not both blocked (they would meet only
+    diagonally at that vertex): one bit of a per-map table (:func:`_unit_move_masks`). Cells
+    that are not 8-adjacent get ``False`` (not decided here: a caller then runs the general
+    rule). A flat step of a unit move can also join two cells that are not neighbours (across
+    the map's side), and on maps 1 or 2 cells wide two moves can share a flat step: the bit
+    read is then that of a neighbour outside the map, 0, never a wrong ``True``."""
+    W, n = grid.width, grid.width * grid.height
+    f = np.asarray(cells, dtype=np.int64)
+    if f.size < 2:
+        return np.ones(0, dtype=bool)
+    if f.astype(np.uint64).max() >= n:   # a negative index wraps to a huge one
+        return np.zeros(f.size - 1, dtype=bool)
+    cache = _DERIVED.of(grid)
+    bits = cache.get("unit_move_bits")
+    if bits is None:
+        bits = cache["unit_move_bits"] = _unit_move_bits(W)
+    step = _clamp(f[1:] - f[:-1] + (W + 2), 0, 2 * W + 4)
+    return (_unit_move_masks(grid)[f[:-1]] & bits[step]) != 0
 
 
 def convex_corners(grid) -> tuple[np.ndarray, np.ndarray]:

@@ -7,19 +7,22 @@ among the circles.
 """
 from __future__ import annotations
 
+import math
 import time
 
 import numpy as np
 
 from ...checks import boolean, choice
 from ...errors import ParameterError, UnknownAlgorithmError
-from ...results import PlanResult
-from ...world.geometry import convex_corners
+from ...results import PlanResult, defer_fields
+from ...world.geometry import centre_moves_free, convex_corners, grid_point_free, in_free_cell
+from ...world.grid import GridMap
+from ...world.metrics import TURN_TOL_DEG, min_clearance, turn_angles_deg
 from ...world.queries import check_start_goal, check_world
 from ..capabilities import PlannerCapabilities
 from ..result import make_plan_result
 from ..tangent_graph import plan_tangent
-from .astar import CellPath, cell_path, grid_search, octile
+from .astar import CellPath, cell_path, grid_search, octile, search_between
 from .visibility import POINT_MODES, visibility_path
 
 METHODS = ("astar", "dijkstra", "visibility")
@@ -84,6 +87,12 @@ def shortest_path(world, start, goal, method: str = "astar", *, corner_cutting: 
         if method != "visibility":
             raise ParameterError(f"method {method!r} needs a grid map; use 'visibility' on circle worlds")
         return plan_tangent(world, start, goal, clearance)
+    # the common query (a plain GridMap, no clearance, two plain points) skips the numpy
+    # checks whose fixed cost was most of a small map's call; anything else takes the full path
+    if method != "visibility" and type(world) is GridMap and type(clearance) in (float, int) and clearance == 0:
+        ends = _plain_ends(world, start, goal)
+        if ends is not None:
+            return _cell_search(world, *ends, method, corner_cutting, t0)
     s, g = check_start_goal(world, start, goal, clearance)
     if method == "visibility":
         path, length = visibility_path(world, s, g, points, clearance=clearance)
@@ -96,3 +105,98 @@ def shortest_path(world, start, goal, method: str = "astar", *, corner_cutting: 
     return make_plan_result(world, found.path, method, time.perf_counter() - t0, clearance=clearance,
                             defer_clearance=True, message=how + (" (corner cutting)" if corner_cutting else ""))
 
+
+def _plain_point(grid, point):
+    """``((x, y), (gx, gy))``: ``point`` as two Python floats and in grid units, when it is a
+    plain pair of numbers (a tuple, a list or a float array) at a free point of the map: what
+    ``check_query_point`` accepts, with the same numbers. ``None`` for anything else: the
+    full check then decides (and raises)."""
+    if type(point) is np.ndarray:
+        if point.shape != (2,) or point.dtype != np.float64:
+            return None
+        x, y = point.tolist()
+    elif type(point) in (tuple, list) and len(point) == 2:
+        x, y = point
+        # ints beyond 2**53 and bools take the full check (their float conversion is its business)
+        if not all(isinstance(v, float) or (type(v) is int and -2**53 <= v <= 2**53) for v in (x, y)):
+            return None
+        x, y = float(x), float(y)
+    else:
+        return None
+    xmin, ymin, xmax, ymax = grid.bounds
+    if not (xmin <= x <= xmax and ymin <= y <= ymax):   # also refuses NaN (inf is outside)
+        return None
+    q = grid.point_to_grid(x, y)
+    if not grid_point_free(grid, *q):
+        return None
+    return (x, y), q
+
+
+def _plain_ends(grid, start, goal):
+    """``(sx, sy, gx, gy, (qs, qg))`` (metres, then grid units) when start and goal both pass
+    :func:`_plain_point` and differ; ``None`` otherwise (``check_start_goal`` then runs)."""
+    s = _plain_point(grid, start)
+    g = _plain_point(grid, goal) if s is not None else None
+    if g is None or s[0] == g[0]:
+        return None
+    return s[0][0], s[0][1], g[0][0], g[0][1], (s[1], g[1])
+
+
+def _cell_search(grid, sx, sy, gx, gy, q, method, corner_cutting, t0) -> PlanResult:
+    """A*/Dijkstra without clearance between checked points: the search, then the result.
+
+    The returned path still goes through the exact rule, in cell units, without trusting the
+    search: its inner points are the centres of ``cells`` (``search_between`` takes them from
+    the map's table of centres) and each inner segment joins the centres of two consecutive
+    cells, which :func:`~optplan.world.geometry.centre_moves_free` judges from cell lookups
+    (the general rule's verdicts for a few microseconds instead of a few hundred); each end
+    lies in the closed square of the free cell whose centre it joins, or both ends in one
+    free cell (:func:`~optplan.world.geometry.in_free_cell`: such a segment is free); the ends
+    passed the query's point check and centres are no lattice vertices. When anything is not
+    shown free that way (corner cutting can pass between two blocked cells), the general
+    check (``make_plan_result``) judges the path, as before. The fields are those
+    ``make_plan_result`` gives; the turn metrics and ``min_clearance`` on their first read."""
+    found, cells, (qs, qg) = search_between(grid, sx, sy, gx, gy, method=method, corner_cutting=corner_cutting,
+                                            ends=q)
+    runtime = time.perf_counter() - t0
+    how = ("start and goal share a free cell: the straight segment" if found.direct else
+           f"{found.expanded} cells expanded" if method == "astar" else f"{found.expanded} cells reached")
+    if corner_cutting:
+        how += " (corner cutting)"
+    P = found.path
+    if cells is None:   # the straight segment: both ends in one closed free cell?
+        x, y = qs
+        around = [(iy, ix) for iy in {math.floor(y), math.floor(y) - (y == math.floor(y))}
+                  for ix in {math.floor(x), math.floor(x) - (x == math.floor(x))}
+                  if 0 <= ix < grid.width and 0 <= iy < grid.height]
+        free = any(in_free_cell(grid, *qs, c) and in_free_cell(grid, *qg, c)
+                   for c in (iy * grid.width + ix for iy, ix in around))
+    else:
+        free = (in_free_cell(grid, *qs, cells[0]) and in_free_cell(grid, *qg, cells[-1])
+                and bool(centre_moves_free(grid, cells).all()))
+    if not free:
+        return make_plan_result(grid, P, method, runtime, defer_clearance=True, message=how)
+    return _free_path_result(grid, P, method, runtime, how)
+
+
+def _free_path_result(grid, P: np.ndarray, method: str, runtime: float, message: str) -> PlanResult:
+    """The result ``make_plan_result(grid, P, ..., defer_clearance=True)`` builds for a path
+    the exact rule has found free (every point free, every segment free), field for field:
+    the length now, the turn metrics and the exact clearance (of a copy of the path, whose
+    segments are all free) on their first read."""
+    d = P[1:] - P[:-1]   # path_length's np.diff and sum: the same float operations
+    length = float(np.hypot(d[:, 0], d[:, 1]).sum())
+    res = PlanResult(method, P, True, length, 0.0, 0, math.nan, runtime, np.zeros(0), False, None, message, 0)
+    kept = P.copy()   # the result's path may be edited in place before a deferred value is read
+    if len(P) > 2:
+        turns = []    # turn_angles_deg once for both turn fields
+
+        def angles():
+            if not turns:
+                turns.append(turn_angles_deg(kept))
+            return turns[0]
+
+        return defer_fields(res, turn_angle_deg=lambda: float(angles().sum(axis=-1)),
+                            n_turns=lambda: int((angles() > TURN_TOL_DEG).sum(axis=-1)),
+                            min_clearance=lambda: min_clearance(grid, kept, free=np.ones(len(kept) - 1, bool)))
+    return defer_fields(res, min_clearance=lambda: min_clearance(grid, kept, free=np.ones(len(kept) - 1, bool)))

@@ -131,10 +131,19 @@ def astar_cells(table, sources, targets, source_bias=None, target_bias=None):
         heap.append((H[s] + dist[s], dist[s], s))
     if len(heap) > 1:
         heapq.heapify(heap)
-    pop, push = heapq.heappop, heapq.heappush
+    pop, push, pushpop = heapq.heappop, heapq.heappush, heapq.heappushpop
     reached, cost, closed = -1, math.inf, 0
-    while heap:
-        _, d, c = pop(heap)
+    # an expansion's last new entry waits and goes in with the next pop (one sift instead of
+    # two): the heap's keys are distinct, so the entries come out in the same order
+    pending = None
+    while True:
+        if pending is not None:
+            _, d, c = pushpop(heap, pending)
+            pending = None
+        elif heap:
+            _, d, c = pop(heap)
+        else:
+            break
         if d != dist[c]:
             continue  # closed, or a stale entry
         if goal[c]:
@@ -159,7 +168,9 @@ def astar_cells(table, sources, targets, source_bias=None, target_bias=None):
             if nd < bar[t]:
                 dist[t], bar[t] = nd, nd - 1e-12
                 parent[t] = c
-                push(heap, (nd + H[t], nd, t))
+                if pending is not None:
+                    push(heap, pending)
+                pending = (nd + H[t], nd, t)
     if reached < 0:
         return None
     expanded = closed + int(single)   # a single target is expanded, not closed
@@ -293,22 +304,34 @@ def cell_path(grid, start, goal, *, method: str = "astar", corner_cutting: bool 
         InfeasibleQueryError: an end joins no cell centre (with the clearance), or the
             goal is unreachable.
     """
-    table = move_table(grid, corner_cutting, clearance)
     s, g = np.asarray(start, float), np.asarray(goal, float)
+    return search_between(grid, float(s[0]), float(s[1]), float(g[0]), float(g[1]), method=method,
+                          corner_cutting=corner_cutting, clearance=clearance)[0]
+
+
+def search_between(grid, sx: float, sy: float, gx: float, gy: float, *, method: str = "astar",
+                   corner_cutting: bool = False, clearance: float = 0.0, ends=None):
+    """:func:`cell_path` between ``(sx, sy)`` and ``(gx, gy)`` (metres, Python floats);
+    ``ends``: the two points in grid units when the caller has them (``GridMap.point_to_grid``).
+
+    Returns ``(CellPath, cells, ends)``: ``cells`` the flat indices of the path's cells in
+    order (an int64 array; ``None`` for the direct segment), ``ends`` the two points in grid
+    units. What ``shortest_path`` needs to check the path in cell units
+    (:func:`optplan.world.geometry.centre_moves_free`) without converting it back."""
+    table = move_table(grid, corner_cutting, clearance)
     res = grid.resolution
     # the per-query arithmetic on Python floats: numpy scalars cost more than the small searches
-    sx, sy, gx, gy = float(s[0]), float(s[1]), float(g[0]), float(g[1])
-    qs, qg = grid.point_to_grid(sx, sy), grid.point_to_grid(gx, gy)
-    ends = []
-    for p, q, what in ((s, qs, "start"), (g, qg, "goal")):
+    qs, qg = ends if ends is not None else (grid.point_to_grid(sx, sy), grid.point_to_grid(gx, gy))
+    joins = []
+    for (px, py), q, what in (((sx, sy), qs, "start"), ((gx, gy), qg, "goal")):
         cells, join, bias = _end_cells(grid, q, clearance)
         if not cells:
             raise InfeasibleQueryError(
-                f"the {what} ({p[0]:g}, {p[1]:g}) joins no free cell centre by a free segment"
+                f"the {what} ({px:g}, {py:g}) joins no free cell centre by a free segment"
                 + (f" whose centre keeps the clearance {clearance:g} m" if clearance else "")
                 + "; A*/Dijkstra run over cell centres: move the point or use method='visibility'")
-        ends.append((cells, join, bias))
-    (sc, sj, bs), (gc, gj, bg) = ends
+        joins.append((cells, join, bias))
+    (sc, sj, bs), (gc, gj, bg) = joins
     if clearance > 0:  # the cells a point shares with the other, whether or not its centre keeps the clearance
         occ, W, H = _occupancy_bytes(grid), grid.width, grid.height
         shared = ({c for c in _closure_cells(W, H, qs) if not occ[c]}
@@ -316,8 +339,8 @@ def cell_path(grid, start, goal, *, method: str = "astar", corner_cutting: bool 
     else:
         shared = set(sc) & set(gc)
     # in one closed free cell the straight segment is free without clearance (the cell is convex)
-    if shared and (clearance == 0 or bool(grid.segments_free(s, g, clearance))):
-        return CellPath(np.stack([s, g]), math.hypot(gx - sx, gy - sy), 0, True)
+    if shared and (clearance == 0 or bool(grid.segments_free((sx, sy), (gx, gy), clearance))):
+        return CellPath(np.array([[sx, sy], [gx, gy]]), math.hypot(gx - sx, gy - sy), 0, True), None, (qs, qg)
     search = astar_cells if method == "astar" else dijkstra_cells
     found = search(table, sc, gc, bs, bg)
     if found is None:
@@ -326,13 +349,14 @@ def cell_path(grid, start, goal, *, method: str = "astar", corner_cutting: bool 
     cost -= bs[sc.index(flat[0])] + bg[gc.index(flat[-1])]
     # an end at a cell centre is that centre: no repeated point
     first, last = int(sj != 0), int(gj != 0)
+    flat = np.asarray(flat, dtype=np.int64)
     P = np.empty((len(flat) + first + last, 2))
     if table.width * table.height <= WINDOW_CELLS:
         cell_centres(grid).take(flat, axis=0, out=P[first:len(P) - last])
     else:  # the centres of the path's cells only: a big map's table of all centres is 16 bytes a cell
-        P[first:len(P) - last] = grid.cell_center(table.xy(np.asarray(flat, dtype=np.int64)))
+        P[first:len(P) - last] = grid.cell_center(table.xy(flat))
     if first:
         P[0] = sx, sy
     if last:
         P[-1] = gx, gy
-    return CellPath(P, (sj + cost + gj) * res, expanded)
+    return CellPath(P, (sj + cost + gj) * res, expanded), flat, (qs, qg)
