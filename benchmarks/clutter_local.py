@@ -59,9 +59,8 @@ def run_world(task: tuple[str, int, tuple[str, ...], str, dict]) -> list[dict]:
                 reasons[status] = reasons.get(status, 0) + 1
 
         opts = dict(SHARED_NAV) if nav == "shared" else {}
-        # the family's local parameters (op.simulate lays them under its own only for a family name)
-        params = {**family_options(family).get("local_params", {}).get(planner, {}),
-                  **(qp_params if planner == "qp-dwa" else {})}
+        # each preset's defaults (qp-dwa's clutter mechanisms apply where its path is tight)
+        params = qp_params if planner == "qp-dwa" else {}
         if params:
             opts["planner_params"] = params
         res = simulate(sc, global_planner="astar", local_planner=planner, seed=seed, global_plan=gp, progress=count,

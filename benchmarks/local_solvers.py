@@ -77,14 +77,15 @@ def _timed_planner(name: str, world: str, seed: int, stop_hold: float = 0.0):
     return planner, sc, times, modes
 
 
-def run(solvers, worlds, seeds, seed0, stop_hold: float = 0.0) -> dict:
+def run(solvers, worlds, seeds, seed0, stop_hold: float = 0.0, as_file: bool = False) -> dict:
     rows = defaultdict(lambda: defaultdict(list))
     for world in worlds:
         run_seeds = range(seed0, seed0 + seeds) if family_scenario(world, 0) is not None else range(1)
         for name in solvers:
             for seed in run_seeds:
                 planner, sc, times, modes = _timed_planner(name, world, seed, stop_hold)
-                r = op.simulate(world, global_planner="astar", local_planner=planner, seed=seed)
+                # as_file: the scenario as a file gives it (no family options, e.g. its global clearance)
+                r = op.simulate(sc if as_file else world, global_planner="astar", local_planner=planner, seed=seed)
                 row = rows[(world, name)]
                 row["status"].append(r.status)
                 row["collided"].append(r.collisions > 0)
@@ -115,10 +116,13 @@ def main(argv=None) -> int:
     ap.add_argument("--stop-hold", type=float, default=0.0,
                     help="program solvers: their default program with stop_clear for this many seconds "
                          "(0: the default program as it is)")
+    ap.add_argument("--as-file", action="store_true",
+                    help="run each generated world as its scenario file would (the Scenario object, without the "
+                         "family's options such as its global clearance)")
     args = ap.parse_args(argv)
     args.worlds = [w for name in args.worlds for w in (PAPER_SCENARIOS if name == "papers" else (name,))]
     t0 = time.perf_counter()
-    rows = run(args.solvers, args.worlds, args.seeds, args.seed0, args.stop_hold)
+    rows = run(args.solvers, args.worlds, args.seeds, args.seed0, args.stop_hold, args.as_file)
     print(f"\nfamilies: seeds {args.seed0}..{args.seed0 + args.seeds - 1}; {time.perf_counter() - t0:.0f} s")
     print("| world | solver | success | collided | timeout | stuck | time to goal s | length m | BARN | "
           "step ms median | p95 | limits held | fallback-to-sample steps |")

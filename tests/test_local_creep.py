@@ -81,8 +81,8 @@ def test_qp_dwa_creeps_through_a_gap_a_centimetre_wider_than_the_robot_without_t
 
 
 def test_without_the_creep_the_sampled_window_stops_in_front_of_that_gap():
-    # qp-dwa's default: the creep is a clutter setting (worldgen.clutter.CLUTTER_LOCAL_PARAMS)
-    res, _ = modes_of(gap_scenario(), planner_params=NARROW)
+    # the creep turned off (qp-dwa's default has it where the global path is tight, as here)
+    res, _ = modes_of(gap_scenario(), planner_params={"path_creep": False, **NARROW})
     assert res.status == "timeout" and not res.reached and res.collisions == 0
 
 
@@ -91,7 +91,8 @@ def test_on_the_distance_field_alone_the_creep_keeps_its_error_margin_and_never_
     # underestimates the clearance at this gap, so the robot may not get through, but it must
     # never drive a leg closer than the robot radius
     planner = make_local_planner("qp-dwa", BARN_ROBOT, 0.1, path_creep=True)
-    assert not any(isinstance(m, PathCreep) for m in make_local_planner("qp-dwa", BARN_ROBOT, 0.1).mechanisms)
+    off = make_local_planner("qp-dwa", BARN_ROBOT, 0.1, path_creep=False)
+    assert not any(isinstance(m, PathCreep) for m in off.mechanisms)
     creep = next(m for m in planner.mechanisms if isinstance(m, PathCreep))
     g = diagonal_gap_world()
     exact = g.clearance

@@ -185,13 +185,14 @@ class DWAPlanner(MoverSweepSource):
 
     # ------------------------------------------------------------------ set-up helpers
     @staticmethod
-    def _number(name: str, value: Any, allow_zero: bool = False) -> float:
+    def _number(name: str, value: Any, allow_zero: bool = False, allow_inf: bool = False) -> float:
         try:
             x = float(value)
         except (TypeError, ValueError):
             raise ParameterError(f"{name} must be a number, got {value!r}") from None
-        if not math.isfinite(x) or x < 0 or (x == 0 and not allow_zero):
-            raise ParameterError(f"{name} must be a finite number {'>= 0' if allow_zero else '> 0'}, got {value!r}")
+        if math.isnan(x) or (math.isinf(x) and not allow_inf) or x < 0 or (x == 0 and not allow_zero):
+            what = "a number" if allow_inf else "a finite number"
+            raise ParameterError(f"{name} must be {what} {'>= 0' if allow_zero else '> 0'}, got {value!r}")
         return x
 
     def _checked(self, o: dict) -> dict:

@@ -46,10 +46,18 @@ The window of the next step is the velocity range the Ruckig profile can reach i
 period (``window.py``), and the stopping distance in the admissibility test includes one
 period plus the jerk ramp ``a_max / jerk_max`` of reaction time.
 
+From the first step at which the global path near the robot is tight (:func:`path_is_tight`,
+read from the map the planner sees), the sampling stage also uses the clutter mechanisms of
+issue 27 (:data:`TIGHT_PATH_PARAMS`): pure-pursuit samples along the path, the path critics
+judged up to where the robot must stop, and the path creep (``creep.py``). They stay on for
+the rest of the run (``tight_hold``): switched off again on an open stretch between tight ones,
+they left robots stuck in clutter (docs/measurements.md, "qp-dwa's clutter mechanisms by default").
+
 Everything is deterministic.
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from typing import Any, Mapping
@@ -60,11 +68,13 @@ import scipy.sparse as sp
 
 from ..checks import boolean
 from ..errors import ParameterError
-from ..world.robot import RobotSpec, RobotState
+from ..world.robot import Command, RobotSpec, RobotState
 from .base import LocalContext
 from .dwa import DWAPlanner, Preset
+from .hooks import Roles, build_part
 from .limiter import RuckigLimiter
 from .critics import point_at_arc, project_on_path
+from .mechanisms import MECHANISMS
 from .rollout import Rollouts, Step, current_gaps, static_gradient
 from .window import Window, dynamic_window
 
@@ -82,6 +92,69 @@ _REACH = 1e-6  # m: a row no command of the window moves by this much is out of 
 _BACKTRACK = (0.5, 0.25)  # shorter steps towards the QP's optimum tried when the full one fails a check
 _GAP_TOL = 1e-5  # m: OSQP's tolerance (1e-5 in the command) moves the gaps by micrometres
 QP_NOT_RUN = ("inactive", "path sample", "rows hold at the sample", "rows out of the command's reach")
+
+
+_BLOCKED = 0.01  # m: a global path this far inside the footprint's clearance runs into an obstacle
+_TIGHT_SHARE = 0.5  # path_is_tight: the share of the stretch near the robot that must run close to obstacles
+
+# qp-dwa's clutter mechanisms (issue 27), as planner parameters: pure-pursuit samples along the
+# global path at 0.5 and 1 x v_max (rollout.rollout_tracking), the path critics judged up to
+# where the robot must stop before a static obstacle (critics._trajectory_end), and the path
+# creep (creep.py). They are qp-dwa's defaults where the global path is tight
+# (path_is_tight); a parameter the user gives (e.g. path_creep=False, path_samples=()) is
+# used everywhere instead.
+TIGHT_PATH_PARAMS: dict[str, Any] = {
+    "path_samples": (0.5, 1.0),
+    "path_progress": {"until_stop": True}, "path_heading": {"until_stop": True},
+    "path_deviation": {"until_stop": True},
+    "path_creep": {},
+}
+
+
+def path_is_tight(ctx: LocalContext, radius: float, gap: float, ahead: float) -> bool:
+    """qp-dwa's rule for its clutter mechanisms (issue 43): whether the global path near the robot
+    is *tight*: at least half of it (``_TIGHT_SHARE``) runs within ``gap`` metres of a static
+    obstacle, edge to edge beyond a footprint of ``radius``.
+
+    Read from the static world the planner sees (``ctx.static_distance``: the map and the
+    obstacles sensed so far) at path points 5 cm apart, from ``radius`` behind the robot's
+    nearest path point to ``ahead`` metres beyond it. Half the stretch is more than one convex
+    corner can account for (a path passing a corner comes within ``gap`` of it over at most
+    ``2 (radius + gap)`` metres, 0.7 m of the 1.7 m for a 0.2 m robot): the path runs along
+    obstacles or threads a row of gaps, as in clutter. A path that enters an obstacle
+    (``_BLOCKED`` inside the footprint's clearance) is blocked, not tight: it runs into an
+    obstacle sensed after it was planned, and the navigator re-plans it.
+
+    Why this rule: the window's constant-command arcs and the QP keep ``qp_margin`` (0.15 m) of
+    clearance where they can. Along a path that keeps less than that for metres (BARN-style
+    clutter, where an A* path with the footprint as clearance hugs one obstacle after another),
+    every arc grazes an obstacle within a second and the window stalls; there the path samples,
+    the critics judged to the stop and the creep get the robot through. Past a single corner,
+    or along open ground, the arcs have room; there (the shipped and paper maps with crossing
+    movers, whose replanned and metaheuristic paths hug corners) the mechanisms only changed
+    which runs a mover caught, and on open ground they slowed the robot. Measured with
+    ``benchmarks/qp_dwa_defaults.py`` (docs/measurements.md, issue 43)."""
+    if not math.isfinite(gap):
+        return True
+    if gap <= 0:
+        return False
+    p = np.asarray(ctx.global_path, dtype=float).reshape(-1, 2)
+    if len(p) < 2:
+        return False
+    # the robot's nearest path point (all segments at once), then points along the path
+    a, ab = p[:-1], np.diff(p, axis=0)
+    L = np.hypot(ab[:, 0], ab[:, 1])
+    t = np.clip(((ctx.state.x - a[:, 0]) * ab[:, 0] + (ctx.state.y - a[:, 1]) * ab[:, 1]) / np.maximum(L * L, 1e-18),
+                0.0, 1.0)
+    k = int(np.argmin(np.hypot(a[:, 0] + t * ab[:, 0] - ctx.state.x, a[:, 1] + t * ab[:, 1] - ctx.state.y)))
+    along = np.r_[0.0, np.cumsum(L)]
+    s = np.clip(along[k] + t[k] * L[k] + np.arange(-radius, ahead + 1e-9, 0.05), 0.0, along[-1])
+    j = np.clip(np.searchsorted(along, s, side="right") - 1, 0, len(ab) - 1)
+    pts = a[j] + ((s - along[j]) / np.maximum(L[j], 1e-18))[:, None] * ab[j]
+    clear = np.asarray(ctx.static_distance(pts), dtype=float).ravel() - radius
+    if clear.min() < -_BLOCKED:
+        return False
+    return bool(np.mean(clear < gap) >= _TIGHT_SHARE)
 
 
 def qp_outcome(info: Mapping[str, Any]) -> str | None:
@@ -156,6 +229,11 @@ class QPDWAPlanner(DWAPlanner):
         # benchmarks/dynamic_qp_dwa.yaml in some combination (see docs/measurements.md)
         "qp_committed": False,        # static rows over the committed part only, margins capped
         "continuation_check": False,  # recursive feasibility check of every command
+        # where the clutter mechanisms (TIGHT_PATH_PARAMS) apply: path_is_tight's gap (m; 0 =
+        # nowhere, inf = everywhere) and the metres of path ahead of the robot it reads
+        "tight_gap": 0.15,
+        "tight_ahead": 1.5,
+        "tight_hold": math.inf,  # s the mechanisms stay after the path was last tight (default: the rest of the run)
     }
 
     def __init__(self, preset: Preset, robot: RobotSpec, dt: float, **params: Any) -> None:
@@ -163,6 +241,10 @@ class QPDWAPlanner(DWAPlanner):
         o = self.options
         for k in ("qp_horizon", "qp_margin", "qp_activate"):
             o[k] = self._number(k, o[k], allow_zero=k == "qp_margin")
+        for k in ("tight_gap", "tight_hold"):  # inf: everywhere / for the rest of the run
+            o[k] = self._number(k, o[k], allow_zero=True, allow_inf=True)
+        o["tight_ahead"] = self._number("tight_ahead", o["tight_ahead"], allow_zero=True)
+        self._setup_tight(params)
         for k in ("qp_rows_moving", "qp_rows_static", "qp_rows_filters", "qp_max_iter", "qp_passes"):
             if isinstance(o[k], bool) or not isinstance(o[k], (int, np.integer)) or o[k] < (1 if k in ("qp_max_iter", "qp_passes") else 0):
                 raise ParameterError(f"{k} must be a non-negative int, got {o[k]!r}")
@@ -186,6 +268,57 @@ class QPDWAPlanner(DWAPlanner):
         self.limiter = RuckigLimiter(self.dt, acc, [math.inf if j is None else j for j in jerk])
         self._setup_qp(acc)
         self.qp_times_us: list[float] = []
+
+    # ------------------------------------------------------------------ tight paths
+    def _setup_tight(self, params: Mapping[str, Any]) -> None:
+        """The two configurations the rule chooses between (:func:`path_is_tight`): the one the
+        user's parameters give, and the same with those of :data:`TIGHT_PATH_PARAMS` the user
+        did not give. ``self.tight`` says which one the last step used."""
+        self.tight = False
+        self._tight_until = -math.inf
+        self._plain = (list(self.terms), self.options["path_samples"], self.roles)
+        given = set(params)
+        samples = self.options["path_samples"]
+        if "path_samples" not in given and self.options["path_look_aheads"] and self.options["path_turn_first"]:
+            samples = tuple(TIGHT_PATH_PARAMS["path_samples"])
+        terms = []
+        for critic, w in self.terms:
+            extra = TIGHT_PATH_PARAMS.get(critic.name, {})
+            mine = params.get(critic.name)
+            own = set(mine) if isinstance(mine, Mapping) else set()
+            change = {k: v for k, v in extra.items() if k not in own and hasattr(critic, k)}
+            terms.append((dataclasses.replace(critic, **change) if change else critic, w))
+        self._creep = None
+        if "path_creep" not in given and not any(m.name == "path_creep" for m in self.mechanisms):
+            self._creep = build_part(MECHANISMS["path_creep"], TIGHT_PATH_PARAMS["path_creep"], "path_creep")
+            self.mechanisms.append(self._creep)
+        roles = Roles.of(self.mechanisms) if self._creep is not None else self.roles
+        self._tight = (terms, samples, roles)
+        self._rule = self._tight[:2] != self._plain[:2] or self._creep is not None
+
+    def _use(self, ctx: LocalContext | None) -> None:
+        """Take the configuration of this step: the tight one where :func:`path_is_tight` says
+        so (``ctx=None``: the plain one). A creep under way goes on until it hands back; the
+        creep's stall count runs only while the path is tight."""
+        if not self._rule:
+            return
+        o = self.options
+        if ctx is None:
+            self._tight_until = -math.inf
+        elif ctx.t > self._tight_until and path_is_tight(ctx, self.robot.radius, o["tight_gap"], o["tight_ahead"]):
+            self._tight_until = ctx.t + o["tight_hold"]
+        self.tight = ctx is not None and ctx.t <= self._tight_until
+        creeping = self._creep is not None and self._creep.active
+        self.terms, o["path_samples"], self.roles = self._tight if self.tight or creeping else self._plain
+        if self._creep is not None and not (self.tight or creeping) and ctx is not None:
+            self._creep.reset(self.view, ctx.state, ctx.global_path)
+
+    def command(self, ctx: LocalContext) -> Command:
+        self._use(ctx)
+        cmd = super().command(ctx)
+        if self._rule:
+            cmd.info["tight"] = self.tight
+        return cmd
 
     # ------------------------------------------------------------------ QP set-up (once)
     def _setup_qp(self, acc) -> None:
@@ -220,7 +353,10 @@ class QPDWAPlanner(DWAPlanner):
         return self.options["reaction"] + self.dt + ramp
 
     def reset(self, state: RobotState, global_path: np.ndarray) -> None:
+        self._use(None)
         super().reset(state, global_path)
+        if self._creep is not None:
+            self._creep.reset(self.view, state, global_path)
         self.limiter.reset(self._vel(state))
 
     def _vel(self, state: RobotState) -> np.ndarray:

@@ -183,34 +183,14 @@ FAMILIES = {
 GLOBAL_CLEARANCE_EXTRA = 0.15
 
 
-# Local planner parameters the clutter families use under the caller's planner_params (issue 27):
-# qp-dwa's path terms judge a trajectory up to where it must stop before a static obstacle,
-# and pure-pursuit samples along the global path join the window's arcs. In clutter every
-# constant arc met an obstacle within a second, and an arc credited with the progress of the
-# 1.5 m it could not drive beat every free one; the QP then braked it to a stop in front of
-# the passage (development seeds 0-99: 58 % -> 81 %). They are not qp-dwa's defaults: on the
-# open shipped maps with crossing movers they perturbed li2023 Experiment II runs into 3 mover
-# collisions in the 40 of benchmarks/dynamic_qp_dwa.yaml --runs 4 (see docs/measurements.md).
-# The path creep (local/creep.py) takes over after the window has held the robot still beside
-# obstacles, through gaps where the distance field's error closes every sampled arc. It is a
-# clutter setting, not a qp-dwa default: on the shipped open maps it turned the sampler's slow
-# crawls past walls into legs that end 1 mm from the wall, where the window is pinned when a
-# mover comes (docs/measurements.md, "path creep").
-CLUTTER_LOCAL_PARAMS = {
-    "qp-dwa": {"path_samples": (0.5, 1.0), "path_progress": {"until_stop": True},
-               "path_heading": {"until_stop": True}, "path_deviation": {"until_stop": True},
-               "path_creep": {}},
-}
-
-
 def family_options(name: str) -> dict:
-    """``op.simulate`` options a generated family uses unless the caller gives its own;
-    ``local_params`` maps a local planner name to parameters laid under the caller's
-    ``planner_params``."""
+    """``op.simulate`` options a generated family uses unless the caller gives its own. No local
+    planner parameters: qp-dwa's clutter mechanisms (issue 27) are its defaults wherever the
+    global path is tight (``optplan.local.qp_dwa.path_is_tight``), so a scenario file of the
+    same world gets them too."""
     if not isinstance(name, str) or name.lower() not in FAMILIES:
         return {}
-    return {"global_options": {"clearance": BARN_ROBOT.radius + GLOBAL_CLEARANCE_EXTRA},
-            "local_params": CLUTTER_LOCAL_PARAMS}
+    return {"global_options": {"clearance": BARN_ROBOT.radius + GLOBAL_CLEARANCE_EXTRA}}
 
 
 def family_scenario(name: str, seed) -> Scenario | None:
