@@ -89,7 +89,10 @@ def paper_of_algorithm(algorithm: str) -> str:
 
 
 def local_guidance(local_name: str) -> tuple[str, str]:
-    """``(subgoal strategy, on_blocked)`` of a local planner: its paper's, or the toolkit's."""
+    """``(subgoal strategy, on_blocked)`` of a local planner: its paper's, or the toolkit's. A
+    preset's twin as printed (``idwa-printed``, optplan/local/presets.py) is guided as the preset:
+    the twin differs from it in the local planner only."""
+    local_name = local_name.removesuffix("-printed")
     for p in PAPERS.values():
         if p.local_preset == local_name:
             return p.subgoals, p.on_blocked

@@ -126,7 +126,8 @@ def test_every_claim_names_a_shipped_spec_and_a_known_kind():
         labels = set(spec.labels) | {pipeline_name(lab, r, lp, len(spec.refine) > 1, len(spec.local_planners) > 1)
                                      for lab in spec.labels for r in spec.refine for lp in spec.local_planners}
         for c in claims_of(name):
-            assert c.kind in ("less", "less_spread", "rate", "fails")
+            assert c.kind in ("less", "less_spread", "less_best", "less_worst", "tie", "tie_best", "rate", "fails",
+                              "reaches")
             assert c.target in targets, (c.quote, c.target)
             assert c.better in labels and (c.other is None or c.other in labels), (c.quote, labels)
 
