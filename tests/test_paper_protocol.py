@@ -127,8 +127,10 @@ def test_every_claim_names_a_shipped_spec_and_a_known_kind():
                                      for lab in spec.labels for r in spec.refine for lp in spec.local_planners}
         for c in claims_of(name):
             assert c.kind in ("less", "less_spread", "less_best", "less_worst", "tie", "tie_best", "rate", "fails",
-                              "reaches")
+                              "reaches", "trend")
             assert c.target in targets, (c.quote, c.target)
+            # a trend names every target it runs along; each must be one of the spec's
+            assert bool(c.targets) == (c.kind == "trend") and set(c.targets) <= targets, (c.quote, c.targets)
             assert c.better in labels and (c.other is None or c.other in labels), (c.quote, labels)
 
 

@@ -54,10 +54,27 @@ computed from the stored runs, never written by hand:
 * ``reaches`` — at least ``claimed`` of ``better``'s runs end within ``tol`` (default
   :data:`FUNCTION_TOL`) of the function's known optimum (``metric`` ``f_error``, the stored error):
   judged as ``rate`` is, on the runs that reach it.
+* ``trend`` — the mean ``metric`` of group ``better`` grows along the claim's ordered ``targets``
+  (the papers' "path length grows with the number of obstacles"; a claim that it shrinks lists the
+  targets the other way round, as a claim that a larger value wins swaps the groups of ``less``).
+  A spec runs the same seeds on every target, and a seed fixes the global path and the world's
+  draws, so the runs are compared within their seed: the test is the rank correlation between each
+  run's target position and its value, both ranked within the seed (Page's test for ordered
+  alternatives; a seed that failed on some targets adds its others), with a two-sided permutation
+  p-value, the targets dealt anew within each seed: exact over every deal when there are at most
+  :data:`TREND_EXACT`, else from :data:`PERMUTATIONS` seeded random deals (so a verdict repeats).
+  Why within seeds: the spread between seeds (another global path) can dwarf the change between
+  targets that every seed shows. Why ranks: the targets are ordered categories (0-3 obstacles,
+  2-5 movers) with no scale between them. Our figure: the mean per target in order, the relative
+  change of the mean from the first target to the last with a 95 % bootstrap interval (seeds
+  resampled), rho and p. Verdicts as for ``less``: ``reversed`` when significant the other way,
+  ``weaker`` when the interval lies below the claimed change (``claimed``: the paper's relative
+  change first to last, or ``None``).
 
 When the numbers of runs could never give a p-value below alpha (a ``--quick`` run: 3 against 3
-runs, the smallest rank-sum p is 0.1, as is the smallest precedence p), a ``less``,
-``less_best``, ``less_worst``, ``tie`` or ``tie_best`` claim gets ``too few runs``, not a verdict.
+runs, the smallest rank-sum p is 0.1, as is the smallest precedence p; one seed on each of four
+targets, the smallest trend p is 2/24), a ``less``, ``less_best``, ``less_worst``, ``tie``, ``tie_best``
+or ``trend`` claim gets ``too few runs``, not a verdict.
 A claim whose groups or target the spec does not hold (a quick run on fewer maps, a missing
 baseline) is listed as ``not run``, so every claim is always shown.
 """
@@ -75,6 +92,10 @@ from .tables import Table
 TOO_FEW_RUNS = "too few runs"
 VERDICTS = ("holds", "weaker", "not significant", "reversed", "too few runs", "not run")
 BOOTSTRAP = 2000
+# a trend's p-value is exact (every way of dealing the runs to the targets) up to this many ways,
+# else it is estimated from this many seeded random ones (resolution about 0.003 at p = 0.05)
+TREND_EXACT = 20000
+PERMUTATIONS = 20000
 # an error to a benchmark function's known optimum below this counts as reaching it (the CEC
 # benchmark suites' convention); the margin of ``tie`` claims on function values
 FUNCTION_TOL = 1e-8
@@ -94,7 +115,7 @@ class Claim:
         quote: the statement, in short.
         target: the map or scenario it is about.
         kind: ``less``, ``less_spread``, ``less_best``, ``less_worst``, ``tie``, ``tie_best``,
-            ``rate``, ``fails`` or ``reaches`` (module docstring).
+            ``rate``, ``fails``, ``reaches`` or ``trend`` (module docstring).
         better: the group label the paper says is better (or that succeeds, for ``rate``).
         other: the group it is compared with (every kind but the shares).
         metric: the stored metric (``length``, ``runtime_s``, ``turn_angle_deg``, ``n_turns``,
@@ -103,6 +124,9 @@ class Claim:
         note: what the reader should know (e.g. timings on a shared machine).
         tol: the margin of ``tie`` / ``tie_best`` and the distance to the optimum ``reaches``
             accepts; ``None``: :data:`FUNCTION_TOL` on a benchmark function (required elsewhere).
+        targets: a ``trend``'s targets in the order its metric is claimed to grow along (``target``
+            is then the first of them, so that code reading one target still names a real one);
+            empty for every other kind. Build a trend with :func:`trend_claim`.
     """
 
     spec: str
@@ -116,18 +140,45 @@ class Claim:
     claimed: float | None = None
     note: str = ""
     tol: float | None = None
+    targets: tuple[str, ...] = ()
+
+    def __post_init__(self) -> None:
+        # a trend judges several targets, every other kind one: catch a half-built claim early
+        if self.kind == "trend":
+            if (len(self.targets) < 2 or len(set(self.targets)) != len(self.targets)
+                    or self.target != self.targets[0] or self.other is not None):
+                raise ValueError(f"a trend claim needs two or more distinct targets, the first as its target, "
+                                 f"and no other group: {self.targets!r}, {self.target!r}, {self.other!r}")
+        elif self.targets:
+            raise ValueError(f"only a trend claim names several targets, not a {self.kind} claim")
 
     @property
     def id(self) -> str:
         """The claim's stable name, made of what the verdict is computed from (spec, target, kind,
         groups, metric; never the quote or the claimed size): ``spec:target:kind:better`` for a
         share (``rate``, ``fails``, ``reaches``), ``spec:target:kind:better:other:metric`` for a
-        comparison. The inventory of the papers' statements (:mod:`.claim_inventory`) names claims
-        by it."""
+        comparison, ``spec:t1>t2>...:trend:better:metric`` for a trend (its targets in order). The
+        inventory of the papers' statements (:mod:`.claim_inventory`) names claims by it."""
+        if self.kind == "trend":
+            return ":".join([self.spec, ">".join(self.targets), self.kind, self.better, self.metric])
         parts = [self.spec, self.target, self.kind, self.better]
         if self.kind not in SHARE_KINDS:
             parts += [str(self.other), self.metric]
         return ":".join(parts)
+
+
+def trend_claim(spec: str, source: str, quote: str, targets: Iterable[str], better: str, metric: str,
+                claimed: float | None = None, note: str = "") -> Claim:
+    """A ``trend`` claim: ``better``'s mean ``metric`` grows along ``targets`` (in that order);
+    ``claimed`` is the paper's relative change from the first target to the last."""
+    targets = tuple(targets)
+    return Claim(spec, source, quote, targets[0] if targets else "", "trend", better, None, metric, claimed, note,
+                 targets=targets)
+
+
+def target_text(claim: Claim) -> str:
+    """The claim's target as the tables show it: a trend's targets in order, ``a -> b -> c``."""
+    return " -> ".join(claim.targets) if claim.targets else claim.target
 
 
 def _drop(ma: float, mb: float) -> float:
@@ -343,6 +394,159 @@ def judge_reaches(errors, runs: int, tol: float, claimed: float) -> tuple[str, s
     return figure, verdict
 
 
+def _assignments(sizes: list[int]) -> np.ndarray:
+    """Every way to deal ``sum(sizes)`` runs (positions) to targets holding ``sizes[i]`` runs each,
+    as a ``(ways, runs)`` array of target indices."""
+    import itertools
+
+    n = sum(sizes)
+    out: list[np.ndarray] = []
+
+    def deal(free: list[int], g: int, labels: np.ndarray) -> None:
+        if g == len(sizes) - 1:
+            lab = labels.copy()
+            lab[free] = g
+            out.append(lab)
+            return
+        for chosen in itertools.combinations(free, sizes[g]):
+            lab = labels.copy()
+            lab[list(chosen)] = g
+            taken = set(chosen)
+            deal([i for i in free if i not in taken], g + 1, lab)
+
+    deal(list(range(n)), 0, np.zeros(n, dtype=int))
+    return np.array(out)
+
+
+def _ways(sizes: Iterable[int]) -> int:
+    """How many ways there are to deal the runs to targets of these sizes (a multinomial)."""
+    import math
+
+    sizes = list(sizes)
+    ways, left = 1, sum(sizes)
+    for k in sizes:
+        ways *= math.comb(left, k)
+        left -= k
+    return ways
+
+
+def smallest_trend_p(counts: Iterable[Iterable[int]]) -> float:
+    """The smallest p :func:`trend_p` can give; ``counts``: per block (seed), its runs per target.
+    Untied values dealt in order within every block, and the reverse, are the two most extreme deals:
+    ``2 / ways``. One seed on four targets: 2/24; one block of 3 against 3 runs: 0.1."""
+    ways = 1
+    for block in counts:
+        ways *= _ways([k for k in block if k])
+    return 1.0 if ways < 2 else min(1.0, 2.0 / ways)
+
+
+def _trend_blocks(groups, blocks) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(values, target positions, block ids)`` of every run, pooled."""
+    vals = [np.asarray(g, float).ravel() for g in groups]
+    if blocks is None:
+        blocks = [np.zeros(len(v), dtype=int) for v in vals]
+    blocks = [np.asarray(b).ravel() for b in blocks]
+    if [len(b) for b in blocks] != [len(v) for v in vals]:
+        raise ValueError("a trend's blocks must name the block of every run")
+    x = np.concatenate(vals) if vals else np.zeros(0)
+    pos = np.repeat(np.arange(len(vals)), [len(v) for v in vals])
+    blk = np.concatenate(blocks) if blocks else np.zeros(0)
+    return x, pos, blk
+
+
+def trend_p(groups, blocks=None, seed: int = 0) -> tuple[float, float]:
+    """``(rho, p)``: the rank correlation between the runs' target positions (``groups``: values per
+    target, in the claimed order) and their values, and its two-sided permutation p-value.
+
+    ``blocks`` (parallel to ``groups``: each run's block, e.g. its seed) pairs the runs: both ranks
+    are taken within a block and the target labels are permuted within it (Page's test for ordered
+    alternatives, with incomplete blocks allowed). ``None``: one block, i.e. Spearman's rho of all runs
+    with a plain permutation test. Under the null (the target changes nothing) the values in a block
+    are exchangeable across its targets, so every deal is equally likely and ``p`` is the share of
+    deals whose statistic is at least as far from 0. Exact when there are at most
+    :data:`TREND_EXACT` deals; else ``(1 + hits) / (1 + PERMUTATIONS)`` over seeded random ones.
+    ``rho`` is the statistic over its largest possible value: Spearman's rho for one block, the mean
+    of the blocks' rhos for complete untied blocks."""
+    from functools import reduce
+
+    from scipy.stats import rankdata
+
+    x, pos, blk = _trend_blocks(groups, blocks)
+    parts = []   # per block: (target index of each run, centred target ranks, centred value ranks)
+    for b in np.unique(blk):
+        i = np.flatnonzero(blk == b)
+        if len(i) > 1:
+            parts.append((pos[i], rankdata(pos[i]) - (len(i) + 1) / 2.0, rankdata(x[i]) - (len(i) + 1) / 2.0))
+    denom = float(np.sqrt(sum((s ** 2).sum() for _, s, _ in parts) * sum((r ** 2).sum() for _, _, r in parts)))
+    if denom == 0.0:   # every value tied within its block, or no block spans two targets
+        return 0.0, 1.0
+    t_obs = float(sum(s @ r for _, s, r in parts))
+    counts = [[int(k) for k in np.unique(p, return_counts=True)[1]] for p, _, _ in parts]
+    if np.prod([float(_ways(c)) for c in counts]) <= TREND_EXACT:
+        sums = []
+        for (p, s, r), c in zip(parts, counts):
+            score = np.array([s[p == t][0] for t in np.unique(p)])   # the score of each target present
+            sums.append(score[_assignments(c)] @ r)
+        t = reduce(lambda acc, u: (acc[:, None] + u[None, :]).ravel(), sums, np.zeros(1))
+        exact = True
+    else:
+        rng = np.random.default_rng(seed)
+        t = np.zeros(PERMUTATIONS)
+        for _, s, r in parts:
+            t += rng.permuted(np.tile(s, (PERMUTATIONS, 1)), axis=1) @ r
+        exact = False
+    hits = int(np.count_nonzero(np.abs(t) >= abs(t_obs) - 1e-9 * max(1.0, abs(t_obs))))
+    p = hits / len(t) if exact else (hits + 1) / (len(t) + 1)
+    return t_obs / denom, float(min(1.0, p))
+
+
+def _bootstrap_change(first: np.ndarray, last: np.ndarray, bf: np.ndarray | None, bl: np.ndarray | None,
+                      seed: int = 0) -> tuple[float, float]:
+    """95 % percentile interval of the relative change of the mean from ``first`` to ``last``;
+    with blocks ``bf`` / ``bl`` the blocks are resampled, keeping each seed's pair together."""
+    if bf is None or bl is None or len(np.unique(np.r_[bf, bl])) < 2:
+        lo, hi = _bootstrap_reduction(last, first, seed)   # reduction of last against first
+        return 0.0 - hi, 0.0 - lo
+    ids = {b: k for k, b in enumerate(np.unique(np.r_[bf, bl]))}
+    sums, ns = np.zeros((2, len(ids))), np.zeros((2, len(ids)))
+    for row, (vals, bs) in enumerate(((first, bf), (last, bl))):
+        for v, b in zip(vals, bs):
+            sums[row, ids[b]] += v
+            ns[row, ids[b]] += 1
+    idx = np.random.default_rng(seed).integers(0, len(ids), size=(BOOTSTRAP, len(ids)))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        mf = sums[0][idx].sum(axis=1) / ns[0][idx].sum(axis=1)
+        ml = sums[1][idx].sum(axis=1) / ns[1][idx].sum(axis=1)
+        ch = np.where(ml == mf, 0.0, (ml - mf) / np.abs(mf))
+    ch = ch[np.isfinite(ch)]
+    if not len(ch):
+        return float("nan"), float("nan")
+    return float(np.percentile(ch, 2.5)), float(np.percentile(ch, 97.5))
+
+
+def judge_trend(groups, claimed: float | None, alpha: float = 0.05, blocks=None) -> tuple[str, str]:
+    """``(our figure, verdict)`` of "the mean grows along ``groups``" (each the values of one target,
+    in the claimed order; ``blocks``: each run's seed, see :func:`trend_p`; kind ``trend``, module
+    docstring)."""
+    x, pos, blk = _trend_blocks(groups, blocks)
+    sizes = [int((pos == i).sum()) for i in range(len(groups))]
+    if len(sizes) < 2 or min(sizes) < 1:
+        return f"runs per target {'/'.join(map(str, sizes))}", "not run"
+    first, last = x[pos == 0], x[pos == len(sizes) - 1]
+    change = 0.0 - _drop(last.mean(), first.mean())        # (last - first) / |first|; 0.0 - keeps no "-0.0"
+    paired = blocks is not None
+    lo, hi = _bootstrap_change(first, last, blk[pos == 0] if paired else None,
+                               blk[pos == len(sizes) - 1] if paired else None)
+    rho, p = trend_p(groups, blocks)
+    means = " -> ".join(f"{x[pos == i].mean():.4g}" for i in range(len(sizes)))
+    figure = (f"means {means}; first to last {100 * change:+.1f} % [{100 * lo:+.1f}, {100 * hi:+.1f}], "
+              f"rho={rho:+.2f}{' within seeds' if paired else ''}, p={p:.2g}")
+    counts = [[int(((blk == b) & (pos == i)).sum()) for i in range(len(sizes))] for b in np.unique(blk)]
+    if smallest_trend_p(counts) >= alpha:
+        return figure, TOO_FEW_RUNS
+    return figure, _verdict(p, alpha, rho > 0, claimed is not None and hi < claimed)
+
+
 def _tol(claim: Claim, res) -> float:
     """The claim's margin: its own, else the benchmark tolerance on a function spec; never guessed."""
     if claim.tol is not None:
@@ -361,6 +565,16 @@ def _group(res, target: str, label: str):
 
 def judge(claim: Claim, res) -> tuple[str, str]:
     """``(our figure, verdict)`` of one claim on the stored runs ``res`` of its spec."""
+    if claim.kind == "trend":
+        if not set(claim.targets) <= {t.name for t in res.spec.targets}:
+            return "target not in this run", "not run"
+        groups = [_group(res, t, claim.better) for t in claim.targets]
+        if any(g is None for g in groups):
+            return "group not in this run", "not run"
+        # each run's value with its seed: a seed's runs on the targets are compared with each other
+        runs = [[(r.seed, v) for r in recs for v in res.values([r], claim.metric)] for recs in groups]
+        return judge_trend([[v for _, v in g] for g in runs], claim.claimed, res.spec.alpha,
+                           blocks=[[s for s, _ in g] for g in runs])
     if claim.target not in {t.name for t in res.spec.targets}:
         return "target not in this run", "not run"
     a = _group(res, claim.target, claim.better)
@@ -390,6 +604,8 @@ def judge(claim: Claim, res) -> tuple[str, str]:
 def _claimed_text(c: Claim) -> str:
     if c.kind in ("tie", "tie_best"):
         return "equal"
+    if c.kind == "trend":   # grows along the targets as listed; the size is first to last
+        return "grows" if c.claimed is None else f"{100 * c.claimed:+.1f} %"
     if c.claimed is None:
         return ">= 100 %" if c.kind == "reaches" else "better"
     if c.kind == "fails":
@@ -402,7 +618,7 @@ def _claimed_text(c: Claim) -> str:
 # what the compared column says before the groups, for the kinds that compare extremes or equality
 # (a prefix, so that a run-time row still ends in "(runtime_s)", the mark doc_tables skips)
 _COMPARED_PREFIX = {"less_best": "best: ", "less_worst": "worst: ", "tie": "equal: ", "tie_best": "equal best: ",
-                    "reaches": "optimum: "}
+                    "reaches": "optimum: ", "trend": "trend: "}
 
 
 def claims_of(spec_name: str) -> list[Claim]:
@@ -430,7 +646,7 @@ def claims_table(res) -> Table | None:
         figure, verdict = judge(shown, res)
         compared = _COMPARED_PREFIX.get(c.kind, "") + shown.better + (f" vs {shown.other}" if shown.other else "") + \
             (f" ({c.metric})" if c.kind not in SHARE_KINDS else "")
-        row = [c.source, c.quote, c.target, compared, _claimed_text(c), figure, verdict]
+        row = [c.source, c.quote, target_text(c), compared, _claimed_text(c), figure, verdict]
         if twins:
             ours = judge(c, res) if c.id in twins else ("-", "-")   # "-": nothing of ours in its groups
             row += list(ours)
@@ -450,6 +666,11 @@ def claims_table(res) -> Table | None:
         table.notes.append("equal -> equivalence test: the 90 % bootstrap interval of the difference (of the means, "
                            "or of the best runs) inside the margin (1e-8 on benchmark functions, the CEC "
                            "convention); optimum -> runs within that margin of the known optimum")
+    if "trend" in kinds:
+        table.notes.append("trend -> the mean per target in the order shown and its relative change first to last "
+                           "with a bootstrap interval (seeds resampled); rho: rank correlation of the runs with that "
+                           "order within their seed, p: its permutation test, targets dealt anew within each seed "
+                           f"(exact, or {PERMUTATIONS:,} seeded deals)")
     if twins:
         table.notes += _twin_notes(twin_verdicts(verdicts, [(c, twins[c.id]) for c in claims if c.id in twins]))
     table.notes += notes
@@ -818,6 +1039,11 @@ def _extreme_and_tie_claims() -> tuple[Claim, ...]:
     return (*hou, *yang, *yuan, *chen)
 
 
+# the ordered targets of the trend claims: 0-3 random obstacles, 2-5 movers
+HOU2024_TABLE4_TARGETS = ("hou2024_table4_0", "hou2024_table4_1", "hou2024_table4_2", "hou2024_table4_3")
+LI2023_EXP2_TARGETS = ("li2023_exp2_2", "li2023_exp2_3", "li2023_exp2_4", "li2023_exp2_5")
+
+
 def _added_claims() -> tuple[Claim, ...]:
     spread_quotes = ((4, ("F5", "F6", "F7"), "MSIAR-GWO has the smallest standard deviation in F5-F7"),
                      (5, ("F12", "F13"), "in F12 and F13 MSIAR-GWO's standard deviation is the smallest too"),
@@ -827,6 +1053,13 @@ def _added_claims() -> tuple[Claim, ...]:
         *(Claim("hou2024_local_table4", "§4.4, Table 4, Fig 8", "MISSA-DWA passes the random obstacles and reaches "
                 "the target", m, "rate", "missa/missa-dwa", claimed=1.0)
           for m in ("hou2024_table4_0", "hou2024_table4_1", "hou2024_table4_2", "hou2024_table4_3")),
+        # hou2024 §4.4, Table 4: the fusion's path length and (simulated) time grow with 0-3 random obstacles;
+        # claimed: the table's change from the first row to the last
+        *(trend_claim("hou2024_local_table4", "§4.4, Table 4", f"the fusion's {what} grows with the number of random "
+                      f"obstacles ({a} -> {b} {unit} from 0 to 3)", HOU2024_TABLE4_TARGETS, "missa/missa-dwa", metric,
+                      b / a - 1)
+          for what, metric, a, b, unit in (("path length", "path_length", 74.155, 76.206, "m"),
+                                           ("time", "time_s", 106.58, 117.62, "s"))),
         # yuan2021 §5.1 (1), Table 1: IBA's variance is also below PSO's; PSO's and BA's runs are
         # collision-free paths too (the section plans the shortest collision-free path)
         Claim("yuan2021_table1", "Table 1", "IBA is more stable than PSO (variance 1.81 vs 3.06)", "yuan2021_25",
@@ -851,6 +1084,10 @@ def _added_claims() -> tuple[Claim, ...]:
         *(Claim("li2023_local_exp2", "§6.2, Figs 17-19", f"the traditional DWA's path is longer than the fusion's "
                 f"({n} movers)", f"li2023_exp2_{n}", "less", "iga/iga-dwa", "iga/dwa", "path_length")
           for n in (2, 3, 4, 5)),
+        # li2023 §6.2 Experiment II, Fig 17: both curves rise with the number of movers (the figure prints no values)
+        *(trend_claim("li2023_local_exp2", "§6.2, Fig 17", f"{name}'s path length grows with the number of movers "
+                      "(2 to 5)", LI2023_EXP2_TARGETS, group, "path_length")
+          for name, group in (("the fusion", "iga/iga-dwa"), ("the traditional DWA", "iga/dwa"))),
         # yang2023 §7.2, Fig 14: IDWA's evasion (away from the mover's motion) keeps its path shorter
         Claim("yang2023_local_crossing", "§7.2, Fig 14", "IDWA's evasion keeps the path shorter than DWA's",
               "yang2023_idwa_crossing", "less", "astar/idwa", "astar/dwa", "path_length"),
@@ -970,7 +1207,7 @@ def _twin_notes(pairs: list[TwinVerdict]) -> list[str]:
              f"verdicts that differ between the paper's setting and our change: {len(differ)} of {len(judged)} "
              f"pairs judged on both sides" + (f" ({len(pairs) - len(judged)} more without a verdict)"
                                               if len(judged) < len(pairs) else "")]
-    lines += [f"- {t.claim.quote} ({t.claim.target}): {t.printed} as printed, {t.ours} with our change"
+    lines += [f"- {t.claim.quote} ({target_text(t.claim)}): {t.printed} as printed, {t.ours} with our change"
               for t in differ]
     return lines
 
