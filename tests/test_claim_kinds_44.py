@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import pytest
+from claim_stubs import StubSpec, StubTarget
 
 from optplan.bench import claim_inventory as inv
 from optplan.bench.claims import (CLAIMS, FUNCTION_TOL, Claim, claims_table, judge, judge_less_extreme,
@@ -136,17 +137,7 @@ def test_reaching_the_optimum_counts_runs_within_the_tolerance():
 
 # --------------------------------------------------------------------------- judge() on stored runs
 
-@dataclass
-class _Target:
-    name: str
-
-
-@dataclass
-class _Spec:
-    name: str
-    kind: str
-    targets: list
-    alpha: float = 0.05
+_Target, _Spec = StubTarget, StubSpec
 
 
 @dataclass
@@ -174,7 +165,7 @@ class _Results:
 def test_judge_dispatches_the_new_kinds_on_stored_runs():
     good = np.r_[np.full(5, 1.0), _runs(20.0, 1.0, n=15, seed=3)]
     mid = _runs(10.0, 1.0, seed=4)
-    res = _Results(_Spec("s", "plan", [_Target("m")]), {"a": {"length": good}, "b": {"length": mid}})
+    res = _Results(_Spec("s", [_Target("m")], "plan"), {"a": {"length": good}, "b": {"length": mid}})
     assert judge(Claim("s", "", "", "m", "less", "a", "b"), res)[1] == "reversed"        # mean
     assert judge(Claim("s", "", "", "m", "less_best", "a", "b"), res)[1] == "holds"      # best run
     assert judge(Claim("s", "", "", "m", "less_worst", "b", "a"), res)[1] == "holds"     # worst run
@@ -185,7 +176,7 @@ def test_judge_dispatches_the_new_kinds_on_stored_runs():
     assert judge(Claim("s", "", "", "m", "tie", "b", "b", tol=1e-6), res)[1] == "not significant"
     assert judge(Claim("s", "", "", "m", "tie", "b", "b", tol=1.0), res)[1] == "holds"
     # on a function spec the margin is the benchmark tolerance, and reaches reads the stored error
-    fres = _Results(_Spec("f", "optimize", [_Target("F15")]),
+    fres = _Results(_Spec("f", [_Target("F15")], "optimize"),
                     {"x": {"f": np.full(20, 0.3979), "f_error": np.full(20, 1e-14)},
                      "y": {"f": np.full(20, 0.3979) + 1e-6, "f_error": np.full(20, 1e-6)}})
     assert judge(Claim("f", "", "", "F15", "tie", "x", "x", "f"), fres)[1] == "holds"
@@ -201,7 +192,7 @@ def test_the_claims_table_names_the_kind_and_keeps_the_run_time_mark():
                   "turn_angle_deg": _runs(10 * c, 10.0, seed=20 + i)}
             for i, (lab, c) in enumerate((("missa", 10.0), ("aco", 12.0), ("iaco", 12.0), ("ssa", 12.0),
                                           ("aco-pruned", 12.0), ("iaco-pruned", 12.0), ("missa-evals", 10.0)))}
-    spec = _Spec("hou2024_global", "plan", [_Target("hou2024_env1")])
+    spec = _Spec("hou2024_global", [_Target("hou2024_env1")], "plan")
     table = claims_table(_Results(spec, runs))
     best = [r for r in table.rows if r[3].startswith("best: ")]
     # environment 2 is not in these runs: its rows are listed as not run

@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import pytest
+from claim_stubs import StubSpec, StubTarget
 from scipy.stats import spearmanr
 
 from optplan.bench import claim_inventory as inv
@@ -170,17 +171,7 @@ def test_a_trend_claim_names_its_targets_in_order():
         Claim("s", "", "", "a", "less", "g", "h", targets=("a", "b"))   # only a trend names several
 
 
-@dataclass
-class _Target:
-    name: str
-
-
-@dataclass
-class _Spec:
-    name: str
-    targets: list
-    kind: str = "simulate"
-    alpha: float = 0.05
+_Target, _Spec = StubTarget, StubSpec
 
 
 @dataclass(frozen=True)

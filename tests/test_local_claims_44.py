@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import pytest
+from claim_stubs import StubSpec, StubTarget
 
 import optplan as op
 from optplan.bench import claim_inventory as inv
@@ -176,17 +177,7 @@ def test_the_counter_lists_exactly_the_pairs_whose_verdicts_differ():
                            "holds", "holds").differs
 
 
-@dataclass
-class _Target:
-    name: str
-
-
-@dataclass
-class _Spec:
-    name: str
-    targets: list
-    kind: str = "simulate"
-    alpha: float = 0.05
+_Target, _Spec = StubTarget, StubSpec
 
 
 @dataclass

@@ -37,7 +37,7 @@ from ..world.robot import Command, RobotSpec, RobotState
 from .base import LocalContext
 from .hooks import PlannerView, build_part
 from .limiter import RuckigLimiter
-from .sweep_gate import Track
+from .sweep_gate import Track, follow, learn_turn, seen_at
 from .window import dynamic_window, sample_grid
 
 FEASIBLE = 1e-6   # a violation below this counts as none (the batched view's round-off)
@@ -94,20 +94,6 @@ class MoverTracker:
         self.tracks, self._t = [], None
         self._ends, self._seen = np.zeros((0, 2)), np.zeros((0, 2))
 
-    def _match(self, p: complex, v: complex, r: float, t: float, dt: float, free: list[Track]) -> Track | None:
-        c = abs(v)
-        best, best_off = None, self.match
-        for k in free:
-            if abs(k.radius - r) > 1e-6 or abs((v * np.conj(k.axis)).imag) > 0.05 * c:
-                continue  # another size, or not moving along this track's line
-            s, off = k.along(p)
-            if off > best_off:
-                continue
-            if t - k.t_seen <= 1.5 * dt + 1e-9 and abs(s - k.predicted(t - k.t_seen)) > self.match:
-                continue  # seen a step ago somewhere else on the line
-            best, best_off = k, off
-        return best
-
     def observe(self, ctx: LocalContext) -> tuple[np.ndarray, np.ndarray]:
         """``(ends, seen)``, each ``(k, 2)`` rows ``(behind, ahead)`` for the rows of
         ``ctx.dynamic``, metres along each mover's velocity from where it is: where it is known
@@ -128,29 +114,13 @@ class MoverTracker:
             c = abs(v)
             if c < 1e-6:
                 continue  # standing: nothing to learn, predicted where it stands
-            k = self._match(p, v, float(r), t, ctx.dt, free)
-            if k is None:
-                k = Track(origin=p, axis=v / c, radius=float(r), speed=c, s=0.0, heading=1.0, seen_lo=0.0,
-                          seen_hi=0.0, t_seen=t, first_seen=t)
-                self.tracks.append(k)
-            else:
-                free.remove(k)
-            s, _ = k.along(p)
-            heading = 1.0 if (v * np.conj(k.axis)).real > 0 else -1.0
-            elapsed = t - k.t_seen
-            one_turn = elapsed <= 5 * ctx.dt + 1e-9 or (elapsed <= self.rejoin
-                                                        and c * elapsed < 2 * (k.seen_hi - k.seen_lo))
-            if heading != k.heading and 0 < elapsed and one_turn:
-                if k.heading > 0:
-                    k.end_hi = max(0.5 * (k.s + s + c * elapsed), k.seen_hi)
-                else:
-                    k.end_lo = min(0.5 * (k.s + s - c * elapsed), k.seen_lo)
+            k, s, heading, _ = follow(self.tracks, free, p, v, float(r), t, ctx.dt, self.match)
+            learn_turn(k, s, heading, c, t, ctx.dt, self.rejoin)
             if s > k.end_hi + self.slack:   # seen beyond where it was thought to turn: it does not
                 k.end_hi = math.inf
             if s < k.end_lo - self.slack:
                 k.end_lo = -math.inf
-            k.s, k.heading, k.speed, k.t_seen = s, heading, c, t
-            k.seen_lo, k.seen_hi = min(k.seen_lo, s), max(k.seen_hi, s)
+            seen_at(k, s, heading, c, t)
             if heading > 0:
                 ahead, behind, seen_ahead, seen_behind = k.end_hi - s, k.end_lo - s, k.seen_hi - s, k.seen_lo - s
             else:

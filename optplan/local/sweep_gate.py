@@ -85,6 +85,65 @@ class Track:
         return self.origin + self.axis * bounce(self.s, self.heading, self.speed, t, self.end_lo, self.end_hi)
 
 
+def match_track(free: list, p: complex, v: complex, r: float, t: float, dt: float, match: float) -> "Track | None":
+    """The track of ``free`` a mover sensed at ``p`` with velocity ``v`` and radius ``r``
+    continues: the same size, moving along the track's line, the nearest within ``match``
+    metres of it, and, if the track was seen a step ago, within ``match`` of where it was
+    predicted; ``None`` if there is none (shared by the sweep gate and the program solvers'
+    mover tracker)."""
+    c = abs(v)
+    best, best_off = None, match
+    for k in free:
+        if abs(k.radius - r) > 1e-6 or abs((v * np.conj(k.axis)).imag) > 0.05 * c:
+            continue  # another size, or not moving along this track's line
+        s, off = k.along(p)
+        if off > best_off:
+            continue
+        if t - k.t_seen <= 1.5 * dt + 1e-9 and abs(s - k.predicted(t - k.t_seen)) > match:
+            continue  # seen a step ago somewhere else on the line
+        best, best_off = k, off
+    return best
+
+
+def follow(tracks: list, free: list, p: complex, v: complex, r: float, t: float, dt: float,
+           match: float) -> tuple["Track", float, float, bool]:
+    """``(track, s, heading, new)``: the track a moving mover sensed at ``p`` continues
+    (:func:`match_track` among ``free``, taken out of it), or a new one started at ``p`` and
+    appended to ``tracks``; where along its line the mover is and which way it drives."""
+    k = match_track(free, p, v, r, t, dt, match)
+    new = k is None
+    if new:
+        c = abs(v)
+        k = Track(origin=p, axis=v / c, radius=r, speed=c, s=0.0, heading=1.0, seen_lo=0.0, seen_hi=0.0,
+                  t_seen=t, first_seen=t)
+        tracks.append(k)
+    else:
+        free.remove(k)
+    s, _ = k.along(p)
+    return k, s, (1.0 if (v * np.conj(k.axis)).real > 0 else -1.0), new
+
+
+def learn_turn(k: "Track", s: float, heading: float, c: float, t: float, dt: float, rejoin: float) -> None:
+    """Learn from a mover of track ``k`` seen at ``s`` along the line, driving ``heading``
+    (+1 / -1) at speed ``c``, ``t``: a reversal since it was last seen is one turn, at
+    ``(s1 + s2 + c dt) / 2`` (constant speed), unless after a gap in sensing (at most
+    ``rejoin`` seconds) it had time to cover what it was seen on twice and turn three times.
+    The track's position is not moved (:func:`seen_at` does that)."""
+    elapsed = t - k.t_seen
+    one_turn = elapsed <= 5 * dt + 1e-9 or (elapsed <= rejoin and c * elapsed < 2 * (k.seen_hi - k.seen_lo))
+    if heading != k.heading and 0 < elapsed and one_turn:
+        if k.heading > 0:
+            k.end_hi = max(0.5 * (k.s + s + c * elapsed), k.seen_hi)
+        else:
+            k.end_lo = min(0.5 * (k.s + s - c * elapsed), k.seen_lo)
+
+
+def seen_at(k: "Track", s: float, heading: float, c: float, t: float) -> None:
+    """Move track ``k`` to where its mover was just seen, and widen the stretch it was seen on."""
+    k.s, k.heading, k.speed, k.t_seen = s, heading, c, t
+    k.seen_lo, k.seen_hi = min(k.seen_lo, s), max(k.seen_hi, s)
+
+
 def line_reach(ctx: LocalContext, p: complex, axis: complex, radius: float, step: float = 0.05,
                longest: float = 20.0) -> tuple[float, float]:
     """``(lo, hi)``: how far along ``axis`` (negative, positive) a disc of ``radius`` at
@@ -164,20 +223,6 @@ class SweepGate(Mechanism, MoverSweepSource):
     def reset(self, view, state, global_path) -> None:
         self.tracks, self._t, self._now, self._swept, self._rows = [], None, [], {}, {}
 
-    def _match(self, p: complex, v: complex, r: float, t: float, dt: float, free: list) -> "Track | None":
-        c = abs(v)
-        best, best_off = None, self.match
-        for k in free:
-            if abs(k.radius - r) > 1e-6 or abs((v * np.conj(k.axis)).imag) > 0.05 * c:
-                continue  # another size, or not moving along this track's line
-            s, off = k.along(p)
-            if off > best_off:
-                continue
-            if t - k.t_seen <= 1.5 * dt + 1e-9 and abs(s - k.predicted(t - k.t_seen)) > self.match:
-                continue  # seen a step ago somewhere else on the line
-            best, best_off = k, off
-        return best
-
     def update(self, ctx: LocalContext) -> None:
         """Match the sensed movers to tracks and learn their turning points (once per step)."""
         t = float(ctx.t)
@@ -193,27 +238,11 @@ class SweepGate(Mechanism, MoverSweepSource):
             c = abs(v)
             if c < 1e-6:
                 continue  # a standing obstacle has no track; the planner's clearance handles it
-            k = self._match(p, v, float(r), t, ctx.dt, free)
-            if k is None:
-                k = Track(origin=p, axis=v / c, radius=float(r), speed=c, s=0.0, heading=1.0, seen_lo=0.0,
-                           seen_hi=0.0, t_seen=t, first_seen=t)
+            k, s, heading, new = follow(self.tracks, free, p, v, float(r), t, ctx.dt, self.match)
+            if new:
                 k.reach_lo, k.reach_hi = line_reach(ctx, p, v / c, float(r))
-                self.tracks.append(k)
-            else:
-                free.remove(k)
-            s, _ = k.along(p)
-            heading = 1.0 if (v * np.conj(k.axis)).real > 0 else -1.0
-            elapsed = t - k.t_seen
-            # a reversal since it was last seen means one turn, unless (after a gap in sensing) it
-            # had time to cover what it was seen on twice and turn three times
-            one_turn = elapsed <= 5 * ctx.dt + 1e-9 or (elapsed <= self.rejoin and c * elapsed < 2 * (k.seen_hi - k.seen_lo))
-            if heading != k.heading and 0 < elapsed and one_turn:
-                if k.heading > 0:
-                    k.end_hi = max(0.5 * (k.s + s + c * elapsed), k.seen_hi)
-                else:
-                    k.end_lo = min(0.5 * (k.s + s - c * elapsed), k.seen_lo)
-            k.s, k.heading, k.speed, k.t_seen = s, heading, c, t
-            k.seen_lo, k.seen_hi = min(k.seen_lo, s), max(k.seen_hi, s)
+            learn_turn(k, s, heading, c, t, ctx.dt, self.rejoin)
+            seen_at(k, s, heading, c, t)
             now.append(k)
             self._rows[row] = k
         self._now = now
