@@ -1,11 +1,14 @@
 """Kind ``plan``: ``op.plan`` on a map (a paper map name, ``{map, start, goal}`` or a ``.scen``
-file's queries); a success is a feasible path; every run also stores its gap split."""
+file's queries); a success is a feasible path; every run also stores its gap split and where
+its convergence history went (:func:`history_metrics`)."""
 from __future__ import annotations
 
 import functools
 import json
 from pathlib import Path
 from typing import Any, ClassVar, Mapping
+
+import numpy as np
 
 from ...errors import ScenarioError
 from ..spec_fields import (MAP_KEYS, TargetSpec, as_list, check_keys, check_map_target, keyword_names, point,
@@ -15,6 +18,24 @@ from .base import RunKind
 
 # the gap split stored with every plan run (issue 26); None for an infeasible path
 SPLIT_METRICS = ("class_gap", "in_class_gap", "optimal_class")
+
+
+def history_metrics(history) -> dict[str, float | None]:
+    """What a plan run stores of its convergence history (best objective per iteration; empty
+    for graph search, which then stores ``None``):
+
+    * ``convergence_iter``: the first iteration within 1e-9 of the run's final value (yang2023
+      Table 3, li2023 Fig 13's generations);
+    * ``fitness_final``: the history's last value, the best value of the objective the planner
+      optimised (the paper's fitness under the run's preset, scored as the planner scores it,
+      before any post-processing or refinement): where the papers' convergence curves end
+      (li2023 Fig 13, chen2025 Figs 18-20). Comparable between runs that optimise the same
+      objective only (same preset and protocol options).
+    """
+    h = np.asarray(history, float)
+    if not len(h):
+        return {"convergence_iter": None, "fitness_final": None}
+    return {"convergence_iter": float(convergence_iteration(h)), "fitness_final": float(h[-1])}
 
 
 def plan_target(target_json: str):
@@ -76,13 +97,18 @@ def path_planner_names() -> list[str]:
 
 
 class PlanKind(RunKind):
-    """``op.plan`` runs on maps."""
+    """``op.plan`` runs on maps.
+
+    Extra metrics: the gap split (``class_gap``, ``in_class_gap``, ``optimal_class``, issue 26)
+    and, from the convergence history (:func:`history_metrics`), ``convergence_iter`` and
+    ``fitness_final`` (the best fitness the planner reached, the end of its convergence curve).
+    """
 
     name: ClassVar[str] = "plan"
     target_key: ClassVar[str] = "maps"
     default_metric: ClassVar[str] = "length"
     result_type: ClassVar[str] = "PlanResult"
-    extra_metrics: ClassVar[tuple[str, ...]] = (*SPLIT_METRICS, "convergence_iter")
+    extra_metrics: ClassVar[tuple[str, ...]] = (*SPLIT_METRICS, "convergence_iter", "fitness_final")
     refines: ClassVar[bool] = True
     final_metric: ClassVar[str | None] = "length"
 
@@ -141,8 +167,7 @@ class PlanKind(RunKind):
         world, start, goal = plan_target(json.dumps(rec.target_spec, sort_keys=True))
         res = plan(world, start, goal, algorithm=rec.algorithm, refine=rec.refine, seed=rec.seed, **rec.params)
         extra = _gap_split(world, start, goal, res, float(rec.params.get("clearance", 0.0)))
-        # the first iteration within 1e-9 of the run's final value (yang2023 Table 3); none for graph search
-        extra["convergence_iter"] = float(convergence_iteration(res.history)) if len(res.history) else None
+        extra.update(history_metrics(res.history))
         return res, extra
 
     def successful(self, row: Mapping[str, Any]) -> bool:

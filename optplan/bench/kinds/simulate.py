@@ -1,5 +1,6 @@
 """Kind ``simulate``: ``op.simulate`` on a scenario (closed loop: global planner, optional
-refinement, local planner); a success reaches the goal without a collision."""
+refinement, local planner); a success reaches the goal without a collision; every run also
+stores how much the driven path turns (:func:`heading_change_per_m`)."""
 from __future__ import annotations
 
 import functools
@@ -7,20 +8,40 @@ import json
 from pathlib import Path
 from typing import Any, ClassVar, Mapping
 
+import numpy as np
+
 from ...errors import ScenarioError
 from ..spec_fields import TargetSpec, as_list, spec_file
 from .base import RunKind
 from .plan import path_planner_names
 
 
+def heading_change_per_m(trajectory, path_length: float) -> float | None:
+    """The smoothness of a driven path: the total absolute change of the robot's heading
+    (degrees; each step's change wrapped to [-180, 180)) per metre driven, from the
+    trajectory's heading column (rows ``[t, x, y, theta, ...]``). Lower is smoother; a turn
+    on the spot counts in full (it is the robot's heading, not the path's). ``None`` when the
+    robot did not move."""
+    traj = np.asarray(trajectory, float)
+    if traj.ndim != 2 or len(traj) < 2 or not path_length > 0:
+        return None
+    dtheta = np.diff(traj[:, 3])
+    dtheta = (dtheta + np.pi) % (2 * np.pi) - np.pi
+    return float(np.degrees(np.abs(dtheta).sum()) / path_length)
+
+
 class SimulateKind(RunKind):
-    """Closed-loop runs on scenario files, shipped scenarios or generated families."""
+    """Closed-loop runs on scenario files, shipped scenarios or generated families.
+
+    Extra metrics: ``success`` (reached without a collision) and ``heading_change_per_m``
+    (:func:`heading_change_per_m`, the smoothness of the driven path: li2023 Experiment I).
+    """
 
     name: ClassVar[str] = "simulate"
     target_key: ClassVar[str] = "scenarios"
     default_metric: ClassVar[str] = "time_s"
     result_type: ClassVar[str] = "SimResult"
-    extra_metrics: ClassVar[tuple[str, ...]] = ("success",)
+    extra_metrics: ClassVar[tuple[str, ...]] = ("success", "heading_change_per_m")
     refines: ClassVar[bool] = True
     uses_local_planners: ClassVar[bool] = True
 
@@ -58,7 +79,8 @@ class SimulateKind(RunKind):
             params["global_plan"] = plan
         res = simulate(scenario, global_planner=rec.algorithm, local_planner=rec.local_planner, refine=rec.refine,
                        seed=rec.seed, **params)
-        extra = {"success": bool(res.reached and res.collisions == 0)}
+        extra = {"success": bool(res.reached and res.collisions == 0),
+                 "heading_change_per_m": heading_change_per_m(res.trajectory, res.path_length)}
         return res, extra
 
     def successful(self, row: Mapping[str, Any]) -> bool:
