@@ -37,7 +37,7 @@ def _observe(tracker: MoverTracker, until: float, since: float = 0.0, **shuttle)
     ends = None
     for k in range(int(round(since / DT)), int(round(until / DT)) + 1):
         rows = _shuttle(k * DT, **shuttle)
-        ends, _ = tracker.observe(_ctx(k * DT, rows))
+        ends, _, _ = tracker.observe(_ctx(k * DT, rows))
     return rows, ends
 
 
@@ -66,7 +66,7 @@ def test_a_mover_seen_to_turn_is_predicted_to_reflect_at_the_observed_end():
     assert rows[0, 0] == pytest.approx(2.5) and rows[0, 2] < 0
     behind, ahead = ends[0]
     assert ahead == np.inf and behind == pytest.approx(-0.5, abs=1e-6)   # B is 0.5 m behind it
-    _, seen = tracker.observe(_ctx(5.0, rows))                   # the same step: the same answer
+    _, seen, _ = tracker.observe(_ctx(5.0, rows))                   # the same step: the same answer
     assert np.allclose(seen[0], [-0.5, 1.5])                     # seen from A (1.5 m ahead) to B
     t = np.arange(1, 21) * DT
     c = _centres(rows, ends, t)
@@ -101,7 +101,7 @@ def test_an_end_the_mover_passes_is_forgotten():
     _observe(tracker, 5.0)                                       # turned at B = 3
     for k in range(51, 80):                                      # now it drives on in +x past x = 3
         x = 2.5 + 0.5 * (k - 50) * DT
-        ends, _ = tracker.observe(_ctx(k * DT, np.array([[x, 2.0, 0.5, 0.0, 0.15]])))
+        ends, _, _ = tracker.observe(_ctx(k * DT, np.array([[x, 2.0, 0.5, 0.0, 0.15]])))
     assert x > 3.1 and ends[0, 1] == np.inf
 
 
@@ -259,3 +259,24 @@ def test_learning_where_movers_turn_round_avoids_a_collision_in_closed_loop():
     assert runs["sweep"].reached and runs["sweep"].collisions == 0, runs["sweep"].message
     default = op.simulate("yang2023_fusion", global_planner="astar", local_planner="mpc", seed=0)
     assert np.array_equal(default.trajectory, runs["sweep"].trajectory)   # sweep is the default
+
+
+def test_a_mover_is_never_predicted_through_a_wall():
+    """No end known ahead, a wall 1 m ahead: it turns there at the latest, straight on never past it."""
+    t = np.array([1.0, 2.0, 3.0, 4.0])
+    # the point model: it bounces off the wall (reach 1 m ahead), not 2, 3, 4 m on
+    lo, hi = mover_intervals(np.array([1.0]), None, None, t, reach=np.array([[-np.inf, 1.0]]))
+    assert np.allclose(lo, [1.0, 0.0, -1.0, -2.0]) and np.allclose(hi, lo)
+    # the stretch model, seen 0.2 m ahead: anywhere from a turn there to a turn at the wall
+    lo, hi = mover_intervals(np.array([1.0]), None, np.array([[0.0, 0.2]]), t, reach=np.array([[-np.inf, 1.0]]))
+    assert np.all(hi <= 1.0 + 1e-12) and np.allclose(hi, [1.0, 0.0, -1.0, -2.0])
+    assert np.allclose(lo, [-0.6, -1.6, -2.6, -3.6]) and np.all(lo <= hi)
+    # the tracker reads the wall from the map it is given: x = 4 is a wall for a 0.15 m mover at 3.8 - 0.15
+    tracker = MoverTracker()
+    wall = lambda P: 4.0 - np.asarray(P, float)[..., 0]      # noqa: E731 - distance to the wall x = 4
+    ctx = LocalContext(state=RobotState(0.0, 0.0, 0.0), subgoal=np.array([5.0, 0.0]), goal=np.array([5.0, 0.0]),
+                       global_path=np.array([[0.0, 0.0], [3.0, 0.0]]), static_distance=wall,
+                       dynamic=np.array([[2.0, 2.0, 0.5, 0.0, 0.15]]), dt=DT, t=0.0)
+    _, _, reach = tracker.observe(ctx)
+    # to line_reach's 5 cm steps, never past the wall
+    assert 1.85 - 0.05 - 1e-9 <= reach[0, 1] <= 1.85 and reach[0, 0] == -np.inf

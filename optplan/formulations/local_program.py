@@ -64,6 +64,10 @@ class Situation:
             Given, a mover may also turn round at any point at or beyond them where no end is
             known, so it is predicted as an interval of its line; ``None``: an end not known
             is not predicted (straight on past it).
+        mover_reach: ``(k, 2)`` rows ``(behind, ahead)``, or ``None``: how far along its line
+            each mover can go before it touches a static obstacle the robot knows or the map's
+            border (``-inf`` / ``inf``: no such limit). A mover turns round there at the latest,
+            where no end is known on that side.
     """
 
     state: np.ndarray
@@ -74,6 +78,7 @@ class Situation:
     distance_error: float = 0.0
     mover_ends: np.ndarray | None = None
     mover_seen: np.ndarray | None = None
+    mover_reach: np.ndarray | None = None
 
 
 def bounce(run: np.ndarray, behind: np.ndarray, ahead: np.ndarray) -> np.ndarray:
@@ -97,7 +102,7 @@ def bounce(run: np.ndarray, behind: np.ndarray, ahead: np.ndarray) -> np.ndarray
 
 
 def mover_intervals(speed: np.ndarray, ends: np.ndarray | None, seen: np.ndarray | None,
-                    t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+                    t: np.ndarray, reach: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """``(lo, hi)``, each ``(k, T)``: the stretch of its line each of ``k`` movers may be on
     ``t`` ``(T,)`` seconds ahead, metres along its direction of motion from where it is now.
 
@@ -110,26 +115,35 @@ def mover_intervals(speed: np.ndarray, ends: np.ndarray | None, seen: np.ndarray
     where a turn at the farthest point seen ahead ``a0`` brings it back (``2 a0 - run``, not
     past a known end behind) to straight on (``run``); with the end ahead known at ``a`` and
     the one behind unknown, from its position ``q`` after the turn at ``a`` to where a turn at
-    the farthest point seen behind ``b0`` brings it (``2 b0 - q``, not past ``a``)."""
+    the farthest point seen behind ``b0`` brings it (``2 b0 - q``, not past ``a``).
+
+    ``reach`` (:attr:`Situation.mover_reach`): a mover cannot drive through a wall, so on a side
+    whose end is not known it turns round where it would touch one at the latest; straight on
+    past that point is never predicted."""
     speed = np.asarray(speed, float).reshape(-1)
     run = speed[:, None] * np.asarray(t, float).reshape(1, -1)
     E = np.full((len(speed), 2), [-np.inf, np.inf]) if ends is None else np.asarray(ends, float).reshape(-1, 2)
     b, a = E[:, :1], E[:, 1:]
+    ak, bk = np.isfinite(a), np.isfinite(b)
+    if reach is not None:   # where no end is known, the wall is where it turns at the latest
+        R = np.asarray(reach, float).reshape(-1, 2)
+        b, a = np.where(bk, b, np.minimum(R[:, :1], 0.0)), np.where(ak, a, np.maximum(R[:, 1:], 0.0))
     point = bounce(run, b, a)
     if seen is None:
         return point, point
     V = np.asarray(seen, float).reshape(-1, 2)
     b0, a0 = np.minimum(V[:, :1], 0.0), np.maximum(V[:, 1:], 0.0)
-    ak, bk = np.isfinite(a), np.isfinite(b)
     ahead_open = ~ak & (run > a0)                      # it may have turned at an unknown end ahead
     behind_open = ak & ~bk & (point < b0)              # back past the farthest point seen behind
-    lo = np.where(ahead_open, np.maximum(2.0 * a0 - run, np.where(bk, b, -np.inf)), point)
+    # (not behind a known end or the wall behind: ``b`` is either, or -inf)
+    lo = np.where(ahead_open, np.minimum(np.maximum(2.0 * a0 - run, b), point), point)
     hi = np.where(behind_open, np.minimum(2.0 * b0 - point, a), point)
     return lo, hi
 
 
 def predicted_movers(movers: np.ndarray, ends: np.ndarray | None, t: np.ndarray,
-                     seen: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+                     seen: np.ndarray | None = None,
+                     reach: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """``(A, B)``, each ``(k, T, 2)``: the ends of the stretch each mover ``(k, 5)`` may be on
     at ``t`` ``(T,)`` seconds ahead (:func:`mover_intervals`; ``A == B`` where its motion is
     predicted exactly, e.g. every mover when ``seen`` is ``None``)."""
@@ -137,7 +151,7 @@ def predicted_movers(movers: np.ndarray, ends: np.ndarray | None, t: np.ndarray,
     t = np.asarray(t, float).reshape(-1)
     speed = np.hypot(M[:, 2], M[:, 3])
     u = M[:, 2:4] / np.where(speed > 0, speed, 1.0)[:, None]
-    lo, hi = mover_intervals(speed, ends, seen, t)
+    lo, hi = mover_intervals(speed, ends, seen, t, reach)
     lo, hi = (np.where(speed[:, None] > 0, x, 0.0) for x in (lo, hi))   # a standing mover stays
     return M[:, None, :2] + lo[..., None] * u[:, None, :], M[:, None, :2] + hi[..., None] * u[:, None, :]
 
@@ -517,7 +531,7 @@ class StopClear(LocalConstraint):
         short = np.zeros(len(Z))
         if not len(M):
             return short
-        A, B = predicted_movers(M, sit.mover_ends, t, sit.mover_seen)
+        A, B = predicted_movers(M, sit.mover_ends, t, sit.mover_seen, sit.mover_reach)
         for i in range(len(M)):
             gap = _segment_gap(np.broadcast_to(P, (len(Z), len(t), 2)), A[i], B[i]) - M[i, 4] - prog.robot.radius
             short = np.maximum(short, (self.margin - gap).max(axis=1))
@@ -677,7 +691,7 @@ class LocalProgram:
         t = self.h * np.arange(1, P.shape[1] + 1)
         M = np.asarray(sit.movers, float).reshape(-1, 5)
         if not turns:
-            A, B = predicted_movers(M, sit.mover_ends, t, sit.mover_seen)
+            A, B = predicted_movers(M, sit.mover_ends, t, sit.mover_seen, sit.mover_reach)
         for i, (x, y, vx, vy, r) in enumerate(M):
             if turns:   # state j against its own segment m(0) -/+ v t_j
                 a = np.stack([x - vx * t, y - vy * t], axis=1)
@@ -762,11 +776,11 @@ class LocalProgram:
         if len(M) and max_movers:
             near = np.argsort(np.hypot(M[:, 0] - sit.state[0], M[:, 1] - sit.state[1]))[:max_movers]
             movers[:len(near)] = M[near]
-            ends, seen = (None if x is None else np.asarray(x, float).reshape(-1, 2)[near]
-                          for x in (sit.mover_ends, sit.mover_seen))
+            ends, seen, reach = (None if x is None else np.asarray(x, float).reshape(-1, 2)[near]
+                                 for x in (sit.mover_ends, sit.mover_seen, sit.mover_reach))
             blocks = []
             for t in (self.h * np.arange(1, self.N + 1), self.hold_times()):
-                A, B = predicted_movers(M[near], ends, t, seen)
+                A, B = predicted_movers(M[near], ends, t, seen, reach)
                 blocks += [A[..., 0], A[..., 1], B[..., 0], B[..., 1]]
             path[:len(near)] = np.concatenate(blocks, axis=1)
             known[:len(near)] = motion_known(sit)[near]

@@ -37,7 +37,7 @@ from ..world.robot import Command, RobotSpec, RobotState
 from .base import LocalContext
 from .hooks import PlannerView, build_part
 from .limiter import RuckigLimiter
-from .sweep_gate import Track, follow, learn_turn, seen_at
+from .sweep_gate import Track, follow, learn_turn, line_reach, seen_at
 from .window import dynamic_window, sample_grid
 
 FEASIBLE = 1e-6   # a violation below this counts as none (the batched view's round-off)
@@ -52,15 +52,15 @@ MOVER_MODELS = ("bounce", "sweep", "straight")
 
 
 def situation_of(ctx: LocalContext, mover_ends: np.ndarray | None = None,
-                 mover_seen: np.ndarray | None = None) -> Situation:
-    """The window program's :class:`Situation` of a control step (``mover_ends``, ``mover_seen``:
-    what is known of where the sensed movers turn round, :attr:`Situation.mover_ends`)."""
+                 mover_seen: np.ndarray | None = None, mover_reach: np.ndarray | None = None) -> Situation:
+    """The window program's :class:`Situation` of a control step (``mover_ends``, ``mover_seen``,
+    ``mover_reach``: what is known of where the sensed movers turn round, :attr:`Situation.mover_ends`)."""
     s = ctx.state
     return Situation(state=np.array([s.x, s.y, s.theta, s.v, s.w, s.vy], float),
                      subgoal=np.asarray(ctx.subgoal, float), path=np.asarray(ctx.global_path, float),
                      static_distance=ctx.static_distance, movers=np.asarray(ctx.dynamic, float).reshape(-1, 5),
                      distance_error=float(ctx.distance_error or 0.0), mover_ends=mover_ends,
-                     mover_seen=mover_seen)
+                     mover_seen=mover_seen, mover_reach=mover_reach)
 
 
 class MoverTracker:
@@ -88,25 +88,28 @@ class MoverTracker:
         self.match, self.memory, self.rejoin, self.slack = float(match), float(memory), float(rejoin), float(slack)
         self.tracks: list[Track] = []
         self._t: float | None = None
-        self._ends, self._seen = np.zeros((0, 2)), np.zeros((0, 2))
+        self._ends, self._seen, self._reach = np.zeros((0, 2)), np.zeros((0, 2)), np.zeros((0, 2))
 
     def reset(self) -> None:
         self.tracks, self._t = [], None
-        self._ends, self._seen = np.zeros((0, 2)), np.zeros((0, 2))
+        self._ends, self._seen, self._reach = np.zeros((0, 2)), np.zeros((0, 2)), np.zeros((0, 2))
 
-    def observe(self, ctx: LocalContext) -> tuple[np.ndarray, np.ndarray]:
-        """``(ends, seen)``, each ``(k, 2)`` rows ``(behind, ahead)`` for the rows of
+    def observe(self, ctx: LocalContext) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(ends, seen, reach)``, each ``(k, 2)`` rows ``(behind, ahead)`` for the rows of
         ``ctx.dynamic``, metres along each mover's velocity from where it is: where it is known
-        to turn round (infinite where no turn is known) and the farthest points it was seen
-        at, after learning from this step's observation (once per step: a second call at the
-        same time gives the same rows)."""
+        to turn round (infinite where no turn is known), the farthest points it was seen at,
+        and how far it can go before it touches a static obstacle the robot knew when it first
+        saw it, or the border (:func:`~optplan.local.sweep_gate.line_reach`), after learning
+        from this step's observation (once per step: a second call at the same time gives the
+        same rows)."""
         t = float(ctx.t)
         if self._t is not None and abs(t - self._t) < 1e-12:
-            return self._ends, self._seen
+            return self._ends, self._seen, self._reach
         self._t = t
         self.tracks = [k for k in self.tracks if t - k.t_seen <= self.memory]
         rows = np.asarray(ctx.dynamic, float).reshape(-1, 5)
         out = np.tile([-math.inf, math.inf], (len(rows), 1))
+        reach = out.copy()
         seen = np.zeros((len(rows), 2))
         free = list(self.tracks)
         for row, (x, y, vx, vy, r) in enumerate(rows):
@@ -114,7 +117,9 @@ class MoverTracker:
             c = abs(v)
             if c < 1e-6:
                 continue  # standing: nothing to learn, predicted where it stands
-            k, s, heading, _ = follow(self.tracks, free, p, v, float(r), t, ctx.dt, self.match)
+            k, s, heading, new = follow(self.tracks, free, p, v, float(r), t, ctx.dt, self.match)
+            if new:
+                k.reach_lo, k.reach_hi = line_reach(ctx, p, v / c, float(r))
             learn_turn(k, s, heading, c, t, ctx.dt, self.rejoin)
             if s > k.end_hi + self.slack:   # seen beyond where it was thought to turn: it does not
                 k.end_hi = math.inf
@@ -125,10 +130,13 @@ class MoverTracker:
                 ahead, behind, seen_ahead, seen_behind = k.end_hi - s, k.end_lo - s, k.seen_hi - s, k.seen_lo - s
             else:
                 ahead, behind, seen_ahead, seen_behind = s - k.end_lo, s - k.end_hi, s - k.seen_lo, s - k.seen_hi
+            reach_ahead, reach_behind = (k.reach_hi - s, k.reach_lo - s) if heading > 0 else (s - k.reach_lo,
+                                                                                              s - k.reach_hi)
             out[row] = (min(behind, 0.0), max(ahead, 0.0))
             seen[row] = (min(seen_behind, 0.0), max(seen_ahead, 0.0))
-        self._ends, self._seen = out, seen
-        return out, seen
+            reach[row] = (min(reach_behind, 0.0), max(reach_ahead, 0.0))
+        self._ends, self._seen, self._reach = out, seen, reach
+        return out, seen, reach
 
 
 def _tracker(mover_model: str) -> MoverTracker | None:
@@ -192,8 +200,8 @@ class ProgramSampler:
         (call it every step: the tracker learns from every observation)."""
         if self.tracker is None:
             return situation_of(ctx)
-        ends, seen = self.tracker.observe(ctx)
-        return situation_of(ctx, ends, seen if self.mover_model == "sweep" else None)
+        ends, seen, reach = self.tracker.observe(ctx)
+        return situation_of(ctx, ends, seen if self.mover_model == "sweep" else None, reach)
 
     def samples(self, ctx: LocalContext) -> np.ndarray:
         """``(S, K, nu)``: the window's constant commands, each repeated over the intervals."""
