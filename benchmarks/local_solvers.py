@@ -36,7 +36,7 @@ import numpy as np
 import optplan as op
 from optplan.local import make_local_planner
 from optplan.local_terms import default_local_program
-from optplan.worldgen.clutter import family_options, family_scenario
+from optplan.worldgen.clutter import family_scenario
 
 SCENARIOS = ("hou2024_dynamic1", "hou2024_dynamic2", "hou2024_dynamic3", "hou2024_dynamic4")
 # the papers' own local experiments (shipped scenarios, seed 0, the scenarios' own mover motion)
@@ -61,8 +61,7 @@ def _timed_planner(name: str, world: str, seed: int, stop_hold: float = 0.0):
     elif base == "mpc":
         planner = make_local_planner(base, sc.robot, sc.dt, **extra)
     else:
-        params = family_options(world).get("local_params", {}).get(name, {})
-        planner = make_local_planner(name, sc.robot, sc.dt, **params)
+        planner = make_local_planner(name, sc.robot, sc.dt)
     times, modes = [], []
     inner = planner.command
 

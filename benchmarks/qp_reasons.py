@@ -70,7 +70,7 @@ def main(argv=None) -> int:
         statuses: Counter = Counter()
         outcomes: Counter = Counter()
         fam = family_options(a.family)
-        params = {**fam.get("local_params", {}).get("qp-dwa", {}), **extra}
+        params = extra
         for seed in range(lo, hi):
             sc = scenario_for(a.family, seed)
             gp = plan_global(sc, "astar", None, seed, fam.get("global_options"))

@@ -221,12 +221,8 @@ def _cmd_simulate(args) -> int:
     options = {}
     from .worldgen.clutter import family_options
 
-    # a generated family's settings for the local planner, as op.simulate gives them for the
-    # family's name (the scenario object drawn here carries none), then the scenario file's
-    # planner_params (op.simulate lays them under these), then --params
-    family = {} if args.local_program else \
-        family_options(args.scenario).get("local_params", {}).get(str(args.local_planner).lower(), {})
-    local_params = {**family, **_json_params(args.params, "--params")}
+    # the scenario file's planner_params (op.simulate lays them under these), then --params
+    local_params = _json_params(args.params, "--params")
     global_params = _json_params(args.global_params, "--global-params")
     if local_params:
         options["planner_params"] = local_params

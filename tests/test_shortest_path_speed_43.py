@@ -20,7 +20,6 @@ import numpy as np
 import pytest
 
 import optplan as op
-import optplan.solvers.graph as graph
 from optplan.errors import InfeasibleQueryError, OptplanError
 from optplan.results import PlanResult
 from optplan.solvers.graph import shortest_path
@@ -215,9 +214,11 @@ def test_a_path_through_an_obstacle_is_still_infeasible():
 
 
 def test_the_lean_path_is_taken_and_the_general_check_only_when_needed(monkeypatch):
-    calls = []
-    real = graph.make_plan_result
-    monkeypatch.setattr(graph, "make_plan_result", lambda *a, **k: calls.append(1) or real(*a, **k))
+    from optplan.solvers import result as result_module
+
+    calls = []   # runs of the general rule (the result is built in one place either way)
+    real = result_module.validate_path_segments
+    monkeypatch.setattr(result_module, "validate_path_segments", lambda *a, **k: calls.append(1) or real(*a, **k))
     grid = op.GridMap(np.zeros((9, 12), dtype=bool), resolution=0.5, origin=(1.0, -2.0))
     s, g = grid.cell_center((0, 0)), grid.cell_center((11, 4))
     for args in ((s, g), (tuple(s), list(g)), (s + 0.1 * grid.resolution, g - 0.2 * grid.resolution)):

@@ -147,9 +147,7 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
                              f"known: {', '.join(OPTIONS)}")
     checked_seed("seed", seed)
     seed_bound("seed", seed)
-    family = family_options(scenario)
-    local_params = family.pop("local_params", {})
-    options = {**family, **options}
+    options = {**family_options(scenario), **options}
     sc = with_mover_motion(scenario_for(scenario, seed), options.get("mover_motion"))
     if "time_limit" in options:
         sc = replace(sc, time_limit=options["time_limit"])
@@ -163,9 +161,7 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
                     stuck_time=options.get("stuck_time", 10.0), stuck_distance=options.get("stuck_distance", 0.3),
                     max_replans=options.get("max_replans", 5), global_options={**sc.global_options, **(options.get("global_options") or {})} or None,
                     subgoal_options=options.get("subgoal_options"), sweep_detour=options.get("sweep_detour", 1.5))
-    # a generated family's parameters tune the critic planners; a window program has its own
-    params = local_params.get(str(local_name).lower(), {}) \
-        if isinstance(local_planner, str) and options.get("local_program") is None else {}
+    params = {}   # the scenario file's parameters of this planner, under the caller's
     if isinstance(local_planner, str):
         from ..local import algorithm_names
 
@@ -173,7 +169,7 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
         if unknown:
             raise ParameterError(f"the scenario's planner_params name(s) {named_with_hints(unknown, algorithm_names())}, "
                                  f"which are not local planners; known: {', '.join(algorithm_names())}")
-        params = {**params, **sc.planner_params.get(str(local_name).lower(), {})}
+        params = sc.planner_params.get(str(local_name).lower(), {})
     planner_params = {**params, **(options.get("planner_params") or {})}
     if options.get("local_program") is not None:
         planner_params["local_program"] = options["local_program"]

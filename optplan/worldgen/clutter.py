@@ -184,10 +184,10 @@ GLOBAL_CLEARANCE_EXTRA = 0.15
 
 
 def family_options(name: str) -> dict:
-    """``op.simulate`` options a generated family uses unless the caller gives its own. No local
-    planner parameters: qp-dwa's clutter mechanisms (issue 27) are its defaults wherever the
-    global path is tight (``optplan.local.qp_dwa.path_is_tight``), so a scenario file of the
-    same world gets them too."""
+    """``op.simulate`` options a generated family uses unless the caller gives its own: the
+    global path's clearance only. No local planner parameters: qp-dwa's clutter mechanisms
+    (issue 27) are its defaults wherever the global path is tight
+    (``optplan.local.qp_dwa.path_is_tight``), so a scenario file of the same world gets them too."""
     if not isinstance(name, str) or name.lower() not in FAMILIES:
         return {}
     return {"global_options": {"clearance": BARN_ROBOT.radius + GLOBAL_CLEARANCE_EXTRA}}

@@ -14,10 +14,9 @@ import numpy as np
 
 from ...checks import boolean, choice
 from ...errors import ParameterError, UnknownAlgorithmError
-from ...results import PlanResult, defer_fields
+from ...results import PlanResult
 from ...world.geometry import centre_moves_free, convex_corners, grid_point_free, in_free_cell
 from ...world.grid import GridMap
-from ...world.metrics import TURN_TOL_DEG, min_clearance, turn_angles_deg
 from ...world.queries import check_start_goal, check_world
 from ..capabilities import PlannerCapabilities
 from ..result import make_plan_result
@@ -154,8 +153,8 @@ def _cell_search(grid, sx, sy, gx, gy, q, method, corner_cutting, t0) -> PlanRes
     free cell (:func:`~optplan.world.geometry.in_free_cell`: such a segment is free); the ends
     passed the query's point check and centres are no lattice vertices. When anything is not
     shown free that way (corner cutting can pass between two blocked cells), the general
-    check (``make_plan_result``) judges the path, as before. The fields are those
-    ``make_plan_result`` gives; the turn metrics and ``min_clearance`` on their first read."""
+    check (``make_plan_result``) judges the path, as before; the turn metrics and
+    ``min_clearance`` are computed on their first read."""
     found, cells, (qs, qg) = search_between(grid, sx, sy, gx, gy, method=method, corner_cutting=corner_cutting,
                                             ends=q)
     runtime = time.perf_counter() - t0
@@ -174,29 +173,4 @@ def _cell_search(grid, sx, sy, gx, gy, q, method, corner_cutting, t0) -> PlanRes
     else:
         free = (in_free_cell(grid, *qs, cells[0]) and in_free_cell(grid, *qg, cells[-1])
                 and bool(centre_moves_free(grid, cells).all()))
-    if not free:
-        return make_plan_result(grid, P, method, runtime, defer_clearance=True, message=how)
-    return _free_path_result(grid, P, method, runtime, how)
-
-
-def _free_path_result(grid, P: np.ndarray, method: str, runtime: float, message: str) -> PlanResult:
-    """The result ``make_plan_result(grid, P, ..., defer_clearance=True)`` builds for a path
-    the exact rule has found free (every point free, every segment free), field for field:
-    the length now, the turn metrics and the exact clearance (of a copy of the path, whose
-    segments are all free) on their first read."""
-    d = P[1:] - P[:-1]   # path_length's np.diff and sum: the same float operations
-    length = float(np.hypot(d[:, 0], d[:, 1]).sum())
-    res = PlanResult(method, P, True, length, 0.0, 0, math.nan, runtime, np.zeros(0), False, None, message, 0)
-    kept = P.copy()   # the result's path may be edited in place before a deferred value is read
-    if len(P) > 2:
-        turns = []    # turn_angles_deg once for both turn fields
-
-        def angles():
-            if not turns:
-                turns.append(turn_angles_deg(kept))
-            return turns[0]
-
-        return defer_fields(res, turn_angle_deg=lambda: float(angles().sum(axis=-1)),
-                            n_turns=lambda: int((angles() > TURN_TOL_DEG).sum(axis=-1)),
-                            min_clearance=lambda: min_clearance(grid, kept, free=np.ones(len(kept) - 1, bool)))
-    return defer_fields(res, min_clearance=lambda: min_clearance(grid, kept, free=np.ones(len(kept) - 1, bool)))
+    return make_plan_result(grid, P, method, runtime, defer_clearance=True, message=how, proven_free=free)
