@@ -44,6 +44,7 @@ _LAZY = {
     "simulate": "optplan.sim",
     "PathProgram": "optplan.programs",
     "LocalProgram": "optplan.formulations.local_program",
+    "local_program": "optplan.local",
     "Waypoints": "optplan.programs",
     "Points": "optplan.programs",
     "BSpline": "optplan.programs",

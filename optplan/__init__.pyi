@@ -6,6 +6,7 @@ from optplan.results import (OptimizeResult as OptimizeResult, PlanResult as Pla
                              ProgramResult as ProgramResult, SimResult as SimResult)
 from optplan.bench.compare import compare as compare
 from optplan.formulations.local_program import LocalProgram as LocalProgram
+from optplan.local import local_program as local_program
 from optplan.planning import plan as plan
 from optplan.programs import BSpline as BSpline
 from optplan.programs import CellSequence as CellSequence
@@ -39,4 +40,4 @@ from optplan.world.scenario import Scenario as Scenario
 from optplan.world.scenario import load_scenario as load_scenario
 
 __version__: str
-__all__ = ['BSpline', 'CellSequence', 'CircleWorld', 'ColumnNodes', 'GeneralVias', 'GridMap', 'InfeasibleQueryError', 'LocalProgram', 'MapFormatError', 'OptimizeResult', 'OptplanError', 'ParameterError', 'PathProgram', 'PlanResult', 'Points', 'ProgramResult', 'RobotSpec', 'Scenario', 'ScenarioError', 'SimResult', 'SplineThrough', 'UnknownAlgorithmError', 'Waypoints', 'algorithms', 'compare', 'export_path', 'export_trajectory', 'load_map', 'load_scen', 'load_scenario', 'optimize', 'paper_program', 'path_metrics', 'plan', 'plot_map', 'plot_paths', 'plot_run', 'save_map', 'shortest_path', 'show_options', 'simulate', 'smoothing_program', 'validate_path']
+__all__ = ['BSpline', 'CellSequence', 'CircleWorld', 'ColumnNodes', 'GeneralVias', 'GridMap', 'InfeasibleQueryError', 'LocalProgram', 'MapFormatError', 'OptimizeResult', 'OptplanError', 'ParameterError', 'PathProgram', 'PlanResult', 'Points', 'ProgramResult', 'RobotSpec', 'Scenario', 'ScenarioError', 'SimResult', 'SplineThrough', 'UnknownAlgorithmError', 'Waypoints', 'algorithms', 'compare', 'export_path', 'export_trajectory', 'load_map', 'load_scen', 'load_scenario', 'local_program', 'optimize', 'paper_program', 'path_metrics', 'plan', 'plot_map', 'plot_paths', 'plot_run', 'save_map', 'shortest_path', 'show_options', 'simulate', 'smoothing_program', 'validate_path']

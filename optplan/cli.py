@@ -204,9 +204,10 @@ def _add_simulate_arguments(parser) -> None:
                         "planner_params takes, over the scenario file's planner_params), e.g. '{\"max_iter\": 30}'")
     parser.add_argument("--global-params", metavar="JSON", help="op.plan options of the global planner as one JSON "
                         "object (over the scenario file's global_options), e.g. '{\"pop\": 40, \"iters\": 100}'")
-    parser.add_argument("--local-program", metavar="NAME", help="a named window program (default) solved by the "
-                        "local planner: dwa samples it, qp-dwa samples and polishes it with one QP, mpc solves it "
-                        "by NMPC (mpc's own default)")
+    parser.add_argument("--local-program", metavar="NAME", help="a named window program solved by the "
+                        "local planner: 'default' (dwa samples it, qp-dwa samples and polishes it with one QP, mpc "
+                        "solves it by NMPC; mpc's own default) or a paper preset's (dwa, idwa, missa-dwa, ...: "
+                        "sampled by dwa, exactly the preset's planner)")
 
 
 def _cmd_simulate(args) -> int:

@@ -130,7 +130,7 @@ def test_mpc_reports_cost_violation_and_status_per_step():
 
 def test_bad_local_program_requests_are_refused():
     lp = op.LocalProgram(ROBOT)
-    with pytest.raises(op.ParameterError, match="own critics"):
+    with pytest.raises(op.ParameterError, match="paper preset"):
         op.simulate("hou2024_dynamic1", local_planner="idwa", local_program=lp)
     from optplan.local import make_local_planner
 

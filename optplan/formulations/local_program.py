@@ -68,6 +68,9 @@ class Situation:
             each mover can go before it touches a static obstacle the robot knows or the map's
             border (``-inf`` / ``inf``: no such limit). A mover turns round there at the latest,
             where no end is known on that side.
+        samples: a sampling solver's assessed samples of this step
+            (:class:`optplan.local.preset_programs.SampleSet`), for the terms judged against
+            the other samples of their step (the papers' critics); ``None`` otherwise.
     """
 
     state: np.ndarray
@@ -79,6 +82,7 @@ class Situation:
     mover_ends: np.ndarray | None = None
     mover_seen: np.ndarray | None = None
     mover_reach: np.ndarray | None = None
+    samples: object | None = None
 
 
 def bounce(run: np.ndarray, behind: np.ndarray, ahead: np.ndarray) -> np.ndarray:

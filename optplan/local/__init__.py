@@ -9,7 +9,7 @@ window, admissibility), ``rollout`` (all samples x horizon at once), ``critics``
 term per class), ``hooks`` (the contract between the core and its mechanisms),
 ``mechanisms`` (adaptive velocity, velocity obstacles, brake-and-wait, initial heading),
 ``sweep_gate`` (qp-dwa's sweep gate), ``dwa`` (the planner core), ``presets`` (the papers'
-planners as data), ``qp_dwa`` (QP refinement + Ruckig), ``reference`` (a loop-based
+planners as data), ``preset_programs`` (those presets as window programs), ``qp_dwa`` (QP refinement + Ruckig), ``reference`` (a loop-based
 textbook DWA for checking and benchmarking).
 """
 from __future__ import annotations
@@ -20,10 +20,11 @@ from ..errors import ParameterError, UnknownAlgorithmError
 from ..world.robot import RobotSpec
 from .base import LocalContext, LocalPlanner
 from .dwa import DWAPlanner, Preset, Term
+from .preset_programs import PresetProgram
 from .presets import PRESETS
 
-__all__ = ["make_local_planner", "algorithm_names", "LocalContext", "LocalPlanner", "DWAPlanner", "Preset",
-           "Term", "PRESETS"]
+__all__ = ["make_local_planner", "algorithm_names", "local_program", "LocalContext", "LocalPlanner", "DWAPlanner",
+           "Preset", "Term", "PRESETS"]
 
 
 # solvers of a window program (optplan.formulations.local_program) other than the presets
@@ -47,10 +48,13 @@ def make_local_planner(name: str, robot: RobotSpec, dt: float, **params: Any) ->
     """
     key = str(name).lower()
     program = params.pop("local_program", None)
-    if program is not None:
-        from ..formulations.local_program import named_local_program
-
-        program = named_local_program(program, robot, dt)
+    if isinstance(program, str) and program.lower() in PRESETS and program.lower() not in _named_programs():
+        # a preset named as the program: the parameters are the preset's
+        program, params = local_program(program, robot, dt, **params), {}
+    elif program is not None:
+        program = local_program(program, robot, dt)
+    if isinstance(program, PresetProgram):
+        return _preset_solver(key, program, robot, dt, params)
     if key == "mpc":
         from .program_planners import MPCPlanner
 
@@ -61,8 +65,8 @@ def make_local_planner(name: str, robot: RobotSpec, dt: float, **params: Any) ->
         solvers = {"dwa": ProgramSampler, "qp-dwa": ProgramQPDWA}
         if key not in solvers:
             raise ParameterError(f"local_program= is solved by 'dwa' (sampling), 'qp-dwa' (sampling + QP polish) "
-                                 f"and 'mpc' (NMPC); {name!r} runs its own critics (a paper preset as a window "
-                                 "program is not built yet)")
+                                 f"and 'mpc' (NMPC); {name!r} is a paper preset: its own program is "
+                                 f"local_program={name!r}")
         return _built(solvers[key], key, robot, dt, program=program, **params)
     preset = PRESETS.get(key)
     if preset is None:
@@ -72,6 +76,61 @@ def make_local_planner(name: str, robot: RobotSpec, dt: float, **params: Any) ->
 
         return QPDWAPlanner(preset, robot, dt, **params)
     return DWAPlanner(preset, robot, dt, **params)
+
+
+def local_program(name: "str | LocalProgram", robot: RobotSpec, dt: float, **params: Any) -> "LocalProgram":
+    """A named window program built for ``robot`` and control period ``dt`` (s): ``"default"``
+    (what ``mpc`` solves unless given one), or a paper preset's (``"dwa"``, ``"idwa"``,
+    ``"missa-dwa"``, ... :data:`PRESETS`, a :class:`~optplan.local.preset_programs.PresetProgram`;
+    ``params``: the preset's parameters, as for ``make_local_planner``). A
+    :class:`~optplan.formulations.local_program.LocalProgram` is returned as it is.
+
+    Raises:
+        ParameterError: an unknown name, or parameters given to a program that takes none.
+    """
+    from ..formulations.local_program import LocalProgram, named_local_program
+
+    if isinstance(name, LocalProgram):
+        if params:
+            raise ParameterError(f"parameters {sorted(params)} are for a named program, not an op.LocalProgram")
+        return name
+    if isinstance(name, str) and name.lower() in PRESETS and name.lower() not in _named_programs():
+        return make_local_planner(name.lower(), robot, dt, **params).program
+    if params:
+        raise ParameterError(f"the local program {name!r} takes no parameters, got {sorted(params)}")
+    try:
+        return named_local_program(name, robot, dt)
+    except ParameterError as e:
+        raise ParameterError(f"{e}; the papers' presets are named programs too: {', '.join(PRESETS)}") from None
+
+
+def _named_programs() -> dict:
+    from ..formulations.local_program import LOCAL_PROGRAMS
+
+    return LOCAL_PROGRAMS
+
+
+def _preset_solver(key: str, program: PresetProgram, robot: RobotSpec, dt: float, params: dict) -> LocalPlanner:
+    """The solver ``key`` of a preset's program: ``dwa`` samples it (the preset's own planner,
+    with the program's added terms), ``qp-dwa`` samples and polishes ``qp-dwa``'s program."""
+    if params:
+        raise ParameterError(f"parameters {sorted(params)} go into the program: op.local_program({program.name!r}, "
+                             f"robot, dt, **params)")
+    preset = program.preset
+    if key == "dwa" or (key == preset.name and preset.refine is None):   # the preset samples its own program
+        return DWAPlanner(preset, robot, dt, program=program, **program.params)
+    if key in ("qp-dwa", preset.name) and preset.refine == "qp":
+        from .qp_dwa import QPDWAPlanner
+
+        return QPDWAPlanner(preset, robot, dt, program=program, **program.params)
+    if key == "mpc":
+        raise ParameterError(f"mpc needs a symbolic view of every term; the critics of {program.name!r} "
+                             f"({', '.join(t.name for _, t in program.objective)}) are scaled over each step's "
+                             "samples and have none: sample it with 'dwa', or write the objective with "
+                             "optplan.local_terms for mpc")
+    raise ParameterError(f"the program {program.name!r} (a paper preset) is solved by 'dwa' (sampling)"
+                         + (" and 'qp-dwa' (its QP polish)" if preset.refine == "qp" else "")
+                         + f", not by {key!r}")
 
 
 def _built(cls, name: str, robot: RobotSpec, dt: float, **params: Any):

@@ -24,6 +24,7 @@ way it already turns. The case is reported in ``Command.info["mode"]``.
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any, Mapping
@@ -37,6 +38,7 @@ from .base import LocalContext, MoverSweepSource
 from .critics import CRITICS, Critic
 from .hooks import Mechanism, PlannerView, Roles, build_part
 from .mechanisms import MECHANISMS, InitialHeading
+from .preset_programs import PresetProgram, SampleSet, critic_cost, step_arrays
 from .rollout import (Rollouts, Step, assess, join_rollouts, rollout, rollout_ramped, rollout_tracking,
                       static_gradient)
 from .window import Window, dynamic_window, sample_grid
@@ -76,18 +78,6 @@ class Preset:
     refine: str | None = None
 
 
-def _normalise(values: np.ndarray, cand: np.ndarray, how: str) -> np.ndarray:
-    """A term normalised over the candidate samples."""
-    if how == "none":
-        return values
-    v = values[cand]
-    if how == "sum":  # the papers' sigma: each value over the sum (of magnitudes)
-        total = np.abs(v).sum()
-        return values / total if total > 0 and np.isfinite(total) else np.zeros_like(values)
-    lo, hi = v.min(), v.max()  # "minmax": Fox's [0, 1] scaling
-    return (values - lo) / (hi - lo) if hi > lo else np.zeros_like(values)
-
-
 class DWAPlanner(MoverSweepSource):
     """A dynamic-window local planner configured by a :class:`Preset`.
 
@@ -95,6 +85,11 @@ class DWAPlanner(MoverSweepSource):
     options (``OPTIONS``), term weights (``weights={"heading": 1.0}``) and the parameters of
     a term or mechanism (``heading={"one_step_within": 1.0}``,
     ``brake_and_wait={"d_s": 1.5}`` or ``brake_and_wait=False`` to drop it) can be overridden.
+
+    The planner is the sampling solver of the preset's window program (``self.program``, a
+    :class:`~optplan.local.preset_programs.PresetProgram`): it chooses the admissible sample of
+    least cost under the program's terms. ``program``: that program built beforehand
+    (``op.local_program(name, ...)``), possibly with terms added; built from the preset otherwise.
     """
 
     OPTIONS: dict[str, Any] = {
@@ -127,7 +122,8 @@ class DWAPlanner(MoverSweepSource):
                               # rollout points (rollout.assess), not to the last free point
     }
 
-    def __init__(self, preset: Preset, robot: RobotSpec, dt: float, **params: Any) -> None:
+    def __init__(self, preset: Preset, robot: RobotSpec, dt: float, program: PresetProgram | None = None,
+                 **params: Any) -> None:
         if not isinstance(robot, RobotSpec):
             raise ParameterError(f"robot must be an optplan RobotSpec, got {type(robot).__name__}")
         try:
@@ -182,6 +178,15 @@ class DWAPlanner(MoverSweepSource):
         self.steps = max(1, int(round(self.options["horizon"] / self.rollout_dt)))
         self.omni = bool(self.options["omni"]) and robot.model == "omni" and robot.vy_max > 0
         self.last: Command | None = None
+        if program is None:
+            program = PresetProgram(preset, robot, self.dt, params, self.terms, self.options,
+                                    [m.name for m in self.mechanisms])
+        elif not isinstance(program, PresetProgram) or program.preset.name != preset.name:
+            raise ParameterError(f"the sampler of {preset.name!r} solves its own preset program, got {program!r:.80}")
+        elif program.robot != robot or abs(program.dt - self.dt) > 1e-12:
+            raise ParameterError(f"the program {program.name!r} was built for another robot or control period "
+                                 f"({program.dt:g} s); build it with the scenario's robot and dt")
+        self.program = program
 
     # ------------------------------------------------------------------ set-up helpers
     @staticmethod
@@ -357,16 +362,29 @@ class DWAPlanner(MoverSweepSource):
             best = int(np.argmax(shortfall))
             return best, {"mode": "least-inadmissible", "index": best,
                           "free_distance": float(step.free_distance[best])}
+        # the program's cost, negated (a score to maximise, as the papers write it): the
+        # preset's critics normalised over the candidates, then any terms added to the program
+        samples = SampleSet(step, cand, legal)
         total = np.zeros(step.roll.n)
         how = self.options["normalise"]
         for critic, weight in self.terms:
             if weight == 0:
                 continue
-            n = _normalise(critic.score(step), cand, how)
-            total += -weight * n if critic.cost else weight * n
+            total -= weight * critic_cost(critic, samples, how)
+        extra = self.program.extra_terms()
+        if extra:
+            from .program_planners import situation_of
+
+            sit = situation_of(step.ctx)
+            sit.samples = samples
+            Z, U = step_arrays(samples, 3 if self.omni else 2)
+            for weight, term in extra:
+                total -= weight * np.asarray(term.batched(Z, U, sit, self.program), float)
         total[~cand] = -np.inf
         best = int(np.argmax(total))
-        return best, {"mode": mode, "index": best, "score": float(total[best]), "n_candidates": int(cand.sum()),
+        broken = (not step.admissible[best]) + (not step.mover_free[best]) + (not legal[best])
+        return best, {"mode": mode, "index": best, "score": float(total[best]), "cost": -float(total[best]),
+                      "violation": float(broken), "n_candidates": int(cand.sum()),
                       "free_distance": float(step.free_distance[best])}
 
     def legal_samples(self, step: Step) -> np.ndarray:
@@ -407,8 +425,9 @@ class DWAPlanner(MoverSweepSource):
         if abs(ctx.dt - self.dt) > 1e-9:
             raise ParameterError(f"the context's dt ({ctx.dt:g} s) differs from the planner's ({self.dt:g} s); "
                                  "build the planner with the simulation's control period")
+        t0 = time.perf_counter()
         win = self.window(ctx)
-        info: dict[str, Any] = {"planner": self.name}
+        info: dict[str, Any] = {"planner": self.name, "status": "sampled"}
         step = None
         for m in self.roles.takes_over:
             took = m.override(self.view, ctx, win)
@@ -430,6 +449,7 @@ class DWAPlanner(MoverSweepSource):
                 r = step.roll
                 u = (float(r.v[best]), float(r.w[best]), float(r.vy[best]))
         u = self.finish(ctx, win, u, step, info)
+        info["solve_ms"] = (time.perf_counter() - t0) * 1e3
         cmd = Command(v=u[0], w=u[1], vy=u[2], info=info)
         self.last = cmd
         return cmd

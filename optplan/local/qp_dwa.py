@@ -236,8 +236,8 @@ class QPDWAPlanner(DWAPlanner):
         "tight_hold": math.inf,  # s the mechanisms stay after the path was last tight (default: the rest of the run)
     }
 
-    def __init__(self, preset: Preset, robot: RobotSpec, dt: float, **params: Any) -> None:
-        super().__init__(preset, robot, dt, **params)
+    def __init__(self, preset: Preset, robot: RobotSpec, dt: float, program=None, **params: Any) -> None:
+        super().__init__(preset, robot, dt, program=program, **params)
         o = self.options
         for k in ("qp_horizon", "qp_margin", "qp_activate"):
             o[k] = self._number(k, o[k], allow_zero=k == "qp_margin")

@@ -60,6 +60,18 @@ def make_planner(local_planner, robot, dt: float, params: dict):
     return make_local_planner(local_planner.lower(), robot, dt, **params)
 
 
+def _preset_program_name(program) -> str | None:
+    """The paper preset a ``local_program`` option names (a preset's name or its program), else ``None``."""
+    from ..local import PRESETS
+    from ..local.preset_programs import PresetProgram
+
+    if isinstance(program, PresetProgram):
+        return program.name
+    if isinstance(program, str) and program.lower() in PRESETS:
+        return program.lower()
+    return None
+
+
 def _apply_limits(cmd: Command, prev: RobotState, robot, dt: float) -> tuple[float, float, float]:
     """Clip a command to speed limits and to the acceleration limits from ``prev``."""
     v = float(np.clip(cmd.v, max(robot.v_min, prev.v - robot.a_max * dt), min(robot.v_max, prev.v + robot.a_max * dt)))
@@ -154,7 +166,11 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
     robot, dt = sc.robot, sc.dt
     time_limit = sc.time_limit
     local_name = local_planner if isinstance(local_planner, str) else getattr(local_planner, "name", "custom")
-    default_subgoals, default_blocked = preset_defaults(str(local_name).lower())
+    # a paper preset's program sampled by "dwa" is that preset: its navigation defaults and the
+    # scenario's parameters for it are the preset's
+    preset_name = _preset_program_name(options.get("local_program"))
+    method_name = preset_name or str(local_name).lower()
+    default_subgoals, default_blocked = preset_defaults(method_name)
     nav = Navigator(sc.world, robot, sc.start[:2], sc.goal, global_planner=global_planner, refine=refine, seed=seed,
                     subgoals=options.get("subgoals", default_subgoals),
                     on_blocked=options.get("on_blocked", default_blocked),
@@ -169,7 +185,7 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
         if unknown:
             raise ParameterError(f"the scenario's planner_params name(s) {named_with_hints(unknown, algorithm_names())}, "
                                  f"which are not local planners; known: {', '.join(algorithm_names())}")
-        params = sc.planner_params.get(str(local_name).lower(), {})
+        params = sc.planner_params.get(method_name, {})
     planner_params = {**params, **(options.get("planner_params") or {})}
     if options.get("local_program") is not None:
         planner_params["local_program"] = options["local_program"]
