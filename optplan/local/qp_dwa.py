@@ -724,6 +724,9 @@ class QPDWAPlanner(DWAPlanner):
             break
         u = (float(x[0]), float(x[1]), float(x[2]) if n_u == 3 else 0.0)
         info["qp"] = "solved" if "qp_fraction" not in info else f"solved: {info['qp_fraction']:g} of the step"
+        # info["cost"] stays the sampled choice's cost under the program: its critics are scaled
+        # over the step's samples, so the polished command has no cost of its own
+        info["status"] = "polished"
         info["qp_slack"] = float(x_opt[n_u])
         # a solved QP may hand back the sample itself (its optimum); benchmarks count real changes
         info["qp_change"] = float(max(abs(a - b) for a, b in zip(u, u0)))
