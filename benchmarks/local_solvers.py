@@ -76,10 +76,11 @@ def _timed_planner(name: str, world: str, seed: int, stop_hold: float = 0.0):
     return planner, sc, times, modes
 
 
-def run(solvers, worlds, seeds, seed0, stop_hold: float = 0.0, as_file: bool = False) -> dict:
+def run(solvers, worlds, seeds, seed0, stop_hold: float = 0.0, as_file: bool = False,
+        scenario_seeds: int = 1) -> dict:
     rows = defaultdict(lambda: defaultdict(list))
     for world in worlds:
-        run_seeds = range(seed0, seed0 + seeds) if family_scenario(world, 0) is not None else range(1)
+        run_seeds = range(seed0, seed0 + seeds) if family_scenario(world, 0) is not None else range(scenario_seeds)
         for name in solvers:
             for seed in run_seeds:
                 planner, sc, times, modes = _timed_planner(name, world, seed, stop_hold)
@@ -112,6 +113,8 @@ def main(argv=None) -> int:
                          "local experiments")
     ap.add_argument("--seeds", type=int, default=20, help="seeds per generated family")
     ap.add_argument("--seed0", type=int, default=5000)
+    ap.add_argument("--scenario-seeds", type=int, default=1,
+                    help="seeds 0..N-1 of each shipped scenario (their random movers and obstacles; default 1)")
     ap.add_argument("--stop-hold", type=float, default=0.0,
                     help="program solvers: their default program with stop_clear for this many seconds "
                          "(0: the default program as it is)")
@@ -121,7 +124,7 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     args.worlds = [w for name in args.worlds for w in (PAPER_SCENARIOS if name == "papers" else (name,))]
     t0 = time.perf_counter()
-    rows = run(args.solvers, args.worlds, args.seeds, args.seed0, args.stop_hold, args.as_file)
+    rows = run(args.solvers, args.worlds, args.seeds, args.seed0, args.stop_hold, args.as_file, args.scenario_seeds)
     print(f"\nfamilies: seeds {args.seed0}..{args.seed0 + args.seeds - 1}; {time.perf_counter() - t0:.0f} s")
     print("| world | solver | success | collided | timeout | stuck | time to goal s | length m | BARN | "
           "step ms median | p95 | limits held | fallback-to-sample steps |")

@@ -71,6 +71,7 @@ LOCAL_GUIDANCE = {
     "dwa": ("goal", "ignore"),          # Fox et al. 1997: no global guidance
     "qp-dwa": ("key_points", "replan"),  # optplan's own: key points + exact re-plan
     "mpc": ("key_points", "replan"),     # optplan's own NMPC, guided like qp-dwa
+    "follow": ("goal", "ignore"),        # the global path driven blind: it never re-plans
 }
 DEFAULT_GUIDANCE = ("key_points", "replan")
 

@@ -60,7 +60,7 @@ def random_contexts(field, n, seed, movers=3):
 
 def test_names_registry_and_errors():
     # the presets, their twins as printed (issue 44; tests/test_local_claims_44.py), the program solvers
-    assert algorithm_names() == [*PRESET_NAMES, "idwa-printed", "iga-dwa-printed", "mpc"]
+    assert algorithm_names() == [*PRESET_NAMES, "idwa-printed", "iga-dwa-printed", "mpc", "follow"]
     assert set(NAMES) <= set(op.algorithms())
     robot = RobotSpec()
     with pytest.raises(op.UnknownAlgorithmError, match="dwa, missa-dwa"):

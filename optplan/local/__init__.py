@@ -29,11 +29,13 @@ __all__ = ["make_local_planner", "algorithm_names", "local_program", "LocalConte
 
 # solvers of a window program (optplan.formulations.local_program) other than the presets
 PROGRAM_SOLVERS = ("mpc",)
+# baselines that are no DWA: the global path driven blind (optplan/local/follow.py)
+BASELINES = ("follow",)
 
 
 def algorithm_names() -> list[str]:
     """Names of the local planners."""
-    return [*PRESETS, *PROGRAM_SOLVERS]
+    return [*PRESETS, *PROGRAM_SOLVERS, *BASELINES]
 
 
 def make_local_planner(name: str, robot: RobotSpec, dt: float, **params: Any) -> LocalPlanner:
@@ -55,6 +57,12 @@ def make_local_planner(name: str, robot: RobotSpec, dt: float, **params: Any) ->
         program = local_program(program, robot, dt)
     if isinstance(program, PresetProgram):
         return _preset_solver(key, program, robot, dt, params)
+    if key in BASELINES:
+        if program is not None:
+            raise ParameterError(f"{name!r} follows the global path and solves no window program")
+        from .follow import PathFollower
+
+        return _built(PathFollower, key, robot, dt, **params)
     if key == "mpc":
         from .program_planners import MPCPlanner
 
