@@ -1,8 +1,8 @@
 """Reproduce yang2023 (IPSO-IDWA) with optplan.
 
 --part global: Tables 1-3 analog on the circle-world stand-ins for environments
-1 and 2 ((0,0)->(10,10) and (0,0)->(15,15)): PSO vs IPSO (IPSO1/IPSO2 are not
-implemented: docs/fidelity/yang2023.md), spline paths through 3 handle points
+1 and 2 ((0,0)->(10,10) and (0,0)->(15,15)): PSO vs IPSO, IPSO1 (partly reconstructed)
+and IPSO2 (a reconstruction; docs/fidelity/yang2023.md), spline paths through 3 handle points
 (eq 3-4), population 150, 500 iterations (the Table 3 settings), 20 runs. Table 3
 analog: the median converged length and the iteration at which each run reached
 it. Lengths stand next to the exact optimum (tangent graph); the paper's claims

@@ -50,7 +50,7 @@ PAPERS: dict[str, PaperMethod] = {p.key: p for p in (
                 "Algorithm and Dynamic Window Approach", ("ssa", "missa"), postprocess="collinear",
                 local_preset="missa-dwa", subgoals="key_points", sections="§3.1-3.2, §4.1"),
     PaperMethod("yang2023", "Mobile Robot Path Planning Based on Improved Particle Swarm Optimization and "
-                "Improved Dynamic Window Approach", ("pso", "ipso", "ipso1"), grid_encoding="spline", postprocess="none",
+                "Improved Dynamic Window Approach", ("pso", "ipso", "ipso1", "ipso2"), grid_encoding="spline", postprocess="none",
                 local_preset="idwa", subgoals="navigation_points", sections="§2.2 eq 1-4, §6, §7.3"),
     PaperMethod("yuan2021", "Path Planning for Mobile Robot Based on Improved Bat Algorithm", ("ba", "iba"),
                 postprocess="collinear", local_preset="ba-dwa", subgoals="turning_points", on_blocked="switch",

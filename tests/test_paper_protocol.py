@@ -125,13 +125,22 @@ def test_every_claim_names_a_shipped_spec_and_a_known_kind():
         # a claim names an algorithm label, or a pipeline (label/local planner) where the spec varies them
         labels = set(spec.labels) | {pipeline_name(lab, r, lp, len(spec.refine) > 1, len(spec.local_planners) > 1)
                                      for lab in spec.labels for r in spec.refine for lp in spec.local_planners}
-        for c in claims_of(name):
+        def check(c):
+            if c.kind in ("all", "most", "net"):   # a combination: its parts are claims of the same spec
+                assert c.parts and all(p.spec == name for p in c.parts), c.quote
+                for p in c.parts:
+                    check(p)
+                return
             assert c.kind in ("less", "less_spread", "less_best", "less_worst", "tie", "tie_best", "rate", "fails",
-                              "reaches", "trend")
+                              "reaches", "trend", "lead_trend")
             assert c.target in targets, (c.quote, c.target)
             # a trend names every target it runs along; each must be one of the spec's
-            assert bool(c.targets) == (c.kind == "trend") and set(c.targets) <= targets, (c.quote, c.targets)
+            assert bool(c.targets) == (c.kind in ("trend", "lead_trend")) and set(c.targets) <= targets, \
+                (c.quote, c.targets)
             assert c.better in labels and (c.other is None or c.other in labels), (c.quote, labels)
+
+        for c in claims_of(name):
+            check(c)
 
 
 def test_reproduce_ends_with_the_claims_table(capsys):

@@ -70,11 +70,45 @@ computed from the stored runs, never written by hand:
   resampled), rho and p. Verdicts as for ``less``: ``reversed`` when significant the other way,
   ``weaker`` when the interval lies below the claimed change (``claimed``: the paper's relative
   change first to last, or ``None``).
+* ``lead_trend`` — group ``better``'s lead over ``other`` grows along the claim's ordered ``targets``
+  (li2023: "the gains over TGA grow with the map size"; a lead claimed to shrink lists the targets the
+  other way round, as for ``trend``). The lead at a target is the reduction of the mean,
+  ``1 - mean(better) / mean(other)`` (:func:`_drop`, ``less``'s figure). Our figure: the reduction per
+  target in order, its change from the first target to the last (percentage points) with a 95 %
+  bootstrap interval, and the p of a studentised bootstrap (bootstrap-t) of that change: the runs of
+  each group at the first and the last target are resampled on their own (different maps: no seed pairs
+  runs across targets), each resample's change is standardised by its delta-method standard error, and p
+  is the share of resamples at least as far out as the observed change (the plain percentile bootstrap
+  gave 7-9 % false positives at alpha 0.05 with 10-20 skewed runs a group, the bootstrap-t 4-7 %). A
+  group with one run, or with identical repeats (A*, deterministic), resamples to itself and has no
+  variance: its mean is exact and the spread comes from the stochastic group alone. (A permutation test
+  of the group x target interaction is not sound there: it would deal A*'s one value, or its identical
+  copies, as exchangeable draws; a rank test of the runs scaled by A* is not either: it compares the
+  shapes of distributions whose spread changes with the map, not the means the lead is made of.) The
+  middle targets are printed, not tested. Verdicts as for ``trend``: ``reversed`` when the lead
+  significantly shrinks, ``weaker`` when the interval lies below ``claimed`` (the paper's change of the
+  reduction first to last, a fraction), ``too few runs`` when the first or last target's comparison
+  could never reach alpha in ``less``'s test.
+* ``all`` / ``most`` / ``net`` — a statement that sums up others ("MISSA beats the other three in length,
+  rotation and run time", "in most functions", a tally of wins and losses), judged as a combination of
+  the claims that judge its parts (``parts``, claims of the same spec; build it with
+  :func:`combined_claim`; the claims table prints the parts' verdicts counted, e.g. ``4/6 hold``). A part
+  *supports* the combination when it holds or is weaker (significant in the claimed direction), *opposes*
+  it when reversed, is *open* when not significant and *unknown* without a verdict (not run, too few
+  runs). The verdict is what the parts prove whatever the open and unknown ones would turn out to be:
+  ``all`` holds when every part holds and is reversed when any part is; ``most`` holds when more than
+  half of the parts hold and is reversed when at least half are reversed (then at most half can hold);
+  ``net``, the direction of a tally (chen2025 Table 7's wins / ties / losses, open parts being ties),
+  holds when the supporting parts (wins) outnumber the reversed ones (losses) and the unknown ones
+  together, and is reversed when the losses outnumber the wins and the unknown ones. A combination
+  proved only by counting weaker parts as holding is ``weaker``; one left undecided is ``not
+  significant``, or ``not run`` / ``too few runs`` when unknown parts leave it undecided. Parts on run
+  time make a combination of their own (the docs' tables do not compare run-time rows).
 
 When the numbers of runs could never give a p-value below alpha (a ``--quick`` run: 3 against 3
 runs, the smallest rank-sum p is 0.1, as is the smallest precedence p; one seed on each of four
-targets, the smallest trend p is 2/24), a ``less``, ``less_best``, ``less_worst``, ``tie``, ``tie_best``
-or ``trend`` claim gets ``too few runs``, not a verdict.
+targets, the smallest trend p is 2/24), a ``less``, ``less_best``, ``less_worst``, ``tie``, ``tie_best``,
+``trend`` or ``lead_trend`` claim gets ``too few runs``, not a verdict.
 A claim whose groups or target the spec does not hold (a quick run on fewer maps, a missing
 baseline) is listed as ``not run``, so every claim is always shown.
 """
@@ -103,6 +137,10 @@ FUNCTION_TOL = 1e-8
 PRINTED_LENGTH_TOL = 5e-5
 # kinds judged on the share of one group's runs (their id names no other group and no metric)
 SHARE_KINDS = ("rate", "fails", "reaches")
+# kinds judged along several ordered targets (their id names the targets in order)
+ORDERED_KINDS = ("trend", "lead_trend")
+# kinds judged as a combination of other claims, their parts
+COMBINED_KINDS = ("all", "most", "net")
 
 
 @dataclass(frozen=True)
@@ -115,7 +153,8 @@ class Claim:
         quote: the statement, in short.
         target: the map or scenario it is about.
         kind: ``less``, ``less_spread``, ``less_best``, ``less_worst``, ``tie``, ``tie_best``,
-            ``rate``, ``fails``, ``reaches`` or ``trend`` (module docstring).
+            ``rate``, ``fails``, ``reaches``, ``trend``, ``lead_trend``, or a combination ``all``,
+            ``most``, ``net`` (module docstring).
         better: the group label the paper says is better (or that succeeds, for ``rate``).
         other: the group it is compared with (every kind but the shares).
         metric: the stored metric (``length``, ``runtime_s``, ``turn_angle_deg``, ``n_turns``,
@@ -124,9 +163,13 @@ class Claim:
         note: what the reader should know (e.g. timings on a shared machine).
         tol: the margin of ``tie`` / ``tie_best`` and the distance to the optimum ``reaches``
             accepts; ``None``: :data:`FUNCTION_TOL` on a benchmark function (required elsewhere).
-        targets: a ``trend``'s targets in the order its metric is claimed to grow along (``target``
-            is then the first of them, so that code reading one target still names a real one);
-            empty for every other kind. Build a trend with :func:`trend_claim`.
+        targets: a ``trend``'s (``lead_trend``'s) targets in the order its metric (its lead) is claimed
+            to grow along (``target`` is then the first of them, so that code reading one target still
+            names a real one); empty for every other kind. Build a trend with :func:`trend_claim`, a lead
+            trend with :func:`lead_trend_claim`.
+        parts: a combination's claims (``all``, ``most``, ``net``), all of the same spec; empty for every
+            other kind. Build one with :func:`combined_claim`, which labels its target, groups and
+            metric after its parts.
     """
 
     spec: str
@@ -141,26 +184,39 @@ class Claim:
     note: str = ""
     tol: float | None = None
     targets: tuple[str, ...] = ()
+    parts: tuple["Claim", ...] = ()
 
     def __post_init__(self) -> None:
         # a trend judges several targets, every other kind one: catch a half-built claim early
-        if self.kind == "trend":
+        if self.kind in ORDERED_KINDS:
+            lead = self.kind == "lead_trend"
             if (len(self.targets) < 2 or len(set(self.targets)) != len(self.targets)
-                    or self.target != self.targets[0] or self.other is not None):
-                raise ValueError(f"a trend claim needs two or more distinct targets, the first as its target, "
-                                 f"and no other group: {self.targets!r}, {self.target!r}, {self.other!r}")
+                    or self.target != self.targets[0] or (self.other is not None) != lead):
+                raise ValueError(f"a {self.kind} claim needs two or more distinct targets, the first as its target, "
+                                 f"and {'an' if lead else 'no'} other group: {self.targets!r}, {self.target!r}, "
+                                 f"{self.other!r}")
         elif self.targets:
-            raise ValueError(f"only a trend claim names several targets, not a {self.kind} claim")
+            raise ValueError(f"only a trend or lead_trend claim names several targets, not a {self.kind} claim")
+        if (self.kind in COMBINED_KINDS) != bool(self.parts):
+            raise ValueError(f"a combination ({', '.join(COMBINED_KINDS)}) and only a combination names parts: "
+                             f"a {self.kind} claim with {len(self.parts)}")
+        if any(p.spec != self.spec for p in self.parts):
+            raise ValueError(f"a combination's parts are judged on its own spec {self.spec}, not on "
+                             f"{sorted({p.spec for p in self.parts} - {self.spec})}")
 
     @property
     def id(self) -> str:
         """The claim's stable name, made of what the verdict is computed from (spec, target, kind,
         groups, metric; never the quote or the claimed size): ``spec:target:kind:better`` for a
         share (``rate``, ``fails``, ``reaches``), ``spec:target:kind:better:other:metric`` for a
-        comparison, ``spec:t1>t2>...:trend:better:metric`` for a trend (its targets in order). The
+        comparison, ``spec:t1>t2>...:trend:better:metric`` for a trend (its targets in order),
+        ``spec:t1>t2>...:lead_trend:better:other:metric`` for a lead trend; a combination's is a
+        comparison's, made of the labels :func:`combined_claim` gives it after its parts. The
         inventory of the papers' statements (:mod:`.claim_inventory`) names claims by it."""
         if self.kind == "trend":
             return ":".join([self.spec, ">".join(self.targets), self.kind, self.better, self.metric])
+        if self.kind == "lead_trend":
+            return ":".join([self.spec, ">".join(self.targets), self.kind, self.better, str(self.other), self.metric])
         parts = [self.spec, self.target, self.kind, self.better]
         if self.kind not in SHARE_KINDS:
             parts += [str(self.other), self.metric]
@@ -176,8 +232,44 @@ def trend_claim(spec: str, source: str, quote: str, targets: Iterable[str], bett
                  targets=targets)
 
 
+def lead_trend_claim(spec: str, source: str, quote: str, targets: Iterable[str], better: str, other: str,
+                     metric: str, claimed: float | None = None, note: str = "") -> Claim:
+    """A ``lead_trend`` claim: ``better``'s lead over ``other`` (the reduction of the mean ``metric``)
+    grows along ``targets`` (in that order); ``claimed`` is the paper's change of that reduction from
+    the first target to the last (a fraction: 0.072 for 1.4 % -> 8.6 %)."""
+    targets = tuple(targets)
+    return Claim(spec, source, quote, targets[0] if targets else "", "lead_trend", better, other, metric, claimed,
+                 note, targets=targets)
+
+
+def _label(items: Iterable[str | None]) -> str:
+    """The distinct non-empty ``items`` in their order, joined by ``+``."""
+    return "+".join(dict.fromkeys(i for i in items if i))
+
+
+def combined_claim(kind: str, source: str, quote: str, parts: Iterable[Claim], target: str | None = None,
+                   note: str = "") -> Claim:
+    """A combination (``all``, ``most`` or ``net``, module docstring) of the claims ``parts``, all of one
+    spec. Its target, groups and metric are labels made of its parts' (their distinct values joined by
+    ``+``; ``target`` overrides the target's, e.g. ``F1-F18``), so its id says what it combines. Parts on
+    run time are not mixed with others: such a combination is a run-time row of its own, which the
+    docs' tables do not compare."""
+    parts = tuple(parts)
+    if kind not in COMBINED_KINDS or not parts:
+        raise ValueError(f"a combination is one of {', '.join(COMBINED_KINDS)} over one or more parts, "
+                         f"not a {kind} claim of {len(parts)}")
+    compared = [p for p in parts if p.kind not in SHARE_KINDS]
+    if len({p.metric == "runtime_s" for p in compared}) > 1:
+        raise ValueError(f"{quote!r}: parts on run time make a combination of their own (its row is not "
+                         "compared in the docs' tables)")
+    return Claim(parts[0].spec, source, quote, target or _label(t for p in parts for t in (p.targets or (p.target,))),
+                 kind, _label(p.better for p in parts), _label(p.other for p in compared) or None,
+                 _label(p.metric for p in compared) or "share", note=note, parts=parts)
+
+
 def target_text(claim: Claim) -> str:
-    """The claim's target as the tables show it: a trend's targets in order, ``a -> b -> c``."""
+    """The claim's target as the tables show it: a trend's targets in order, ``a -> b -> c``; a
+    combination's label."""
     return " -> ".join(claim.targets) if claim.targets else claim.target
 
 
@@ -547,6 +639,131 @@ def judge_trend(groups, claimed: float | None, alpha: float = 0.05, blocks=None)
     return figure, _verdict(p, alpha, rho > 0, claimed is not None and hi < claimed)
 
 
+def _lead_variance(a: np.ndarray, b: np.ndarray, axis: int | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """The reduction of the mean of ``a`` against ``b`` and its variance by the delta method,
+    ``var(mean a) / mb^2 + ma^2 var(mean b) / mb^4`` (a single run of ``b`` counts as exact); with
+    ``axis``, of every row of resampled groups at once."""
+    ma, mb = a.mean(axis=axis), b.mean(axis=axis)
+    n, m = a.shape[-1], b.shape[-1]
+    va = a.var(axis=axis, ddof=1) / n if n > 1 else np.zeros_like(ma)
+    vb = b.var(axis=axis, ddof=1) / m if m > 1 else np.zeros_like(mb)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        red = np.where(ma == mb, 0.0, (mb - ma) / np.abs(mb))
+        return red, va / mb ** 2 + ma ** 2 * vb / mb ** 4
+
+
+def judge_lead_trend(pairs, claimed: float | None, alpha: float = 0.05, seed: int = 0) -> tuple[str, str]:
+    """``(our figure, verdict)`` of "the lead of ``a`` over ``b`` grows along the targets" (``pairs``: the
+    ``(a, b)`` values of each target, in the claimed order; kind ``lead_trend``, module docstring).
+
+    The change of the lead from the first target to the last, ``D``, is tested with a studentised
+    bootstrap (bootstrap-t): each group at both ends resampled on its own, ``t* = (D* - D) / se*``
+    with the delta-method standard error of each resample, and ``p`` the share of ``|t*|`` at least the
+    observed ``|D / se|`` (``(1 + k) / (1 + BOOTSTRAP)``). Unlike the percentile interval (shown) it keeps
+    its false-positive rate near alpha with 10-20 skewed runs a group (tests/test_claim_summary_44.py)."""
+    from .stats import smallest_p
+
+    pairs = [(np.asarray(a, float), np.asarray(b, float)) for a, b in pairs]
+    if len(pairs) < 2 or any(len(a) < 2 or len(b) < 1 for a, b in pairs):
+        return "runs per target " + ", ".join(f"{len(a)} and {len(b)}" for a, b in pairs), "not run"
+    # a reference whose runs are all alike (A*, deterministic, stored once or repeated) is one exact value
+    pairs = [(a, b[:1] if np.all(b == b[0]) else b) for a, b in pairs]
+    reds = [_reduction(a, b) for a, b in pairs]
+    change = reds[-1] - reds[0]
+    reductions = "reductions " + " -> ".join(f"{100 * r:+.1f} %" for r in reds)
+    (af, bf), (al, bl) = pairs[0], pairs[-1]
+    (_, vf), (_, vl) = _lead_variance(af, bf), _lead_variance(al, bl)
+    if not np.isfinite(change) or not np.isfinite(vf + vl):
+        return reductions, "not significant"
+    rng = np.random.default_rng(seed)
+
+    def resampled(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        return _lead_variance(a[rng.integers(0, len(a), size=(BOOTSTRAP, len(a)))],
+                              b[rng.integers(0, len(b), size=(BOOTSTRAP, len(b)))], axis=1)
+
+    (rf, wf), (rl, wl) = resampled(af, bf), resampled(al, bl)
+    d, se = rl - rf, np.sqrt(wf + wl)
+    keep = np.isfinite(d) & np.isfinite(se)
+    d, se = d[keep], se[keep]
+    lo, hi = (float(x) for x in np.percentile(d, [2.5, 97.5]))
+    if vf + vl == 0:   # nothing varies at either end: the change is exact
+        p = 1.0 if change == 0 else 0.0
+    else:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = np.where(se > 0, (d - change) / se, np.where(d == change, 0.0, np.inf))
+        p = min(1.0, (1 + int(np.count_nonzero(np.abs(t) >= abs(change) / np.sqrt(vf + vl)))) / (1 + len(t)))
+    figure = f"{reductions}; first to last {100 * change:+.1f} pp [{100 * lo:+.1f}, {100 * hi:+.1f}], p={p:.2g}"
+
+    def less_floor(a: np.ndarray, b: np.ndarray) -> float:   # the smallest p of ``less`` at one target
+        return 2.0 / 2 ** len(a) if len(b) == 1 else smallest_p(len(a), len(b))
+
+    if max(less_floor(af, bf), less_floor(al, bl)) >= alpha:
+        return figure, TOO_FEW_RUNS
+    return figure, _verdict(p, alpha, change > 0, claimed is not None and hi < claimed)
+
+
+# the verdicts a combination's parts count: supporting it, opposing it, open, unknown
+_SUPPORT = ("holds", "weaker")
+_UNKNOWN = ("not run", TOO_FEW_RUNS)
+
+
+def judge_combined(kind: str, verdicts: Iterable[str], labels: Iterable[str] | None = None) -> tuple[str, str]:
+    """``(our figure, verdict)`` of a combination ``all``, ``most`` or ``net`` (module docstring) whose
+    parts got ``verdicts``; ``labels`` (parallel) name the parts in the figure's list of reversed ones."""
+    verdicts = list(verdicts)
+    labels = list(labels) if labels is not None else [str(i + 1) for i in range(len(verdicts))]
+    n = len(verdicts)
+    if not n:
+        raise ValueError("a combination needs parts")
+    count = {v: verdicts.count(v) for v in VERDICTS}
+    unknown_ = [v for v in verdicts if v not in VERDICTS]
+    if unknown_:
+        raise ValueError(f"unknown verdicts {sorted(set(unknown_))}")
+    holds, support = count["holds"], count["holds"] + count["weaker"]
+    against, unknown = count["reversed"], sum(count[v] for v in _UNKNOWN)
+    if kind == "all":
+        def proved(k: int) -> bool:
+            return k == n
+        disproved = against > 0
+    elif kind == "most":
+        def proved(k: int) -> bool:
+            return 2 * k > n
+        disproved = 2 * against >= n
+    elif kind == "net":
+        def proved(k: int) -> bool:
+            return k > against + unknown
+        disproved = against > support + unknown
+    else:
+        raise ValueError(f"unknown combination kind {kind!r}; known: {', '.join(COMBINED_KINDS)}")
+    if proved(holds):
+        verdict = "holds"
+    elif proved(support):
+        verdict = "weaker"
+    elif disproved:
+        verdict = "reversed"
+    elif unknown:
+        verdict = TOO_FEW_RUNS if count[TOO_FEW_RUNS] else "not run"
+    else:
+        verdict = "not significant"
+    figure = ", ".join([f"{holds}/{n} hold", *(f"{count[v]} {v}" for v in VERDICTS[1:] if count[v])])
+    if kind == "net":
+        figure += f"; wins/ties/losses {support}/{count['not significant']}/{against}"
+    reversed_ = [lab for lab, v in zip(labels, verdicts) if v == "reversed"]
+    if reversed_:
+        figure += f" (reversed: {', '.join(reversed_[:6])}{', ...' if len(reversed_) > 6 else ''})"
+    return figure, verdict
+
+
+def part_labels(parts: Iterable[Claim]) -> list[str]:
+    """Short names of a combination's parts: what varies between them (target, kind, groups, metric)."""
+    parts = list(parts)
+    words = {"less": "mean", "less_best": "best", "less_worst": "worst", "less_spread": "spread"}
+    fields = (target_text, lambda c: words.get(c.kind, c.kind), lambda c: c.better, lambda c: c.other or "",
+              lambda c: "" if c.kind in SHARE_KINDS else c.metric)
+    varying = [f for f in fields if len({f(c) for c in parts} - {""}) > 1]
+    return [" ".join(x for x in (f(c) for f in varying) if x) or c.quote for c in parts]
+
+
 def _tol(claim: Claim, res) -> float:
     """The claim's margin: its own, else the benchmark tolerance on a function spec; never guessed."""
     if claim.tol is not None:
@@ -565,6 +782,18 @@ def _group(res, target: str, label: str):
 
 def judge(claim: Claim, res) -> tuple[str, str]:
     """``(our figure, verdict)`` of one claim on the stored runs ``res`` of its spec."""
+    if claim.kind in COMBINED_KINDS:
+        return judge_combined(claim.kind, [judge(p, res)[1] for p in claim.parts], part_labels(claim.parts))
+    if claim.kind == "lead_trend":
+        if not set(claim.targets) <= {t.name for t in res.spec.targets}:
+            return "target not in this run", "not run"
+        pairs = []
+        for t in claim.targets:
+            a, b = _group(res, t, claim.better), _group(res, t, claim.other)
+            if a is None or b is None:
+                return "group not in this run", "not run"
+            pairs.append((res.values(a, claim.metric), res.values(b, claim.metric)))
+        return judge_lead_trend(pairs, claim.claimed, res.spec.alpha)
     if claim.kind == "trend":
         if not set(claim.targets) <= {t.name for t in res.spec.targets}:
             return "target not in this run", "not run"
@@ -606,6 +835,10 @@ def _claimed_text(c: Claim) -> str:
         return "equal"
     if c.kind == "trend":   # grows along the targets as listed; the size is first to last
         return "grows" if c.claimed is None else f"{100 * c.claimed:+.1f} %"
+    if c.kind == "lead_trend":   # the lead grows; the size is the change of the reduction, first to last
+        return "grows" if c.claimed is None else f"{100 * c.claimed:+.1f} pp"
+    if c.kind in COMBINED_KINDS:
+        return {"all": "all hold", "most": "most hold", "net": "more wins than losses"}[c.kind]
     if c.claimed is None:
         return ">= 100 %" if c.kind == "reaches" else "better"
     if c.kind == "fails":
@@ -618,7 +851,15 @@ def _claimed_text(c: Claim) -> str:
 # what the compared column says before the groups, for the kinds that compare extremes or equality
 # (a prefix, so that a run-time row still ends in "(runtime_s)", the mark doc_tables skips)
 _COMPARED_PREFIX = {"less_best": "best: ", "less_worst": "worst: ", "tie": "equal: ", "tie_best": "equal best: ",
-                    "reaches": "optimum: ", "trend": "trend: "}
+                    "reaches": "optimum: ", "trend": "trend: ", "lead_trend": "lead trend: "}
+
+
+def _compared_text(c: Claim, shown: Claim) -> str:
+    """The compared column: the kind's prefix (a combination's kind and number of parts), the groups of
+    ``shown`` (``c`` or its printed twin) and the metric."""
+    prefix = f"{c.kind} of {len(c.parts)}: " if c.parts else _COMPARED_PREFIX.get(c.kind, "")
+    return prefix + shown.better + (f" vs {shown.other}" if shown.other else "") + \
+        (f" ({c.metric})" if c.kind not in SHARE_KINDS else "")
 
 
 def claims_of(spec_name: str) -> list[Claim]:
@@ -644,9 +885,7 @@ def claims_table(res) -> Table | None:
     for c in claims:
         shown = twins.get(c.id, c)
         figure, verdict = judge(shown, res)
-        compared = _COMPARED_PREFIX.get(c.kind, "") + shown.better + (f" vs {shown.other}" if shown.other else "") + \
-            (f" ({c.metric})" if c.kind not in SHARE_KINDS else "")
-        row = [c.source, c.quote, target_text(c), compared, _claimed_text(c), figure, verdict]
+        row = [c.source, c.quote, target_text(c), _compared_text(c, shown), _claimed_text(c), figure, verdict]
         if twins:
             ours = judge(c, res) if c.id in twins else ("-", "-")   # "-": nothing of ours in its groups
             row += list(ours)
@@ -671,6 +910,19 @@ def claims_table(res) -> Table | None:
                            "with a bootstrap interval (seeds resampled); rho: rank correlation of the runs with that "
                            "order within their seed, p: its permutation test, targets dealt anew within each seed "
                            f"(exact, or {PERMUTATIONS:,} seeded deals)")
+    if "lead_trend" in kinds:
+        table.notes.append("lead trend -> the reduction of the mean (1 - mean / other's mean) per target in the order "
+                           "shown, and its change first to last in percentage points with a bootstrap interval (each "
+                           "group's runs resampled per target; a single deterministic run, e.g. A*, stays exact); p: "
+                           "studentised bootstrap (bootstrap-t) of that change; the middle targets are shown, not "
+                           "tested")
+    if kinds & set(COMBINED_KINDS):
+        table.notes.append("all / most / net -> a combination of the claims judging a summary's parts (their "
+                           "verdicts counted; reversed parts named): all holds when every part holds, is reversed "
+                           "when any part is; most holds when more than half hold, is reversed when at least half "
+                           "are; net (a tally's direction) holds when the parts that hold (wins) outnumber the "
+                           "reversed ones (losses) and those without a verdict, is reversed the other way round; "
+                           "weaker when it needs the weaker parts to hold")
     if twins:
         table.notes += _twin_notes(twin_verdicts(verdicts, [(c, twins[c.id]) for c in claims if c.id in twins]))
     table.notes += notes
@@ -685,6 +937,9 @@ def render_claims(res, fmt: str = "markdown") -> str:
     return f"\n## Claims of the paper ({res.spec.name})\n\n{table.render(fmt)}\n"
 
 
+_IPSO2_NOTE = ("IPSO2 is a reconstruction, not Tan et al. 2022's rule (not found): Yang et al. 2007's evolution "
+               "speed and aggregation degree set the inertia, the learning factors' rule is ours "
+               "(docs/fidelity/yang2023.md)")
 _IPSO1_NOTE = ("IPSO1's positive feedback follows Li et al. 2020 eq 7-8; its disturbance and schedule are "
                "reconstructed (docs/fidelity/yang2023.md)")
 _AGWO_NOTE = ("AGWO is Qais et al. 2018's augmented GWO, RSMGWO Zhang et al. 2020's; chen2025 cites neither and "
@@ -752,7 +1007,7 @@ CLAIMS: tuple[Claim, ...] = (
           "less", "iba-mu0.1", "iba-mu0", "n_turns", 1 - 9.1 / 12.6),
     Claim("yuan2021_table2", "§5.1 (2)", "the smoothing term lengthens the path (39.21 vs 37.45, -4.70 %)",
           "yuan2021_25", "less", "iba-mu0", "iba-mu0.1", "length", None),
-    # yang2023 §7.1 (IPSO2 is not implemented; IPSO1 below)
+    # yang2023 §7.1 (IPSO1 and IPSO2 below)
     Claim("yang2023_global", "Table 1", "IPSO average length below PSO (15.0966 vs 15.7687, 4.26 %)",
           "yang2023_env1", "less", "ipso", "pso", claimed=1 - 15.0966 / 15.7687),
     Claim("yang2023_global", "Table 2", "IPSO average length below PSO (22.0474 vs 22.4382, 1.74 %)",
@@ -762,6 +1017,12 @@ CLAIMS: tuple[Claim, ...] = (
           "yang2023_env1", "less", "ipso", "ipso1", claimed=1 - 15.0966 / 15.5512, note=_IPSO1_NOTE),
     Claim("yang2023_global", "Table 2", "IPSO average length below IPSO1 (22.0474 vs 22.2542)",
           "yang2023_env2", "less", "ipso", "ipso1", claimed=1 - 22.0474 / 22.2542, note=_IPSO1_NOTE),
+    # yang2023 §7.1 against IPSO2 (Tan et al. 2022, its [19]; a reconstruction, docs/fidelity/yang2023.md).
+    # IPSO2 spends PSO's evaluations: EQUAL_EVALS judges these at equal evaluations too (ipso-evals)
+    Claim("yang2023_global", "Table 1", "IPSO average length below IPSO2 (15.0966 vs 15.4805)",
+          "yang2023_env1", "less", "ipso", "ipso2", claimed=1 - 15.0966 / 15.4805, note=_IPSO2_NOTE),
+    Claim("yang2023_global", "Table 2", "IPSO average length below IPSO2 (22.0474 vs 22.2667)",
+          "yang2023_env2", "less", "ipso", "ipso2", claimed=1 - 22.0474 / 22.2667, note=_IPSO2_NOTE),
     # yang2023 Table 3 (one convergence curve per algorithm in the paper; 20 seeds here)
     Claim("yang2023_convergence", "Table 3", "IPSO converges to a shorter path than PSO (14.5134 vs 14.8496 m)",
           "yang2023_env1", "less", "ipso", "pso", claimed=1 - 14.5134 / 14.8496),
@@ -777,6 +1038,12 @@ CLAIMS: tuple[Claim, ...] = (
     *(Claim("yang2023_convergence", "Table 3", f"IPSO converges in fewer iterations than IPSO1 ({a} vs {b})", m,
             "less", "ipso", "ipso1", metric="convergence_iter", claimed=1 - a / b, note=_IPSO1_NOTE)
       for m, a, b in (("yang2023_env1", 94, 138), ("yang2023_env2", 137, 159))),
+    *(Claim("yang2023_convergence", "Table 3", f"IPSO converges to a shorter path than IPSO2 ({a:.4f} vs {b:.4f} m)", m,
+            "less", "ipso", "ipso2", claimed=1 - a / b, note=_IPSO2_NOTE)
+      for m, a, b in (("yang2023_env1", 14.5134, 14.6513), ("yang2023_env2", 21.2950, 21.5085))),
+    *(Claim("yang2023_convergence", "Table 3", f"IPSO converges in fewer iterations than IPSO2 ({a} vs {b})", m,
+            "less", "ipso", "ipso2", metric="convergence_iter", claimed=1 - a / b, note=_IPSO2_NOTE)
+      for m, a, b in (("yang2023_env1", 94, 140), ("yang2023_env2", 137, 166))),
     # li2023 §6.1, Tables 1-2
     *(Claim("li2023_global", "Table 1", f"IGA path {c:.1%} shorter than TGA", m, "less", "iga", "ga", claimed=c)
       for m, c in (("li2023_30", 0.027), ("li2023_60", 0.048), ("li2023_90", 0.049))),
@@ -857,6 +1124,8 @@ CLAIMS: tuple[Claim, ...] = (
 # (label ``<improved>-evals``), and each length / rotation claim against that baseline is judged
 # again there. yuan2021's IBA spends what BA does; li2023's IGA spends fewer than TGA.
 EQUAL_EVALS = {("yang2023_global", "ipso", "pso"): 15050, ("yang2023_convergence", "ipso", "pso"): 75150,
+               # IPSO2 (a reconstruction) spends PSO's evaluations per iteration
+               ("yang2023_global", "ipso", "ipso2"): 15050, ("yang2023_convergence", "ipso", "ipso2"): 75150,
                ("hou2024_global", "missa", "ssa"): 18060, ("chen2025_paths", "msiar-gwo", "gwo"): 15030,
                # AGWO and RSMGWO spend GWO's 30 evaluations per iteration
                ("chen2025_paths", "msiar-gwo", "agwo"): 15030, ("chen2025_paths", "msiar-gwo", "rsmgwo"): 15030}
@@ -972,8 +1241,8 @@ def _extreme_and_tie_claims() -> tuple[Claim, ...]:
                     hou.append(Claim("hou2024_global", f"Table {t}", f"{quote}, at equal evaluations (18,060)", env,
                                      "less_best", "missa-evals", o, m, r / 100))
     yang = []
-    for t, env, ipso, pso, ipso1 in ((1, "yang2023_env1", 14.5374, 14.9860, 14.7632),
-                                     (2, "yang2023_env2", 21.2866, 21.8782, 21.8041)):
+    for t, env, ipso, pso, ipso1, ipso2 in ((1, "yang2023_env1", 14.5374, 14.9860, 14.7632, 14.6825),
+                                            (2, "yang2023_env2", 21.2866, 21.8782, 21.8041, 21.6564)):
         quote = f"IPSO's shortest path below PSO's ({ipso:.4f} vs {pso:.4f} m)"
         yang += [Claim("yang2023_global", f"Table {t}", quote, env, "less_best", "ipso", "pso",
                        claimed=1 - ipso / pso),
@@ -982,6 +1251,12 @@ def _extreme_and_tie_claims() -> tuple[Claim, ...]:
                  Claim("yang2023_global", f"Table {t}", f"IPSO's shortest path below IPSO1's ({ipso:.4f} vs "
                        f"{ipso1:.4f} m)", env, "less_best", "ipso", "ipso1", claimed=1 - ipso / ipso1,
                        note=_IPSO1_NOTE)]
+        # IPSO2 (a reconstruction) spends PSO's evaluations: also judged at equal evaluations, as against PSO
+        quote = f"IPSO's shortest path below IPSO2's ({ipso:.4f} vs {ipso2:.4f} m)"
+        yang += [Claim("yang2023_global", f"Table {t}", quote, env, "less_best", "ipso", "ipso2",
+                       claimed=1 - ipso / ipso2, note=_IPSO2_NOTE),
+                 Claim("yang2023_global", f"Table {t}", f"{quote}, at equal evaluations (15,050)", env, "less_best",
+                       "ipso-evals", "ipso2", claimed=1 - ipso / ipso2, note=_IPSO2_NOTE)]
     yuan = [
         # yuan2021 §5.1 (1), Table 1: longest and shortest of 20 paths (IBA 41.21 / 36.87 m)
         Claim("yuan2021_table1", "Table 1", "IBA's longest path 9.35 % shorter than PSO's (41.21 vs 45.46)",
@@ -1175,17 +1450,25 @@ def printed_group(group: str | None) -> str | None:
     return f"{label}/{PRINTED[local]}" if local in PRINTED else group
 
 
-def _printed_pairs(claims: Iterable[Claim]) -> list[tuple[Claim, Claim]]:
-    """``(our claim, its twin as printed)`` for every local claim whose groups have a printed twin."""
+def _printed_twin(c: Claim) -> Claim | None:
+    """``c`` on the printed twins of its groups (a combination: on its parts' twins), or ``None`` when
+    nothing of ours is in it."""
     from dataclasses import replace
 
+    if c.parts:
+        parts = tuple(_printed_twin(p) or p for p in c.parts)
+        return None if parts == c.parts else combined_claim(c.kind, c.source, c.quote, parts, c.target, c.note)
+    better, other = printed_group(c.better), printed_group(c.other)
+    return None if (better, other) == (c.better, c.other) else replace(c, better=better, other=other)
+
+
+def _printed_pairs(claims: Iterable[Claim]) -> list[tuple[Claim, Claim]]:
+    """``(our claim, its twin as printed)`` for every local claim whose groups have a printed twin."""
     out = []
     for c in claims:
-        if c.spec not in LOCAL_SPECS:
-            continue
-        better, other = printed_group(c.better), printed_group(c.other)
-        if (better, other) != (c.better, c.other):
-            out.append((c, replace(c, better=better, other=other)))
+        twin = _printed_twin(c) if c.spec in LOCAL_SPECS else None
+        if twin is not None:
+            out.append((c, twin))
     return out
 
 
@@ -1250,7 +1533,105 @@ def _twin_notes(pairs: list[TwinVerdict]) -> list[str]:
     return lines
 
 
-ADDED_CLAIMS = _added_claims()
+LI2023_MAPS = ("li2023_30", "li2023_60", "li2023_90")
+_ONE_ASTAR_RUN = "A* runs once per map (deterministic): its mean is exact, the interval comes from IGA's runs alone"
+
+
+def _lead_trend_claims() -> tuple[Claim, ...]:
+    """li2023's statements that IGA's gains grow with the map size (kind ``lead_trend``; issue 44,
+    "across targets"). ``claimed``: the change of the paper's reduction from the first map to the last."""
+    return (
+        # §6.1, Fig 15 with Table 1: from 60x60 to 90x90 "the optimization effect of each performance index is
+        # more obvious", the running time's reduction rising from 48.5 % to 62.1 %
+        *(lead_trend_claim("li2023_global", "§6.1, Fig 15, Table 1", f"IGA's {what} gain over TGA grows from 60x60 to "
+                           f"90x90 ({a} % -> {b} %)", LI2023_MAPS[1:], "iga", "ga", metric, claimed, note)
+          for what, metric, a, b, claimed, note in (
+              ("length", "length", 4.8, 4.9, 0.049 - 0.048, ""),
+              ("running-time", "runtime_s", 48.5, 62.1, 0.621 - 0.485, _TIMING),
+              ("key-point", "n_turns", 86.7, 78.2, None,
+               "the text says every index's gain grows from 60x60 to 90x90, its own Table 1 has the key-point gain "
+               "falling (86.7 % -> 78.2 %): judged as the text says"))),
+        # §6.3, Table 2: IGA's lead over A* is "more obvious as the map size increases", only its key-point lead
+        # "decreases slightly" (listed from the largest map, as a lead that grows towards the smallest)
+        lead_trend_claim("li2023_global", "§6.3, Table 2", "IGA's length lead over A* grows with the map size "
+                         "(1.4 % -> 7.2 % -> 8.6 %)", LI2023_MAPS, "iga", "astar", "length", 0.086 - 0.014,
+                         _ONE_ASTAR_RUN),
+        lead_trend_claim("li2023_global", "§6.3, Table 2", "IGA's running-time lead over A* grows with the map size "
+                         "(38.9 % -> 68.1 % -> 69.4 %)", LI2023_MAPS, "iga", "astar", "runtime_s", 0.694 - 0.389,
+                         f"{_ONE_ASTAR_RUN}; IGA is the slower one here on every map (Table 2's running-time claims), "
+                         f"so this judges how its deficit changes; {_TIMING}"),
+        lead_trend_claim("li2023_global", "§6.3, Table 2", "IGA's key-point lead over A* shrinks slightly with the map "
+                         "size (30.0 % -> 45.5 % -> 22.7 %)", LI2023_MAPS[::-1], "iga", "astar", "n_turns",
+                         0.300 - 0.227, _ONE_ASTAR_RUN),
+    )
+
+
+def _summary_claims(known: Iterable[Claim]) -> tuple[Claim, ...]:
+    """The statements that sum up others, as combinations of the claims judging their parts (issue 44,
+    "summary"; kinds ``all``, ``most``, ``net``). ``known``: the claims defined so far (the parts)."""
+    by_id = {c.id: c for c in known}
+
+    def part(spec: str, target: str, kind: str, better: str, other: str | None = None, metric: str = "length",
+             quote: str | None = None) -> Claim:
+        """The known claim with these fields; with ``quote``, a part of its own when no claim has them."""
+        c = Claim(spec, "", quote or "", target, kind, better, other, metric)
+        if c.id not in by_id and quote is None:
+            raise KeyError(f"a summary names claim {c.id}, which is not defined")
+        return by_id.get(c.id, c)
+
+    hou_envs = ("hou2024_env1", "hou2024_env2")
+    hou = [combined_claim("all", "§4.3.2 (end), Tables 2-3", f"MISSA's paths beat ACO, IACO and SSA in {what} on both "
+                          "maps (best and mean)",
+                          [part("hou2024_global", env, kind, "missa", o, m) for env in hou_envs for m in metrics
+                           for o in ("aco", "iaco", "ssa") for kind in ("less_best", "less")], note=note)
+           for what, metrics, note in (
+               ("length and total rotation", ("length", "turn_angle_deg"),
+                "hou2024 §4.3's summary: its parts are Tables 2-3's best and mean against the colonies' raw paths at "
+                "equal iterations, as the paper compares them (the pruned and equal-evaluation claims above are "
+                "judged on their own)"),
+               ("run time", ("runtime_s",), _TIMING))]
+    yuan = [combined_claim("all", "§5.1 (1), Table 1", "IBA's paths are the best of the three in length (its longest, "
+                           "shortest and mean below PSO's and BA's)",
+                           [part("yuan2021_table1", "yuan2021_25", kind, "iba", o) for o in ("pso", "ba")
+                            for kind in ("less_worst", "less_best", "less")])]
+    yang = [combined_claim("all", "§7.1, Tables 1-2", "IPSO's mean and shortest lengths are the best of the four in "
+                           "both environments",
+                           [part("yang2023_global", env, kind, "ipso", o) for env in ("yang2023_env1", "yang2023_env2")
+                            for o in ("pso", "ipso1", "ipso2") for kind in ("less", "less_best")],
+                           note="its parts at equal iterations, as the paper compares them; " + _IPSO2_NOTE)]
+    li = [combined_claim("all", "§6.1, Table 1", "TGA converges slowly and prematurely, with more key points, poorer "
+                         "smoothing and longer paths than IGA",
+                         [part("li2023_global", m, "less", "iga", "ga", metric)
+                          for metric in ("convergence_iter", "fitness_final", "n_turns", "turn_angle_deg", "length")
+                          for m in LI2023_MAPS],
+                         note="slowly: more generations to converge (Fig 13); prematurely: a worse final fitness "
+                              "(eq 2, Fig 13); smoothing: the total turning angle")]
+    li += [combined_claim("all", "§6.4 (end)", "the fusion avoids the moving obstacles and drives a shorter path than "
+                          "the traditional DWA",
+                          [part(spec, t, "rate", "iga/iga-dwa") for t in targets]
+                          + [part(spec, t, "less", "iga/iga-dwa", "iga/dwa", "path_length") for t in targets],
+                          note="§6.4's summary judged on its simulated parts (Experiments I and II): 'safer than A* "
+                               "or TGA alone' needs a global path followed without a local planner, which no spec "
+                               "runs, and 'fits the robot's motion, good real-time performance' names no measure")
+           for spec, targets in (("li2023_local_exp1", ("li2023_exp1",)), ("li2023_local_exp2", LI2023_EXP2_TARGETS))]
+    chen = []
+    for spec in _CHEN2025_FUNCTION_SPECS:
+        for o in _CHEN2025_IMPLEMENTED:
+            wins, ties, losses = CHEN2025_TABLE7_TALLY[o]
+            parts = [part(spec, f, "less", "msiar-gwo", o, "f", f"MSIAR-GWO's mean below {o.upper()}'s in {f}")
+                     for f in CHEN2025_TABLE7]
+            note = "; ".join(n for n in (_AGWO_NOTE if o in _CHEN2025_IDENTIFIED else "",
+                                         "two of the parts, F6 and F12, are the functions MSIAR-GWO was tuned on")
+                             if n)
+            chen += [combined_claim("most", "§4.2, Fig 9", f"MSIAR-GWO beats {o.upper()} in most of F1-F18 (Table 7: "
+                                    f"in {wins})", parts, "F1-F18", note),
+                     combined_claim("net", "§4.2, Table 7", f"MSIAR-GWO wins more of F1-F18 than it loses against "
+                                    f"{o.upper()} (Table 7: {wins}/{ties}/{losses})", parts, "F1-F18", note)]
+    return (*hou, *yuan, *yang, *li, *chen)
+
+
+ADDED_CLAIMS = _added_claims() + _lead_trend_claims()
+ADDED_CLAIMS += _summary_claims(CLAIMS + ADDED_CLAIMS)
 # (local claim judged with our change, its twin at the paper's printed setting)
 PRINTED_PAIRS: tuple[tuple[Claim, Claim], ...] = tuple(_printed_pairs(CLAIMS + ADDED_CLAIMS))
 ADDED_CLAIMS += tuple(t for _, t in PRINTED_PAIRS)

@@ -41,8 +41,9 @@ IPSO changes, in the order of yang2023 §4:
   problem, and a random crossover (one coordinate copied from a random
   particle); each is kept only if it improves.
 
-IPSO1 (Li 2020), yang2023's first baseline, is in ``pso_variants.py`` (partly
-reconstructed); IPSO2 (Tan 2022) is not implemented: no source of its update rules was found.
+IPSO1 (Li 2020) and IPSO2 (Tan 2022), yang2023's baselines, are in ``pso_variants.py``: IPSO1
+partly reconstructed, IPSO2 a reconstruction (its own rules were not found; it follows the
+evolution-speed / aggregation-degree PSO of Yang et al. 2007, with learning factors of ours).
 """
 from __future__ import annotations
 
