@@ -44,17 +44,25 @@ PAPER_SCENARIOS = ("hou2024_table4_1", "li2023_exp1", "li2023_exp2_2", "yang2023
                    "yuan2021_added_obstacles", "yuan2021_path_switch")
 
 
-def _timed_planner(name: str, world: str, seed: int, stop_hold: float = 0.0):
+def _window(horizon: str, robot) -> float:
+    """The default program's window, s: a number, or ``"brake"``: the robot's braking time from
+    full speed ``v_max / a_max`` where that is longer than 2 s."""
+    return max(2.0, robot.v_max / robot.a_max) if horizon == "brake" else float(horizon)
+
+
+def _timed_planner(name: str, world: str, seed: int, stop_hold: float = 0.0, horizon: str = "2"):
     """The planner the closed loop would build for ``world`` (family parameters included),
     its ``command`` timed per step (``stop_hold``: the program solvers' default program with
-    :func:`~optplan.formulations.local_program.stop_clear` for that many seconds)."""
+    :func:`~optplan.formulations.local_program.stop_clear` for that many seconds; ``horizon``:
+    its window, :func:`_window`)."""
     sc = family_scenario(world, seed) or op.load_scenario(world)
+    window = _window(horizon, sc.robot)
     base, no_creep = name.removesuffix("-creep"), name.endswith("-creep")
     extra = {"path_creep": None} if no_creep else {}
     if "+" in base:   # the program solvers' mover model
         base, extra["mover_model"] = base.split("+", 1)
-    if stop_hold:
-        extra["local_program"] = default_local_program(sc.robot, step=sc.dt, stop_hold=stop_hold)
+    if stop_hold or window != 2.0:
+        extra["local_program"] = default_local_program(sc.robot, horizon=window, step=sc.dt, stop_hold=stop_hold)
     if base.endswith(":program"):   # the sampling solver of the default window program
         extra.setdefault("local_program", default_local_program(sc.robot, step=sc.dt))
         planner = make_local_planner(base.split(":")[0], sc.robot, sc.dt, **extra)
@@ -77,13 +85,13 @@ def _timed_planner(name: str, world: str, seed: int, stop_hold: float = 0.0):
 
 
 def run(solvers, worlds, seeds, seed0, stop_hold: float = 0.0, as_file: bool = False,
-        scenario_seeds: int = 1) -> dict:
+        scenario_seeds: int = 1, horizon: str = "2") -> dict:
     rows = defaultdict(lambda: defaultdict(list))
     for world in worlds:
         run_seeds = range(seed0, seed0 + seeds) if family_scenario(world, 0) is not None else range(scenario_seeds)
         for name in solvers:
             for seed in run_seeds:
-                planner, sc, times, modes = _timed_planner(name, world, seed, stop_hold)
+                planner, sc, times, modes = _timed_planner(name, world, seed, stop_hold, horizon)
                 # as_file: the scenario as a file gives it (no family options, e.g. its global clearance)
                 r = op.simulate(sc if as_file else world, global_planner="astar", local_planner=planner, seed=seed)
                 row = rows[(world, name)]
@@ -113,6 +121,9 @@ def main(argv=None) -> int:
                          "local experiments")
     ap.add_argument("--seeds", type=int, default=20, help="seeds per generated family")
     ap.add_argument("--seed0", type=int, default=5000)
+    ap.add_argument("--horizon", default="2", metavar="S|brake",
+                    help="the program solvers' default window, s, or 'brake': the robot's braking time from full "
+                         "speed (v_max / a_max) where longer than 2 s (default 2)")
     ap.add_argument("--scenario-seeds", type=int, default=1,
                     help="seeds 0..N-1 of each shipped scenario (their random movers and obstacles; default 1)")
     ap.add_argument("--stop-hold", type=float, default=0.0,
@@ -124,7 +135,8 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     args.worlds = [w for name in args.worlds for w in (PAPER_SCENARIOS if name == "papers" else (name,))]
     t0 = time.perf_counter()
-    rows = run(args.solvers, args.worlds, args.seeds, args.seed0, args.stop_hold, args.as_file, args.scenario_seeds)
+    rows = run(args.solvers, args.worlds, args.seeds, args.seed0, args.stop_hold, args.as_file, args.scenario_seeds,
+               args.horizon)
     print(f"\nfamilies: seeds {args.seed0}..{args.seed0 + args.seeds - 1}; {time.perf_counter() - t0:.0f} s")
     print("| world | solver | success | collided | timeout | stuck | time to goal s | length m | BARN | "
           "step ms median | p95 | limits held | fallback-to-sample steps |")

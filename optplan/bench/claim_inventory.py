@@ -42,7 +42,6 @@ REASONS = {
     "no metric": "needs a quantity that no run of the shipped specs stores",
     "target value": "states that an algorithm stays off a function's known optimum by margins no tolerance "
                     "separates from reaching it (the paper's exact 0 against 1e-29)",
-    "no pipeline": "the setting it is about (a global path followed without a local planner) is run by no spec",
     "qualitative": "a general wording with no measure the paper reports or defines",
 }
 
@@ -160,8 +159,11 @@ def _hou2024() -> list[Statement]:
              "Tables 2-3 give the best and mean only, no spread"),
         _not(p, f"{p}.s4.4.no-obstacle-optimal", "§4.4, Fig 8a", "without random obstacles MISSA and MISSA-DWA both "
              "follow an optimal path", "qualitative"),
-        _not(p, f"{p}.s4.4.missa-blind", "§4.4, Fig 8", "MISSA alone, planning on the known map, runs into the "
-             "random obstacles", "no pipeline"),
+        _judged(p, f"{p}.s4.4.missa-blind", "§4.4, Fig 8", "MISSA alone, planning on the known map, runs into the "
+                "random obstacles",
+                [cid("hou2024_local_table4", f"hou2024_table4_{n}", "fails", "missa/follow") for n in range(1, 4)],
+                "the global path driven blind (local planner follow); it holds by the experiment's design: the "
+                "random obstacles are placed on the global path"),
         _judged(p, f"{p}.s4.4.fusion-reaches", "§4.4, Fig 8, Table 4", "with 0, 1, 2 or 3 random obstacles "
                 "MISSA-DWA passes them and reaches the target",
                 [cid("hou2024_local_table4", f"hou2024_table4_{n}", "rate", "missa/missa-dwa") for n in range(4)]),
@@ -176,8 +178,12 @@ def _hou2024() -> list[Statement]:
                 [cid("hou2024_local_dynamic", f"hou2024_dynamic{n}", "rate", "missa/missa-dwa") for n in range(1, 5)]),
         _not(p, f"{p}.s4.5.evasions", "§4.5, Fig 9", "in environment 1 the robot makes four evasions on its way",
              "one drawn run"),
-        _not(p, f"{p}.s4.5.missa-blind", "§4.5 (end)", "MISSA's global path alone cannot get round moving "
-             "obstacles", "no pipeline"),
+        _judged(p, f"{p}.s4.5.missa-blind", "§4.5 (end)", "MISSA's global path alone cannot get round moving "
+                "obstacles",
+                [cid("hou2024_local_dynamic", f"hou2024_dynamic{n}", "fails", "missa/follow") for n in range(1, 5)],
+                "the global path driven blind (local planner follow); a collision with a mover and one with the "
+                "random unknown obstacles (placed on the global path) count alike, so it holds by the design of "
+                "the experiment"),
         _not(p, f"{p}.s4.6.static", "§4.6, Figs 11-13", "the real robot avoids every static obstacle and reaches "
              "the target", "hardware"),
         _not(p, f"{p}.s4.6.dynamic1", "§4.6, Figs 14-16", "the real robot avoids a moving robot and reaches the "
