@@ -172,6 +172,9 @@ class PlanResult(_Deferrable, _ToDict):
         encoding: the path encoding a metaheuristic searched (``columns``, ``waypoints``,
             ``spline``, ``general``; ``general`` also when ``op.plan`` fell back to it because
             the paper's encoding could not represent a solution); empty for graph search.
+        population_spread: per generation (the initial population first), the standard
+            deviation of the population's finite objective values (li2023 Fig 14's diversity);
+            filled by the GAs (``ga``, ``iga``), empty for every other planner.
     """
 
     algorithm: str
@@ -190,6 +193,7 @@ class PlanResult(_Deferrable, _ToDict):
     alternatives: list[np.ndarray] = field(default_factory=list, repr=False)
     stages: list = field(default_factory=list)
     encoding: str = ""
+    population_spread: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
 
     NOT_IN_DICT = ("alternatives",)
     JSON_KEYS = ("algorithm", "feasible", "path", "length", "turn_angle_deg", "n_turns",

@@ -1355,6 +1355,10 @@ def _added_claims() -> tuple[Claim, ...]:
               "less_spread", "iba", "pso"),
         *(Claim("yuan2021_table1", "Table 1", "every run finds a collision-free path", "yuan2021_25", "rate", alg,
                 claimed=1.0) for alg in ("pso", "ba")),
+        # li2023 §6.1, Fig 14: IGA's population keeps a larger fitness spread than TGA's (the spread
+        # per generation averaged over the run; IGA stops at its §4.5 stall rule, so over fewer generations)
+        *(Claim("li2023_global", "§6.1, Fig 14", "IGA's population keeps a larger fitness spread than TGA's", m,
+                "less", "ga", "iga", "fitness_spread") for m in LI2023_MAPS),
         # li2023 §6.1 / §6.3: IGA's paths are smoother than TGA's and A*'s (total turning angle)
         *(Claim("li2023_global", src, f"IGA path smoother than {name}", m, "less", "iga", other, "turn_angle_deg")
           for src, name, other in (("§6.1, Figs 9-11", "TGA", "ga"), ("§6.3, Figs 20-22", "A*", "astar"))

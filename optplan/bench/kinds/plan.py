@@ -101,14 +101,16 @@ class PlanKind(RunKind):
 
     Extra metrics: the gap split (``class_gap``, ``in_class_gap``, ``optimal_class``, issue 26)
     and, from the convergence history (:func:`history_metrics`), ``convergence_iter`` and
-    ``fitness_final`` (the best fitness the planner reached, the end of its convergence curve).
+    ``fitness_final`` (the best fitness the planner reached, the end of its convergence curve);
+    ``fitness_spread``: the population's fitness standard deviation averaged over the generations
+    (``PlanResult.population_spread``, li2023 Fig 14; ``None`` for planners that do not report it).
     """
 
     name: ClassVar[str] = "plan"
     target_key: ClassVar[str] = "maps"
     default_metric: ClassVar[str] = "length"
     result_type: ClassVar[str] = "PlanResult"
-    extra_metrics: ClassVar[tuple[str, ...]] = (*SPLIT_METRICS, "convergence_iter", "fitness_final")
+    extra_metrics: ClassVar[tuple[str, ...]] = (*SPLIT_METRICS, "convergence_iter", "fitness_final", "fitness_spread")
     refines: ClassVar[bool] = True
     final_metric: ClassVar[str | None] = "length"
 
@@ -168,6 +170,8 @@ class PlanKind(RunKind):
         res = plan(world, start, goal, algorithm=rec.algorithm, refine=rec.refine, seed=rec.seed, **rec.params)
         extra = _gap_split(world, start, goal, res, float(rec.params.get("clearance", 0.0)))
         extra.update(history_metrics(res.history))
+        spread = np.asarray(getattr(res, "population_spread", ()), float)
+        extra["fitness_spread"] = float(spread.mean()) if len(spread) else None
         return res, extra
 
     def successful(self, row: Mapping[str, Any]) -> bool:

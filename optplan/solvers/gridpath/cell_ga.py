@@ -297,8 +297,9 @@ def plan_cell_ga(world, start, goal, *, improved: bool, seed=0, pop: int = 50, i
     ops = CellChromosomes(world, s, g, rng, preset=preset, clearance=clearance)
     count, separation = check_alternatives(alternatives, alternative_separation)
     snapshots = [] if count else None
+    spreads: list = []
     c, fbest, history, nfev, gens = evolve(ops, rng, pop=pop, iters=iters, params=p, max_evals=max_evals,
-                                           snapshots=snapshots, archive_every=ARCHIVE_EVERY)
+                                           snapshots=snapshots, archive_every=ARCHIVE_EVERY, spreads=spreads)
     return ga_result(world, ops, c, name, improved, postprocess, clearance, t0, history=history, nfev=nfev,
                      seed=seed, message=f"{gens} generations on li2023's cell-sequence chromosome",
-                     snapshots=snapshots, count=count, separation=separation)
+                     snapshots=snapshots, count=count, separation=separation, spreads=spreads)

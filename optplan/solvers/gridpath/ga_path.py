@@ -223,7 +223,8 @@ def check_budget(pop, iters, max_evals) -> None:
 
 
 def ga_path(problem: PathProblem, *, pop: int = 50, iters: int | None = 200, seed=0, params: GAParams = GAParams(),
-            callback=None, max_evals: int | None = None, snapshots: list | None = None, archive_every: int = 10):
+            callback=None, max_evals: int | None = None, snapshots: list | None = None, archive_every: int = 10,
+            spreads: list | None = None):
     """Run the path GA on a column-node problem.
 
     ``iters`` caps the generations and ``max_evals`` the path evaluations (either may
@@ -236,18 +237,28 @@ def ga_path(problem: PathProblem, *, pop: int = 50, iters: int | None = 200, see
 
     ``snapshots``: when a list is given, ``(X, f)`` of the initial population, of every
     ``archive_every``-th generation and of the final one are appended to it (the
-    archive ``plan_ga(..., alternatives=k)`` draws alternative paths from).
+    archive ``plan_ga(..., alternatives=k)`` draws alternative paths from). ``spreads``: when a
+    list is given, the standard deviation of the population's finite fitness values (0 with fewer
+    than two; IGA scores a colliding chromosome as infinite) is appended for the initial
+    population and every generation (li2023 Fig 14's diversity).
 
     Returns ``(best_x, best_f, history, nfev, generations)``.
     """
     check_budget(pop, iters, max_evals)
     rng = as_generator(seed)
     return evolve(ColumnChromosomes(problem, rng), rng, pop=pop, iters=iters, params=params, callback=callback,
-                  max_evals=max_evals, snapshots=snapshots, archive_every=archive_every)
+                  max_evals=max_evals, snapshots=snapshots, archive_every=archive_every, spreads=spreads)
+
+
+def fitness_spread(f: np.ndarray) -> float:
+    """Standard deviation of a population's finite fitness values (0 with fewer than two)."""
+    finite = f[np.isfinite(f)]
+    return float(np.std(finite)) if len(finite) > 1 else 0.0
 
 
 def evolve(ops, rng: np.random.Generator, *, pop: int, iters: int | None, params: GAParams, callback=None,
-           max_evals: int | None = None, snapshots: list | None = None, archive_every: int = 10):
+           max_evals: int | None = None, snapshots: list | None = None, archive_every: int = 10,
+           spreads: list | None = None):
     """The GA loop of li2023 §4 (TGA when ``params.improved`` is false) over a chromosome's
     operators ``ops`` (``sample``, ``evaluate``, ``canonical``, ``crossover``, ``mutate``,
     ``similarity``; :class:`ColumnChromosomes`, :class:`~optplan.solvers.gridpath.cell_ga.CellChromosomes`).
@@ -276,6 +287,8 @@ def evolve(ops, rng: np.random.Generator, *, pop: int, iters: int | None, params
     f = evaluate(X)
     if snapshots is not None:
         snapshots.append((X.copy(), f.copy()))
+    if spreads is not None:
+        spreads.append(fitness_spread(f))
     best = int(np.argmin(f))
     best_x, best_f = X[best].copy(), float(f[best])
     history = [best_f]
@@ -316,6 +329,8 @@ def evolve(ops, rng: np.random.Generator, *, pop: int, iters: int | None, params
         else:
             stalled += 1
         history.append(best_f)
+        if spreads is not None:
+            spreads.append(fitness_spread(f))
         if snapshots is not None and gen % archive_every == 0:
             snapshots.append((X.copy(), f.copy()))
         if callback is not None and callback(gen, best_f) is False:
@@ -345,16 +360,17 @@ def plan_ga(world, start, goal, *, improved: bool, seed=0, pop: int = 50, iters:
     p = GAParams(improved=improved, **params)
     count, separation = check_alternatives(alternatives, alternative_separation)
     snapshots = [] if count else None
+    spreads: list = []
     x, fbest, history, nfev, gens = ga_path(problem, pop=pop, iters=iters, seed=seed, params=p, max_evals=max_evals,
-                                            snapshots=snapshots, archive_every=ARCHIVE_EVERY)
+                                            snapshots=snapshots, archive_every=ARCHIVE_EVERY, spreads=spreads)
     return ga_result(world, problem.encoding, x, name, improved, postprocess, clearance, t0, history=history,
                      nfev=nfev, seed=seed, message=f"{gens} generations", snapshots=snapshots, count=count,
-                     separation=separation)
+                     separation=separation, spreads=spreads)
 
 
 def ga_result(world, decoder, best, name: str, improved: bool, postprocess: str | None, clearance: float,
               t0: float, *, history, nfev: int, seed, message: str, snapshots: list | None, count: int,
-              separation) -> PlanResult:
+              separation, spreads: list | None = None) -> PlanResult:
     """The result of a path GA run on either chromosome: the best one decoded
     (``decoder.waypoints``) and post-processed (IGA's key points, TGA's collinear points
     removed, unless ``postprocess`` says otherwise), with its alternatives from the population
@@ -374,4 +390,6 @@ def ga_result(world, decoder, best, name: str, improved: bool, postprocess: str 
     result = make_plan_result(world, path, name, time.perf_counter() - t0, clearance=clearance, history=history,
                               seed=seed if isinstance(seed, int) else None, nfev=nfev, message=message)
     result.alternatives = others
+    if spreads is not None:
+        result.population_spread = np.asarray(spreads, float)
     return result

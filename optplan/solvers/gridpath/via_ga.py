@@ -103,11 +103,12 @@ def plan_via_ga(world, start, goal, *, improved: bool, seed=0, pop: int = 50, it
     ops = ViaChromosomes(problem, rng)
     count, separation = check_alternatives(alternatives, alternative_separation)
     snapshots = [] if count else None
+    spreads: list = []
     x, fbest, history, nfev, gens = evolve(ops, rng, pop=pop, iters=iters, params=p, max_evals=max_evals,
-                                           snapshots=snapshots, archive_every=ARCHIVE_EVERY)
+                                           snapshots=snapshots, archive_every=ARCHIVE_EVERY, spreads=spreads)
     result = ga_result(world, problem.encoding, x, name, improved, postprocess, clearance, t0, history=history,
                        nfev=nfev, seed=seed, message=f"{gens} generations on the general encoding's via points",
-                       snapshots=snapshots, count=count, separation=separation)
+                       snapshots=snapshots, count=count, separation=separation, spreads=spreads)
     result.encoding = "general"
     return result
 
