@@ -280,3 +280,25 @@ def test_a_mover_is_never_predicted_through_a_wall():
     _, _, reach = tracker.observe(ctx)
     # to line_reach's 5 cm steps, never past the wall
     assert 1.85 - 0.05 - 1e-9 <= reach[0, 1] <= 1.85 and reach[0, 0] == -np.inf
+
+
+def test_stop_clear_without_the_sweep_keeps_only_the_straight_prediction():
+    """A mover driving away that may turn round anywhere past where it was seen (the sweep) could
+    come back to where the robot stops; predicted straight on over the hold, it cannot."""
+    import optplan as op
+    from optplan import local_terms as LT
+    from optplan.formulations.local_program import Situation
+
+    robot = op.RobotSpec(radius=0.2, v_max=0.8, w_max=1.2, a_max=0.8, alpha_max=2.0)
+    sit = Situation(state=np.array([2.6, 0.0, 0.0, 0.0, 0.0, 0.0]), subgoal=np.array([5.0, 0.0]),
+                    path=np.array([[0.0, 0.0], [5.0, 0.0]]), static_distance=lambda P: np.full(np.shape(P)[:-1], 9.0),
+                    movers=np.array([[3.0, 0.0, 0.5, 0.0, 0.2]]), mover_ends=np.array([[-np.inf, np.inf]]),
+                    mover_seen=np.array([[0.0, 0.0]]), mover_reach=np.array([[-np.inf, np.inf]]))
+    stand = np.zeros((1, 4, 2))
+    out = {}
+    for sweep in (True, False):
+        lp = op.LocalProgram(robot, horizon=2.0, intervals=4)
+        lp.minimize(LT.speed())
+        lp.subject_to(LT.stop_clear(4.0, 0.1, sweep=sweep))
+        out[sweep] = lp.evaluate(sit, stand)[1][0]
+    assert out[True] > 0.05 and out[False] == 0.0, out

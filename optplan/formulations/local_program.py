@@ -496,11 +496,14 @@ class StopClear(LocalConstraint):
 
     name = "stop_clear"
 
-    def __init__(self, hold: float = 2.0, margin: float = 0.0) -> None:
+    def __init__(self, hold: float = 2.0, margin: float = 0.0, sweep: bool = True) -> None:
         for what, v in (("hold", hold), ("margin", margin)):
             if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v < 0:
                 raise ParameterError(f"stop_clear {what} must be a finite number >= 0, got {v!r}")
         self.hold, self.margin = float(hold), float(margin)
+        # False: over the hold a mover is predicted on at constant speed, turning round at its
+        # known ends only (not anywhere past where it was seen)
+        self.sweep = bool(sweep)
 
     def times(self, prog: "LocalProgram") -> np.ndarray:
         """Seconds from now at which the stopped robot is checked: the window's end plus
@@ -535,7 +538,7 @@ class StopClear(LocalConstraint):
         short = np.zeros(len(Z))
         if not len(M):
             return short
-        A, B = predicted_movers(M, sit.mover_ends, t, sit.mover_seen, sit.mover_reach)
+        A, B = predicted_movers(M, sit.mover_ends, t, sit.mover_seen if self.sweep else None, sit.mover_reach)
         for i in range(len(M)):
             gap = _segment_gap(np.broadcast_to(P, (len(Z), len(t), 2)), A[i], B[i]) - M[i, 4] - prog.robot.radius
             short = np.maximum(short, (self.margin - gap).max(axis=1))
@@ -783,8 +786,10 @@ class LocalProgram:
             ends, seen, reach = (None if x is None else np.asarray(x, float).reshape(-1, 2)[near]
                                  for x in (sit.mover_ends, sit.mover_seen, sit.mover_reach))
             blocks = []
-            for t in (self.h * np.arange(1, self.N + 1), self.hold_times()):
-                A, B = predicted_movers(M[near], ends, t, seen, reach)
+            stop = next((c for c in self.constraints if isinstance(c, StopClear)), None)
+            for t, seen_t in ((self.h * np.arange(1, self.N + 1), seen),
+                              (self.hold_times(), seen if stop is None or stop.sweep else None)):
+                A, B = predicted_movers(M[near], ends, t, seen_t, reach)
                 blocks += [A[..., 0], A[..., 1], B[..., 0], B[..., 1]]
             path[:len(near)] = np.concatenate(blocks, axis=1)
             known[:len(near)] = motion_known(sit)[near]
@@ -874,25 +879,27 @@ def can_stop(margin: float = 0.0) -> CanStop:
     return CanStop(margin)
 
 
-def stop_clear(hold: float = 2.0, margin: float = 0.0) -> StopClear:
+def stop_clear(hold: float = 2.0, margin: float = 0.0, sweep: bool = True) -> StopClear:
     """Braking to a stop at the end of the window, the robot then stands ``margin`` metres
-    clear of every predicted mover for ``hold`` seconds (see :class:`StopClear`)."""
-    return StopClear(hold, margin)
+    clear of every predicted mover for ``hold`` seconds (see :class:`StopClear`); ``sweep=False``:
+    over the hold a mover runs on at constant speed, turning round only at ends it was seen to
+    turn at (not anywhere past where it was seen)."""
+    return StopClear(hold, margin, sweep)
 
 
 def default_local_program(robot: RobotSpec, horizon: float = 2.0, intervals: int = 10, step: float = 0.1,
-                          margin: float = 0.02, stop_hold: float = 0.0) -> LocalProgram:
+                          margin: float = 0.02, stop_hold: float = 0.0, stop_sweep: bool = True) -> LocalProgram:
     """The window program ``mpc`` solves unless given one: reach the subgoal, stay near the
     global path, keep speed, change commands smoothly; clearance and a stop at the end
     (``stop_hold > 0``: and that stop clear of the movers for that many seconds more,
-    :func:`stop_clear`)."""
+    :func:`stop_clear`, ``stop_sweep`` its ``sweep``)."""
     lp = LocalProgram(robot, horizon, intervals, step, name="default")
     lp.minimize(1.0 * goal_distance() + 0.3 * goal_heading() + 0.5 * path_distance() - 0.5 * speed()
                 + 0.05 * smoothness() + 0.2 * obstacle_cost())
     lp.subject_to(clearance(mover_margin=0.1, mover_growth=0.1) >= margin)
     lp.subject_to(can_stop(margin))
     if stop_hold > 0:
-        lp.subject_to(stop_clear(stop_hold, margin + 0.1))
+        lp.subject_to(stop_clear(stop_hold, margin + 0.1, stop_sweep))
     return lp
 
 
