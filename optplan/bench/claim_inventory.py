@@ -349,9 +349,9 @@ def _yuan2021() -> list[Statement]:
         _not(p, f"{p}.f11.routes", "§5.3, Fig 11", "the new routes run through virtual nodes 10, 1, 2, 3 (block at "
              "(17,13)) and 7, 6, 5, 4 (block at (3,7))", "absolute", "node numbers of the paper's map"),
         _not(p, f"{p}.s4.2.switch-faster", "§4.2, Conclusions", "switching paths takes less time than re-planning",
-             "no metric", "a closed-loop run meets a blockage once and either switches or re-plans, so no run holds "
-             "both times for the same blockage, and SimResult times neither; examples/yuan2021_iba_dwa.py --part "
-             "switch-time times both from the same point (fidelity note: not significant)"),
+             "no metric", "§4.2's re-plan is IBA run again, while the closed loop re-plans a blocked path by exact "
+             "A* (milliseconds), and SimResult times neither; examples/yuan2021_iba_dwa.py --part switch-time times "
+             "the switch against an IBA re-plan from the same point (fidelity note: not significant)"),
         _not(p, f"{p}.s6.better-than-dwa", "Conclusions", "the fusion's path is better than the traditional DWA's",
              "qualitative", "'better' is not defined"),
     ]
