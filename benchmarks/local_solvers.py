@@ -45,6 +45,7 @@ PAPER_SCENARIOS = ("hou2024_table4_1", "li2023_exp1", "li2023_exp2_2", "yang2023
 
 
 STOP_SWEEP = True   # --stop-straight: stop_clear predicts movers straight on over its hold
+STOP_COST = 0.0     # --stop-cost W: the default program with W x stop_cost (local_program.StopCost)
 
 
 def _window(horizon: str, robot) -> float:
@@ -64,9 +65,9 @@ def _timed_planner(name: str, world: str, seed: int, stop_hold: float = 0.0, hor
     extra = {"path_creep": None} if no_creep else {}
     if "+" in base:   # the program solvers' mover model
         base, extra["mover_model"] = base.split("+", 1)
-    if stop_hold or window != 2.0:
+    if stop_hold or window != 2.0 or STOP_COST:
         extra["local_program"] = default_local_program(sc.robot, horizon=window, step=sc.dt, stop_hold=stop_hold,
-                                                       stop_sweep=STOP_SWEEP)
+                                                       stop_sweep=STOP_SWEEP, stop_cost=STOP_COST)
     if base.endswith(":program"):   # the sampling solver of the default window program
         extra.setdefault("local_program", default_local_program(sc.robot, step=sc.dt))
         planner = make_local_planner(base.split(":")[0], sc.robot, sc.dt, **extra)
@@ -128,6 +129,9 @@ def main(argv=None) -> int:
     ap.add_argument("--stop-straight", action="store_true",
                     help="with --stop-hold: over the hold, movers run on at constant speed, turning only at ends "
                          "they were seen to turn at (not anywhere past where they were seen)")
+    ap.add_argument("--stop-cost", type=float, default=0.0, metavar="W",
+                    help="add W x stop_cost (the braking stop's closeness to the movers over 2 s after the window, "
+                         "a soft term) to the program solvers' default program")
     ap.add_argument("--horizon", default="2", metavar="S|brake",
                     help="the program solvers' default window, s, or 'brake': the robot's braking time from full "
                          "speed (v_max / a_max) where longer than 2 s (default 2)")
@@ -140,8 +144,8 @@ def main(argv=None) -> int:
                     help="run each generated world as its scenario file would (the Scenario object, without the "
                          "family's options such as its global clearance)")
     args = ap.parse_args(argv)
-    global STOP_SWEEP
-    STOP_SWEEP = not args.stop_straight
+    global STOP_SWEEP, STOP_COST
+    STOP_SWEEP, STOP_COST = not args.stop_straight, args.stop_cost
     args.worlds = [w for name in args.worlds for w in (PAPER_SCENARIOS if name == "papers" else (name,))]
     t0 = time.perf_counter()
     rows = run(args.solvers, args.worlds, args.seeds, args.seed0, args.stop_hold, args.as_file, args.scenario_seeds,

@@ -4,7 +4,7 @@ Each is written once, with a batched numpy view (sampling) and a symbolic CasADi
 (``mpc``); see :mod:`optplan.formulations.local_program` and ``op.LocalProgram``.
 
 Terms: :func:`goal_distance`, :func:`goal_heading`, :func:`path_distance`, :func:`speed`,
-:func:`smoothness`, :func:`obstacle_cost`, and your own :func:`custom` ``fn(Z, U, m)``.
+:func:`smoothness`, :func:`obstacle_cost`, :func:`stop_cost`, and your own :func:`custom` ``fn(Z, U, m)``.
 Constraints: ``clearance() >= d``, :func:`can_stop` and :func:`stop_clear`.
 """
 from __future__ import annotations
@@ -21,7 +21,8 @@ from .formulations.local_program import (
     smoothness,
     speed,
     stop_clear,
+    stop_cost,
 )
 
 __all__ = ["can_stop", "clearance", "custom", "default_local_program", "goal_distance", "goal_heading",
-           "obstacle_cost", "path_distance", "smoothness", "speed", "stop_clear"]
+           "obstacle_cost", "path_distance", "smoothness", "speed", "stop_clear", "stop_cost"]

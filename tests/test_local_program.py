@@ -28,7 +28,7 @@ def test_the_batched_and_symbolic_views_are_one_objective():
 
     lp = op.LocalProgram(ROBOT, horizon=2.0, intervals=5, step=0.1)
     lp.minimize(1.0 * LT.goal_distance() + 0.3 * LT.goal_heading() + 0.5 * LT.path_distance() - 0.4 * LT.speed()
-                + 0.1 * LT.smoothness() + 0.2 * LT.obstacle_cost()
+                + 0.1 * LT.smoothness() + 0.2 * LT.obstacle_cost() + 0.4 * LT.stop_cost(2.0)
                 + 0.7 * LT.custom(lambda Z, U, m: m.sum(Z[:, 1] ** 2) + m.sum(U[:, 1] * U[:, 0]), "mine"))
     sit = _situation(np.array([[2.0, -0.5, 0.1, 0.2, 0.3]]))
     U = np.random.default_rng(0).uniform([0.0, -0.8], [0.8, 0.8], (1, lp.K, 2))

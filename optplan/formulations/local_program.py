@@ -561,6 +561,57 @@ class StopClear(LocalConstraint):
         return rows
 
 
+class StopCost(LocalTerm):
+    """The soft twin of :class:`StopClear`: braking to a stop from the end of the window, how
+    close the stopped robot comes to each predicted mover over ``hold`` seconds more, as the
+    mean over those times of ``exp(-gap / scale)`` summed over the movers (edge to edge,
+    metres; movers predicted straight on, turning at ends they were seen to turn at). A plan
+    heading where a mover will be soon after the window costs more, before any constraint
+    is violated; unlike the constraint, it never leaves a plan infeasible."""
+
+    name = "stop_cost"
+
+    def __init__(self, hold: float = 2.0, scale: float = 0.3) -> None:
+        for what, v in (("hold", hold), ("scale", scale)):
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
+                raise ParameterError(f"stop_cost {what} must be a finite number > 0, got {v!r}")
+        self.hold, self.scale = float(hold), float(scale)
+        self._clear = StopClear(hold, 0.0, sweep=False)
+
+    def times(self, prog: "LocalProgram") -> np.ndarray:
+        return self._clear.times(prog)
+
+    def batched(self, Z, U, sit, prog):
+        x, y = self._clear._stop(Z, U, prog, False)
+        P = np.stack([x, y], axis=-1)[:, None, :]
+        t = self.times(prog)
+        M = np.asarray(sit.movers, float).reshape(-1, 5)
+        total = np.zeros((len(Z), len(t)))
+        if len(M):
+            A, B = predicted_movers(M, sit.mover_ends, t, None, sit.mover_reach)
+            for i in range(len(M)):
+                gap = _segment_gap(np.broadcast_to(P, (len(Z), len(t), 2)), A[i], B[i]) - M[i, 4] - prog.robot.radius
+                total += np.exp(-gap / self.scale)
+        return total.mean(axis=1)
+
+    def symbolic(self, Z, U, ps, prog):
+        import casadi as ca
+
+        px, py = self._clear._stop(Z, U, prog, True)
+        n, T = prog.N, len(self.times(prog))
+        base = 4 * n
+        total = 0
+        for i in range(ps.movers.shape[0]):
+            r = ps.movers[i, 4]
+            for j in range(T):
+                ax, ay = ps.mover_path[i, base + j], ps.mover_path[i, base + T + j]
+                dx, dy = ps.mover_path[i, base + 2 * T + j] - ax, ps.mover_path[i, base + 3 * T + j] - ay
+                k = ca.fmin(1, ca.fmax(0, ((px - ax) * dx + (py - ay) * dy) / (dx * dx + dy * dy + _SMOOTH)))
+                d2 = (px - ax - k * dx) ** 2 + (py - ay - k * dy) ** 2
+                total += ca.exp(-(ca.sqrt(d2 + _SMOOTH) - r - prog.robot.radius) / self.scale)
+        return total / max(T, 1)
+
+
 class SymbolicSituation:
     """The situation as CasADi parameters of one built solver (``opti.parameter``): the
     state ``(6,)``, the subgoal ``(2,)``, the current command ``(nu,)``, each predicted
@@ -680,6 +731,9 @@ class LocalProgram:
         for c in self.constraints:
             if isinstance(c, StopClear):
                 return c.times(self)
+        for _, t in self.objective:
+            if isinstance(t, StopCost):
+                return t.times(self)
         return np.zeros(0)
 
     def static_gap(self, Z: np.ndarray, sit: Situation) -> np.ndarray:
@@ -788,7 +842,7 @@ class LocalProgram:
             blocks = []
             stop = next((c for c in self.constraints if isinstance(c, StopClear)), None)
             for t, seen_t in ((self.h * np.arange(1, self.N + 1), seen),
-                              (self.hold_times(), seen if stop is None or stop.sweep else None)):
+                              (self.hold_times(), seen if stop is not None and stop.sweep else None)):
                 A, B = predicted_movers(M[near], ends, t, seen_t, reach)
                 blocks += [A[..., 0], A[..., 1], B[..., 0], B[..., 1]]
             path[:len(near)] = np.concatenate(blocks, axis=1)
@@ -879,6 +933,12 @@ def can_stop(margin: float = 0.0) -> CanStop:
     return CanStop(margin)
 
 
+def stop_cost(hold: float = 2.0, scale: float = 0.3) -> StopCost:
+    """Soft twin of :func:`stop_clear`: how close the robot, braked to a stop from the end of the
+    window, comes to the predicted movers over ``hold`` seconds (``exp(-gap / scale)``)."""
+    return StopCost(hold, scale)
+
+
 def stop_clear(hold: float = 2.0, margin: float = 0.0, sweep: bool = True) -> StopClear:
     """Braking to a stop at the end of the window, the robot then stands ``margin`` metres
     clear of every predicted mover for ``hold`` seconds (see :class:`StopClear`); ``sweep=False``:
@@ -888,14 +948,19 @@ def stop_clear(hold: float = 2.0, margin: float = 0.0, sweep: bool = True) -> St
 
 
 def default_local_program(robot: RobotSpec, horizon: float = 2.0, intervals: int = 10, step: float = 0.1,
-                          margin: float = 0.02, stop_hold: float = 0.0, stop_sweep: bool = True) -> LocalProgram:
+                          margin: float = 0.02, stop_hold: float = 0.0, stop_sweep: bool = True,
+                          stop_cost: float = 0.0) -> LocalProgram:
     """The window program ``mpc`` solves unless given one: reach the subgoal, stay near the
     global path, keep speed, change commands smoothly; clearance and a stop at the end
     (``stop_hold > 0``: and that stop clear of the movers for that many seconds more,
-    :func:`stop_clear`, ``stop_sweep`` its ``sweep``)."""
+    :func:`stop_clear`, ``stop_sweep`` its ``sweep``; ``stop_cost > 0``: plus that weight of
+    :func:`stop_cost`)."""
     lp = LocalProgram(robot, horizon, intervals, step, name="default")
-    lp.minimize(1.0 * goal_distance() + 0.3 * goal_heading() + 0.5 * path_distance() - 0.5 * speed()
-                + 0.05 * smoothness() + 0.2 * obstacle_cost())
+    objective = (1.0 * goal_distance() + 0.3 * goal_heading() + 0.5 * path_distance() - 0.5 * speed()
+                 + 0.05 * smoothness() + 0.2 * obstacle_cost())
+    if stop_cost > 0:
+        objective = objective + stop_cost * StopCost(2.0)   # measured, not adopted (docs/measurements.md)
+    lp.minimize(objective)
     lp.subject_to(clearance(mover_margin=0.1, mover_growth=0.1) >= margin)
     lp.subject_to(can_stop(margin))
     if stop_hold > 0:
