@@ -530,35 +530,42 @@ class StopClear(LocalConstraint):
         c, s = cos(th), sin(th)
         return x0 + (v * c - vy * s) * speed / (2 * a), y0 + (v * s + vy * c) * speed / (2 * a)
 
-    def batched(self, Z, U, sit, prog):
+    def stop_gaps(self, Z, U, sit, prog):
+        """``(S, T)`` per sensed mover: the gap (edge to edge, m) between the robot stopped after
+        the window and that mover at each of :meth:`times` (batched view)."""
         x, y = self._stop(Z, U, prog, False)
-        P = np.stack([x, y], axis=-1)[:, None, :]                     # (S, 1, 2)
-        t = self.times(prog)
+        P = np.broadcast_to(np.stack([x, y], axis=-1)[:, None, :], (len(Z), len(self.times(prog)), 2))
         M = np.asarray(sit.movers, float).reshape(-1, 5)
-        short = np.zeros(len(Z))
         if not len(M):
-            return short
-        A, B = predicted_movers(M, sit.mover_ends, t, sit.mover_seen if self.sweep else None, sit.mover_reach)
+            return
+        A, B = predicted_movers(M, sit.mover_ends, self.times(prog), sit.mover_seen if self.sweep else None,
+                                sit.mover_reach)
         for i in range(len(M)):
-            gap = _segment_gap(np.broadcast_to(P, (len(Z), len(t), 2)), A[i], B[i]) - M[i, 4] - prog.robot.radius
-            short = np.maximum(short, (self.margin - gap).max(axis=1))
-        return short
+            yield _segment_gap(P, A[i], B[i]) - M[i, 4] - prog.robot.radius
 
-    def symbolic(self, Z, U, ps, prog):
+    def stop_squared(self, Z, U, ps, prog):
+        """``(d2, r)`` per mover slot and time of :meth:`times`: the squared distance from the
+        stopped robot to the nearest point of the slot's predicted stretch, and its radius
+        (symbolic view; the stretches follow the window's in ``SymbolicSituation.mover_path``)."""
         import casadi as ca
 
         px, py = self._stop(Z, U, prog, True)
-        n, T, rows = prog.N, len(self.times(prog)), []
-        base = 4 * n   # after the window's stretches (see SymbolicSituation.mover_path)
+        T, base = len(self.times(prog)), 4 * prog.N
         for i in range(ps.movers.shape[0]):
-            r = ps.movers[i, 4]
             for j in range(T):
                 ax, ay = ps.mover_path[i, base + j], ps.mover_path[i, base + T + j]
                 dx, dy = ps.mover_path[i, base + 2 * T + j] - ax, ps.mover_path[i, base + 3 * T + j] - ay
                 k = ca.fmin(1, ca.fmax(0, ((px - ax) * dx + (py - ay) * dy) / (dx * dx + dy * dy + _SMOOTH)))
-                d2 = (px - ax - k * dx) ** 2 + (py - ay - k * dy) ** 2
-                rows.append((d2 - (prog.robot.radius + r + self.margin) ** 2, 0.0))
-        return rows
+                yield (px - ax - k * dx) ** 2 + (py - ay - k * dy) ** 2, ps.movers[i, 4]
+
+    def batched(self, Z, U, sit, prog):
+        short = np.zeros(len(Z))
+        for gap in self.stop_gaps(Z, U, sit, prog):
+            short = np.maximum(short, (self.margin - gap).max(axis=1))
+        return short
+
+    def symbolic(self, Z, U, ps, prog):
+        return [(d2 - (prog.robot.radius + r + self.margin) ** 2, 0.0) for d2, r in self.stop_squared(Z, U, ps, prog)]
 
 
 class StopCost(LocalTerm):
@@ -582,34 +589,18 @@ class StopCost(LocalTerm):
         return self._clear.times(prog)
 
     def batched(self, Z, U, sit, prog):
-        x, y = self._clear._stop(Z, U, prog, False)
-        P = np.stack([x, y], axis=-1)[:, None, :]
-        t = self.times(prog)
-        M = np.asarray(sit.movers, float).reshape(-1, 5)
-        total = np.zeros((len(Z), len(t)))
-        if len(M):
-            A, B = predicted_movers(M, sit.mover_ends, t, None, sit.mover_reach)
-            for i in range(len(M)):
-                gap = _segment_gap(np.broadcast_to(P, (len(Z), len(t), 2)), A[i], B[i]) - M[i, 4] - prog.robot.radius
-                total += np.exp(-gap / self.scale)
+        total = np.zeros((len(Z), len(self.times(prog))))
+        for gap in self._clear.stop_gaps(Z, U, sit, prog):
+            total += np.exp(-gap / self.scale)
         return total.mean(axis=1)
 
     def symbolic(self, Z, U, ps, prog):
         import casadi as ca
 
-        px, py = self._clear._stop(Z, U, prog, True)
-        n, T = prog.N, len(self.times(prog))
-        base = 4 * n
         total = 0
-        for i in range(ps.movers.shape[0]):
-            r = ps.movers[i, 4]
-            for j in range(T):
-                ax, ay = ps.mover_path[i, base + j], ps.mover_path[i, base + T + j]
-                dx, dy = ps.mover_path[i, base + 2 * T + j] - ax, ps.mover_path[i, base + 3 * T + j] - ay
-                k = ca.fmin(1, ca.fmax(0, ((px - ax) * dx + (py - ay) * dy) / (dx * dx + dy * dy + _SMOOTH)))
-                d2 = (px - ax - k * dx) ** 2 + (py - ay - k * dy) ** 2
-                total += ca.exp(-(ca.sqrt(d2 + _SMOOTH) - r - prog.robot.radius) / self.scale)
-        return total / max(T, 1)
+        for d2, r in self._clear.stop_squared(Z, U, ps, prog):
+            total += ca.exp(-(ca.sqrt(d2 + _SMOOTH) - r - prog.robot.radius) / self.scale)
+        return total / max(len(self.times(prog)), 1)
 
 
 class SymbolicSituation:
