@@ -302,3 +302,18 @@ def test_stop_clear_without_the_sweep_keeps_only_the_straight_prediction():
         lp.subject_to(LT.stop_clear(4.0, 0.1, sweep=sweep))
         out[sweep] = lp.evaluate(sit, stand)[1][0]
     assert out[True] > 0.05 and out[False] == 0.0, out
+
+
+def test_mpc_asks_its_global_path_for_room_beside_it():
+    """mpc's own default (optplan/papers.py GLOBAL_CLEARANCE_EXTRA): its global path keeps the robot
+    radius + 0.15 m where such a path exists, also for a scenario given as a file (no family
+    options); qp-dwa's keeps the bare radius and threads the narrower gap."""
+    import optplan as op
+    from optplan.worldgen.clutter import family_scenario
+
+    sc = family_scenario("clutter", 12001)
+    clear = {}
+    for planner in ("mpc", "qp-dwa"):
+        r = op.simulate(sc, local_planner=planner, time_limit=0.2, seed=0)
+        clear[planner] = op.path_metrics(sc.world, np.asarray(r.global_path)).min_clearance
+    assert clear["mpc"] >= sc.robot.radius + 0.15 - 1e-9 > clear["qp-dwa"], clear

@@ -36,7 +36,7 @@ from collections import deque
 import numpy as np
 
 from ..errors import InfeasibleQueryError, OptplanError, ParameterError, UnknownAlgorithmError
-from ..papers import LOCAL_GUIDANCE, PAPERS, local_guidance
+from ..papers import LOCAL_GUIDANCE, PAPERS, global_clearance_extra, local_guidance
 from ..planning import plan
 from ..world.polyline import point_segment_distances
 from ..results import PlanResult
@@ -55,6 +55,13 @@ ON_BLOCKED = ("switch", "replan", "ignore")
 def preset_defaults(local_name: str) -> tuple[str, str]:
     """``(subgoal strategy, on_blocked)`` used for a local planner name."""
     return local_guidance(local_name)
+
+
+def default_global_clearance(local_name: str, radius: float) -> float | None:
+    """The global path clearance a local planner asks for by default (``None``: the robot
+    radius, the navigator's own default; ``optplan/papers.py:GLOBAL_CLEARANCE_EXTRA``)."""
+    extra = global_clearance_extra(local_name)
+    return radius + extra if extra else None
 
 
 class Navigator:

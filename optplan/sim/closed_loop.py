@@ -34,7 +34,7 @@ from ..checks import seed as checked_seed
 from ..checks import seed_bound
 from ..errors import ParameterError, UnknownAlgorithmError, named_with_hints
 from ..local.base import LocalContext, MoverSweepSource
-from ..nav.navigator import Navigator, preset_defaults
+from ..nav.navigator import Navigator, default_global_clearance, preset_defaults
 from ..results import SimResult
 from ..world.robot import Command, RobotState
 from ..world.scenario import MOVER_MOTIONS, Scenario, load_scenario
@@ -171,11 +171,15 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
     preset_name = _preset_program_name(options.get("local_program"))
     method_name = preset_name or str(local_name).lower()
     default_subgoals, default_blocked = preset_defaults(method_name)
+    global_options = {**sc.global_options, **(options.get("global_options") or {})}
+    wanted = default_global_clearance(method_name, robot.radius)
+    if wanted is not None and "clearance" not in global_options:
+        global_options["clearance"] = wanted
     nav = Navigator(sc.world, robot, sc.start[:2], sc.goal, global_planner=global_planner, refine=refine, seed=seed,
                     subgoals=options.get("subgoals", default_subgoals),
                     on_blocked=options.get("on_blocked", default_blocked),
                     stuck_time=options.get("stuck_time", 10.0), stuck_distance=options.get("stuck_distance", 0.3),
-                    max_replans=options.get("max_replans", 5), global_options={**sc.global_options, **(options.get("global_options") or {})} or None,
+                    max_replans=options.get("max_replans", 5), global_options=global_options or None,
                     subgoal_options=options.get("subgoal_options"), sweep_detour=options.get("sweep_detour", 1.5))
     params = {}   # the scenario file's parameters of this planner, under the caller's
     if isinstance(local_planner, str):
