@@ -50,11 +50,11 @@ def make_local_planner(name: str, robot: RobotSpec, dt: float, **params: Any) ->
     """
     key = str(name).lower()
     program = params.pop("local_program", None)
-    if isinstance(program, str) and program.lower() in PRESETS and program.lower() not in _named_programs():
-        # a preset named as the program: the parameters are the preset's
-        program, params = local_program(program, robot, dt, **params), {}
-    elif program is not None:
-        program = local_program(program, robot, dt)
+    if program is not None:
+        # a preset named as the program takes the parameters (they are the preset's)
+        takes = isinstance(program, str) and program.lower() in PRESETS and program.lower() not in _named_programs()
+        program = local_program(program, robot, dt, **(params if takes else {}))
+        params = {} if takes else params
     if isinstance(program, PresetProgram):
         return _preset_solver(key, program, robot, dt, params)
     if key in BASELINES:

@@ -170,7 +170,7 @@ class PlanKind(RunKind):
         res = plan(world, start, goal, algorithm=rec.algorithm, refine=rec.refine, seed=rec.seed, **rec.params)
         extra = _gap_split(world, start, goal, res, float(rec.params.get("clearance", 0.0)))
         extra.update(history_metrics(res.history))
-        spread = np.asarray(getattr(res, "population_spread", ()), float)
+        spread = res.population_spread
         extra["fitness_spread"] = float(spread.mean()) if len(spread) else None
         return res, extra
 
