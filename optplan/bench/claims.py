@@ -54,6 +54,17 @@ computed from the stored runs, never written by hand:
 * ``reaches`` — at least ``claimed`` of ``better``'s runs end within ``tol`` (default
   :data:`FUNCTION_TOL`) of the function's known optimum (``metric`` ``f_error``, the stored error):
   judged as ``rate`` is, on the runs that reach it.
+* ``printed`` — group ``better``'s mean ``metric`` is the value the paper printed (chen2025 Tables 4-6:
+  each algorithm's mean on each function, with its standard deviation over 20 runs; ``printed``
+  holds them, :class:`Printed`). Both sides are samples, so the test is Welch's, from our runs and
+  the printed mean, standard deviation and run count. It is an equivalence test as ``tie`` is, with
+  the margin :func:`printed_margin`: the largest of :data:`FUNCTION_TOL` (both within it of each
+  other count as the same value, the CEC convention), half a unit of the last printed digit (the
+  printed value's own rounding) and :data:`PRINTED_REL` of the printed distance to the optimum (a
+  reproduction that lands within a tenth of the paper's error). Verdict: ``holds`` when the 90 %
+  Welch interval of the difference lies inside the margin; ``reversed`` (ours is another value;
+  the figure says whether lower or higher) when Welch's p < alpha and the 95 % interval lies
+  wholly outside it; else ``not significant``.
 * ``trend`` — the mean ``metric`` of group ``better`` grows along the claim's ordered ``targets``
   (the papers' "path length grows with the number of obstacles"; a claim that it shrinks lists the
   targets the other way round, as a claim that a larger value wins swaps the groups of ``less``).
@@ -115,6 +126,7 @@ baseline) is listed as ``not run``, so every claim is always shown.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Iterable, Mapping
 
 import numpy as np
@@ -135,12 +147,42 @@ PERMUTATIONS = 20000
 FUNCTION_TOL = 1e-8
 # chen2025 Tables 8-11 print lengths to 4 decimals: lengths closer than half the last digit print alike
 PRINTED_LENGTH_TOL = 5e-5
+# a reproduced mean counts as the printed one within this share of the printed distance to the optimum
+PRINTED_REL = 0.1
 # kinds judged on the share of one group's runs (their id names no other group and no metric)
 SHARE_KINDS = ("rate", "fails", "reaches")
 # kinds judged along several ordered targets (their id names the targets in order)
 ORDERED_KINDS = ("trend", "lead_trend")
 # kinds judged as a combination of other claims, their parts
 COMBINED_KINDS = ("all", "most", "net")
+
+
+@dataclass(frozen=True)
+class Printed:
+    """A paper's printed summary of one group's runs (kind ``printed``).
+
+    Attributes:
+        text: the mean as printed (its digits fix the rounding unit).
+        sd: the printed standard deviation.
+        runs: the number of runs the paper's statistics are over.
+        optimum: the function's known optimum (the margin scales with the printed distance to it).
+    """
+
+    text: str
+    sd: float
+    runs: int
+    optimum: float
+
+    @property
+    def mean(self) -> float:
+        return float(self.text)
+
+    @property
+    def unit(self) -> float:
+        """The unit of the last printed digit of the mean (0 for a printed exact 0)."""
+        mantissa, _, exp = self.text.lower().partition("e")
+        decimals = len(mantissa.partition(".")[2])
+        return 0.0 if self.mean == 0 else 10.0 ** (int(exp or 0) - decimals)
 
 
 @dataclass(frozen=True)
@@ -170,6 +212,8 @@ class Claim:
         parts: a combination's claims (``all``, ``most``, ``net``), all of the same spec; empty for every
             other kind. Build one with :func:`combined_claim`, which labels its target, groups and
             metric after its parts.
+        printed: a ``printed`` claim's printed mean and spread (:class:`Printed`); ``None`` for every
+            other kind.
     """
 
     spec: str
@@ -185,6 +229,7 @@ class Claim:
     tol: float | None = None
     targets: tuple[str, ...] = ()
     parts: tuple["Claim", ...] = ()
+    printed: Printed | None = None
 
     def __post_init__(self) -> None:
         # a trend judges several targets, every other kind one: catch a half-built claim early
@@ -200,6 +245,9 @@ class Claim:
         if (self.kind in COMBINED_KINDS) != bool(self.parts):
             raise ValueError(f"a combination ({', '.join(COMBINED_KINDS)}) and only a combination names parts: "
                              f"a {self.kind} claim with {len(self.parts)}")
+        if (self.kind == "printed") != (self.printed is not None) or (self.printed and self.other is not None):
+            raise ValueError(f"a printed claim and only a printed claim names the printed value, and no other group: "
+                             f"a {self.kind} claim with {self.printed!r}, other {self.other!r}")
         if any(p.spec != self.spec for p in self.parts):
             raise ValueError(f"a combination's parts are judged on its own spec {self.spec}, not on "
                              f"{sorted({p.spec for p in self.parts} - {self.spec})}")
@@ -217,6 +265,8 @@ class Claim:
             return ":".join([self.spec, ">".join(self.targets), self.kind, self.better, self.metric])
         if self.kind == "lead_trend":
             return ":".join([self.spec, ">".join(self.targets), self.kind, self.better, str(self.other), self.metric])
+        if self.kind == "printed":
+            return ":".join([self.spec, self.target, self.kind, self.better, self.metric])
         parts = [self.spec, self.target, self.kind, self.better]
         if self.kind not in SHARE_KINDS:
             parts += [str(self.other), self.metric]
@@ -471,6 +521,44 @@ def judge_tie(a, b, tol: float, alpha: float = 0.05, best: bool = False) -> tupl
     if -tol <= lo and hi <= tol:
         return figure, "holds"
     if np.isfinite(p) and p < alpha and (lo2 > tol or hi2 < -tol):
+        return figure, "reversed"
+    return figure, "not significant"
+
+
+def printed_margin(printed: Printed) -> float:
+    """The margin within which a reproduced mean is the printed one (module docstring, ``printed``)."""
+    return max(FUNCTION_TOL, printed.unit / 2, PRINTED_REL * abs(printed.mean - printed.optimum))
+
+
+def judge_printed(values, printed: Printed, alpha: float = 0.05) -> tuple[str, str]:
+    """``(our figure, verdict)`` of "the mean of these runs is the printed one": Welch's equivalence
+    test against the printed mean, standard deviation and run count (module docstring)."""
+    from scipy.stats import t as student
+
+    a = np.asarray(values, float)
+    if len(a) < 2:
+        return f"{len(a)} runs", "not run"
+    margin = printed_margin(printed)
+    diff = float(a.mean() - printed.mean)
+    # Welch's degrees of freedom square the variances: in units of the largest value involved they
+    # neither underflow (1e-130 squared twice) nor overflow
+    scale = max(float(np.abs(a).max()), abs(printed.mean), printed.sd) or 1.0
+    va, vp = (a / scale).var(ddof=1) / len(a), (printed.sd / scale) ** 2 / printed.runs
+    se = float(np.sqrt(va + vp)) * scale
+    if se > 0:
+        df = (va + vp) ** 2 / (va ** 2 / (len(a) - 1) + vp ** 2 / (printed.runs - 1))
+        lo, hi = diff + np.array([-1, 1]) * student.ppf(1 - alpha, df) * se
+        lo2, hi2 = diff + np.array([-1, 1]) * student.ppf(1 - alpha / 2, df) * se
+        p = float(2 * student.sf(abs(diff) / se, df))
+    else:   # no spread on either side (or below what floats resolve): the difference is exact
+        lo = lo2 = hi = hi2 = diff
+        p = 1.0 if diff == 0 else 0.0
+    side = "" if abs(diff) <= margin else (", ours lower" if diff < 0 else ", ours higher")
+    figure = (f"mean {a.mean():.5g} vs {printed.text}: diff {diff:+.2g} [{100 * (1 - 2 * alpha):.0f} %: {lo:+.2g}, "
+              f"{hi:+.2g}] vs margin {margin:.2g}, p={p:.2g}{side}")
+    if -margin <= lo and hi <= margin:
+        return figure, "holds"
+    if p < alpha and (lo2 > margin or hi2 < -margin):
         return figure, "reversed"
     return figure, "not significant"
 
@@ -810,6 +898,8 @@ def judge(claim: Claim, res) -> tuple[str, str]:
     b = _group(res, claim.target, claim.other) if claim.other else None
     if a is None or (claim.other and b is None):
         return "group not in this run", "not run"
+    if claim.kind == "printed":
+        return judge_printed(res.values(a, claim.metric), claim.printed, res.spec.alpha)
     if claim.kind in SHARE_KINDS:
         stored, _, ok = res.counts(a)
         if claim.kind == "reaches":
@@ -831,6 +921,8 @@ def judge(claim: Claim, res) -> tuple[str, str]:
 
 
 def _claimed_text(c: Claim) -> str:
+    if c.kind == "printed":
+        return f"{c.printed.text} (sd {c.printed.sd:.2g}, {c.printed.runs} runs)"
     if c.kind in ("tie", "tie_best"):
         return "equal"
     if c.kind == "trend":   # grows along the targets as listed; the size is first to last
@@ -851,7 +943,8 @@ def _claimed_text(c: Claim) -> str:
 # what the compared column says before the groups, for the kinds that compare extremes or equality
 # (a prefix, so that a run-time row still ends in "(runtime_s)", the mark doc_tables skips)
 _COMPARED_PREFIX = {"less_best": "best: ", "less_worst": "worst: ", "tie": "equal: ", "tie_best": "equal best: ",
-                    "reaches": "optimum: ", "trend": "trend: ", "lead_trend": "lead trend: "}
+                    "reaches": "optimum: ", "trend": "trend: ", "lead_trend": "lead trend: ",
+                    "printed": "printed mean: "}
 
 
 def _compared_text(c: Claim, shown: Claim) -> str:
@@ -868,8 +961,9 @@ def claims_of(spec_name: str) -> list[Claim]:
 
 
 def claims_table(res) -> Table | None:
-    """The claims table of one spec's runs (``None`` when the spec judges no claim)."""
-    claims = claims_of(res.spec.name)
+    """The claims table of one spec's runs (``None`` when the spec judges no claim); printed values
+    have a table of their own (:func:`printed_table`)."""
+    claims = [c for c in claims_of(res.spec.name) if c.kind != "printed"]
     if not claims:
         return None
     # a claim with a twin at the paper's printed setting is shown as printed, with our change beside it
@@ -929,12 +1023,44 @@ def claims_table(res) -> Table | None:
     return table
 
 
+def printed_table(res) -> Table | None:
+    """The paper's printed values (kind ``printed``) against one spec's runs, or ``None``: one row per
+    algorithm and function, the printed mean and spread beside ours, the verdict, and a tally."""
+    claims = [c for c in claims_of(res.spec.name) if c.kind == "printed"]
+    if not claims:
+        return None
+    table = Table(["source", "target", "algorithm", "printed mean (sd, runs)", "ours (90 % interval, p)",
+                   "verdict"], caption=f"the paper's printed values against {res.spec.name}")
+    tally: dict[str, int] = {}
+    notes = []
+    for c in claims:
+        figure, verdict = judge(c, res)
+        table.rows.append([c.source, c.target, c.better, _claimed_text(c), figure, verdict])
+        key = verdict + (" (ours lower)" if figure.endswith("ours lower") and verdict == "reversed" else
+                         " (ours higher)" if figure.endswith("ours higher") and verdict == "reversed" else "")
+        tally[key] = tally.get(key, 0) + 1
+        if c.note and c.note not in notes:
+            notes.append(c.note)
+    table.notes.append("verdicts: " + ", ".join(f"{k} {v}" for k, v in sorted(tally.items())))
+    table.notes.append("printed mean -> Welch's equivalence test of our mean against the paper's printed mean, "
+                       "standard deviation and run count: holds when the 90 % interval of the difference lies inside "
+                       f"the margin (the largest of 1e-8, half the last printed digit, {PRINTED_REL:.0%} of the "
+                       "printed distance to the optimum); reversed (ours another value) when p < alpha and the 95 % "
+                       "interval lies outside it")
+    table.notes += notes
+    return table
+
+
 def render_claims(res, fmt: str = "markdown") -> str:
-    """The claims table as text, with its heading, or ``""``."""
+    """The claims table and the printed values' table as text, with their headings, or ``""``."""
+    out = ""
     table = claims_table(res)
-    if table is None:
-        return ""
-    return f"\n## Claims of the paper ({res.spec.name})\n\n{table.render(fmt)}\n"
+    if table is not None:
+        out += f"\n## Claims of the paper ({res.spec.name})\n\n{table.render(fmt)}\n"
+    printed = printed_table(res)
+    if printed is not None:
+        out += f"\n## Printed values of the paper ({res.spec.name})\n\n{printed.render(fmt)}\n"
+    return out
 
 
 _IPSO2_NOTE = ("IPSO2 is a reconstruction, not Tan et al. 2022's rule (not found): Yang et al. 2007's evolution "
@@ -1648,7 +1774,40 @@ def _summary_claims(known: Iterable[Claim]) -> tuple[Claim, ...]:
     return (*hou, *yuan, *yang, *li, *chen)
 
 
-ADDED_CLAIMS = _added_claims() + _lead_trend_claims()
+# chen2025 Tables 4-6 as printed (best, mean, worst, standard deviation of 20 runs per algorithm and
+# function; the signs the extracted text lost restored, as the file's header says)
+CHEN2025_PRINTED_FILE = Path(__file__).resolve().parent.parent / "data" / "chen2025_tables_4_6.csv"
+CHEN2025_PRINTED_RUNS = 20
+
+
+def chen2025_printed_tables() -> list[dict[str, str]]:
+    """The rows of chen2025 Tables 4-6 as printed: ``function``, ``algorithm``, ``best``, ``mean``,
+    ``worst``, ``sd`` (strings, digits as printed)."""
+    import csv
+
+    with open(CHEN2025_PRINTED_FILE, newline="") as fh:
+        return list(csv.DictReader(line for line in fh if not line.startswith("#")))
+
+
+def _printed_value_claims() -> tuple[Claim, ...]:
+    """Tables 4-6's absolute values: each algorithm's printed mean on each function, judged on the
+    functions as printed (the paper's setting; the shifted run's values are in its own report)."""
+    from ..formulations.functions import get_function
+
+    out = []
+    for row in chen2025_printed_tables():
+        f, a = row["function"], row["algorithm"]
+        n = int(f[1:])
+        table = 4 if n <= 7 else 5 if n <= 13 else 6
+        printed = Printed(row["mean"], float(row["sd"]), CHEN2025_PRINTED_RUNS, get_function(f).f_opt)
+        out.append(Claim("chen2025_functions_unshifted", f"Table {table}", f"{a.upper()}'s mean in {f} is "
+                         f"{row['mean']}", f, "printed", a, metric="f",
+                         note=_function_note(f, a) if a == "msiar-gwo" else _function_note("", a),
+                         printed=printed))
+    return tuple(out)
+
+
+ADDED_CLAIMS = _added_claims() + _lead_trend_claims() + _printed_value_claims()
 ADDED_CLAIMS += _summary_claims(CLAIMS + ADDED_CLAIMS)
 # (local claim judged with our change, its twin at the paper's printed setting)
 PRINTED_PAIRS: tuple[tuple[Claim, Claim], ...] = tuple(_printed_pairs(CLAIMS + ADDED_CLAIMS))
