@@ -24,7 +24,7 @@ SMALL = {
     "params": {"pop": 20, "iters": 25}, "runs": 3, "reference": "msiar-gwo",
 }
 # metrics that depend on the clock or the process, not on the seed
-CLOCK = {"runtime_s", "wall_s", "worker", "finished_at", "mean_step_ms"}
+CLOCK = {"runtime_s", "wall_s", "worker", "finished_at", "mean_step_ms", "reroute_s"}
 
 
 def same_numbers(rows_a: dict, rows_b: dict) -> None:
@@ -509,3 +509,16 @@ def test_a_noisy_function_run_repeats_whatever_ran_before_it_in_the_process(tmp_
     for r in recs[:2]:
         OptimizeKind().run(r)
     assert OptimizeKind().run(recs[2])[0].f == first
+
+
+def test_a_metric_first_stored_as_none_keeps_the_later_runs_numbers(tmp_path):
+    # a closed loop stores reroute_s only when a path was blocked: the column must not turn the
+    # later runs' numbers into strings because its first value was None
+    record = {"key": "k0", "experiment": "e", "kind": "simulate", "target": "t", "algorithm": "iba", "label": "iba",
+              "refine": None, "local_planner": "ba-dwa", "seed": 0, "params": {}, "target_spec": {}}
+    with ResultStore(tmp_path / "r.sqlite") as store:
+        store.write(record, {"status": "ok", "metrics": {"reroute_s": None, "note": None}})
+        store.write({**record, "key": "k1", "seed": 1}, {"status": "ok", "metrics": {"reroute_s": 0.0348, "note": "x"}})
+        rows = store.rows()
+    assert rows["k0"]["reroute_s"] is None and rows["k1"]["reroute_s"] == 0.0348
+    assert rows["k1"]["note"] == "x"

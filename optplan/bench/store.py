@@ -70,6 +70,11 @@ def column_name(name: str, prefix: str = "") -> str:
 
 
 def _sql_type(value: Any) -> str:
+    """The declared type of a new column, from the first value stored in it. A first value of
+    ``None`` (a metric some runs do not have) declares none: SQLite then keeps each value as
+    given, where a TEXT column would turn the later runs' numbers into strings."""
+    if value is None:
+        return ""
     if isinstance(value, bool) or isinstance(value, int):
         return "INTEGER"
     if isinstance(value, float):
