@@ -189,6 +189,11 @@ def _add_simulate_arguments(parser) -> None:
     parser.add_argument("--subgoals", default=None,
                         help="subgoal strategy: goal, key_points, turning_points, navigation_points "
                              "(default: the local planner's paper default)")
+    parser.add_argument("--on-blocked", default=None, choices=("switch", "replan", "ignore"),
+                        help="when a newly sensed obstacle blocks the global path: switch paths (yuan2021 §4.2), "
+                             "re-plan, or leave it to the local planner (default: the local planner's paper default)")
+    parser.add_argument("--replanner", default=None, choices=("exact", "global"),
+                        help="who re-plans: exact graph search (default) or the global planner with its options")
     parser.add_argument("--movers", default=None, choices=("shuttle", "once"),
                         help="motion of the scenario's random movers: back and forth for the whole run, or "
                              "once across the path, as the papers draw them (default: the scenario's)")
@@ -229,6 +234,9 @@ def _cmd_simulate(args) -> int:
         options["planner_params"] = local_params
     if args.subgoals:
         options["subgoals"] = args.subgoals
+    for name in ("on_blocked", "replanner"):
+        if getattr(args, name):
+            options[name] = getattr(args, name)
     if args.local_program:
         options["local_program"] = args.local_program
     # the local planner, its parameters and its program are checked before the global plan is made
@@ -264,6 +272,9 @@ def _cmd_simulate(args) -> int:
     print(f"path length    {res.path_length:.3f} m")
     print(f"min clearance  {res.min_clearance:.3f} m")
     print(f"max |accel|    {res.max_abs_accel:.3f} m/s^2, max |ang accel| {res.max_abs_ang_accel:.3f} rad/s^2")
+    if res.replans:
+        print(f"re-plans       {res.replans} ({res.path_switches} path switches)" +
+              (f"; {1e3 * res.reroute_s:.1f} ms per answer to a blocked path" if res.reroute_s is not None else ""))
     for written in (args.gif, args.plot, args.export):
         if written:
             print(f"wrote {written}")

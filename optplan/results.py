@@ -225,6 +225,8 @@ class SimResult(_ToDict):
         replans: number of global re-plans (path switch or stuck recovery).
         max_abs_jerk: largest |d^2v/dt^2| over the run, m/s^3.
         path_switches: how many of the re-plans were yuan2021 §4.2 path switches.
+        reroute_s: mean wall time of one answer to a blocked global path (a path switch or a
+            re-plan), seconds; ``None`` when no newly sensed obstacle blocked it.
     """
 
     reached: bool
@@ -247,6 +249,7 @@ class SimResult(_ToDict):
     replans: int = 0
     max_abs_jerk: float = 0.0
     path_switches: int = 0
+    reroute_s: float | None = None
 
     # DESIGN.md's keys, then what a script needs to tell a failed run from a good one and to
     # reproduce it: why the run ended, in words, its seed and the global path it followed

@@ -14,7 +14,7 @@ from optplan.bench.runner import run_records
 from optplan.bench.spec import load_spec
 from optplan.bench.store import ResultStore
 
-CLOCK = {"runtime_s", "wall_s", "worker", "finished_at", "mean_step_ms"}
+CLOCK = {"runtime_s", "wall_s", "worker", "finished_at", "mean_step_ms", "reroute_s"}
 
 SPEC = {
     "name": "dask_vs_local", "kind": "plan", "maps": ["chen2025_20", "yang2023_env1"],

@@ -176,3 +176,16 @@ def test_an_mp4_gets_every_frame_through_ffmpeg(tmp_path, monkeypatch):
     frames, fps = out.read_text().split()
     # the run's frames and the last one held for two seconds
     assert int(frames) == min(12, len(res.trajectory)) + 20 and fps == "10"
+
+
+def test_simulate_says_how_a_blocked_path_is_answered(capsys):
+    # --on-blocked / --replanner reach op.simulate (the API's on_blocked / replanner options)
+    assert main(["simulate", "yuan2021_path_switch", "--local", "ba-dwa", "--on-blocked", "switch"]) == 0
+    out = capsys.readouterr().out
+    assert "(2 path switches)" in out and "ms per answer to a blocked path" in out
+    assert main(["simulate", "yuan2021_path_switch", "--local", "ba-dwa", "--on-blocked", "replan",
+                 "--replanner", "global"]) == 0
+    out = capsys.readouterr().out
+    assert "(0 path switches)" in out and "ms per answer to a blocked path" in out
+    code, out, err = run_cli("simulate", "yuan2021_path_switch", "--replanner", "iba")
+    assert code == 2 and out == "" and "--replanner" in err and len(err.strip().splitlines()) == 1

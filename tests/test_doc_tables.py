@@ -5,7 +5,7 @@ Default suite: every marker names a command that runs its spec at the seeds it r
 machinery end to end (``optplan reproduce ... --update-docs`` on a quick run writes a table that a
 fresh run then agrees with). Blocks whose command is ``--quick`` or in ``SMALL`` are rerun here; the
 others (full reproductions, minutes each) are rerun by the slow test (``-m slow``).
-Wall-clock cells are never compared (doc_tables.WALL_CLOCK_COLUMNS, WALL_CLOCK_ROW_MARK).
+Wall-clock cells are never compared (doc_tables.WALL_CLOCK_COLUMNS, WALL_CLOCK_ROW_MARKS).
 """
 from __future__ import annotations
 

@@ -184,8 +184,9 @@ def test_same_seed_gives_identical_result_and_other_seeds_differ():
                         "random_dynamic": {"count": 2, "speed": [0.3, 0.6], "length": [3, 5]}})
     runs = [op.simulate(sc, local_planner=GoToSubgoal(sc.robot, sc.dt), seed=s) for s in (4, 4, 5)]
     a, b, c = (r.to_dict() for r in runs)
-    for d in (a, b, c):
+    for d in (a, b, c):   # wall times
         d.pop("mean_step_ms")
+        d.pop("reroute_s")
     assert a == b
     assert a != c
 
@@ -306,6 +307,28 @@ def test_path_switches_are_a_result_field():
     res = op.simulate("yuan2021_path_switch", local_planner="ba-dwa", seed=0, time_limit=160)
     assert res.path_switches == 2 and res.replans >= res.path_switches
     assert path_switches(res) == 2 and "2 path switch" in res.message
+    # each answer to the blocked path is timed (yuan2021 §4.2's switch-vs-re-plan claim reads it)
+    assert res.reroute_s is not None and 0 < res.reroute_s < res.time_s
+    ignored = op.simulate("yuan2021_path_switch", local_planner="ba-dwa", seed=0, time_limit=20, on_blocked="ignore")
+    assert ignored.reroute_s is None and ignored.path_switches == 0
+
+
+def test_a_blocked_path_is_re_planned_by_the_global_planner_when_asked():
+    """``replanner="global"``: a blocked path is planned again by the run's global planner with its
+    options (yuan2021 §4.2 runs IBA again); the default and stuck recovery use exact search."""
+    from optplan.nav.navigator import Navigator
+
+    sc = op.load_scenario("yuan2021_path_switch")
+    nav = Navigator(sc.world, sc.robot, sc.start[:2], sc.goal, global_planner="iba",
+                    global_options={"encoding": "paper", "pop": 20, "iters": 20}, replanner="global")
+    nav.plan_initial()
+    pos = np.asarray(sc.start[:2], float) + [0.4, 0.4]
+    ladder = nav.clearance_ladder(sc.robot.radius)
+    by_iba = nav._plan_from(sc.world, pos, ladder, "global")
+    assert by_iba.algorithm == "iba" and by_iba.feasible
+    assert nav._plan_from(sc.world, pos, ladder).algorithm == "astar"
+    with pytest.raises(op.ParameterError, match="replanner"):
+        op.simulate("yuan2021_path_switch", local_planner="ba-dwa", replanner="ibaa")
 
 
 def test_a_mover_on_a_zero_length_loop_is_seen_and_hit():

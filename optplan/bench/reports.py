@@ -313,7 +313,7 @@ def local_runs(res: ExperimentResults) -> list:
                     status=row.get("result_status") or "", message=row.get("message") or "",
                     global_planner=r.algorithm, local_planner=local or "", refine=refine, seed=r.seed,
                     replans=int(row.get("replans") or 0), max_abs_jerk=_f(row.get("max_abs_jerk")),
-                    path_switches=int(row.get("path_switches") or 0)))
+                    path_switches=int(row.get("path_switches") or 0), reroute_s=row.get("reroute_s")))
             out.append(lr)
     return out
 
@@ -335,15 +335,19 @@ def local_tables(res: ExperimentResults, fmt: str = "markdown") -> str:
 
 
 def yuan2021_local(res: ExperimentResults, fmt: str = "markdown") -> str:
-    """yuan2021 §5.2-5.3: the closed-loop table plus path switches and re-plans per local planner."""
+    """yuan2021 §4.2, §5.2-5.3: the closed-loop table plus path switches, re-plans and the wall time of
+    an answer to a blocked global path per local planner."""
     from ..sim.experiments import path_switches
 
-    table = Table(["local planner", "runs", "mean path switches", "mean re-plans (incl. switches)"])
+    table = Table(["local planner", "runs", "mean path switches", "mean re-plans (incl. switches)",
+                   "runs with a blocked path", "mean answer to a blocked path [ms]"])
     for s in local_runs(res):
         if s.results:
             sw = [path_switches(r) for r in s.results]
+            answers = [r.reroute_s for r in s.results if r.reroute_s is not None]
             table.rows.append([s.planner, str(len(s.results)), f"{sum(sw) / len(s.results):.2f}",
-                               f"{sum(r.replans for r in s.results) / len(s.results):.2f}"])
+                               f"{sum(r.replans for r in s.results) / len(s.results):.2f}", str(len(answers)),
+                               f"{1e3 * np.mean(answers):.1f}" if answers else "-"])
     return local_tables(res, fmt) + "\n" + table.render(fmt) + "\n"
 
 

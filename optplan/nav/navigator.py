@@ -27,10 +27,19 @@ planner during one closed-loop run:
 
 Re-plans use fast exact graph search (``astar`` on grids, ``visibility`` on circle
 worlds) on the believed world, not the global metaheuristic: a re-plan must be
-available within a control period or two.
+available within a control period or two. ``replanner="global"`` re-plans a blocked
+path with the run's own global planner and options instead (yuan2021 §4.2 compares its
+path switch with running IBA again), falling back to exact search when that finds no
+valid path; stuck recovery always re-plans exactly.
+
+The wall time spent answering a blocked global path (the switch, or the re-plan, and a
+switch's fallback re-plan) is recorded per answer (:attr:`Navigator.reroute_s`: their
+mean, ``None`` while no path was blocked); building the switch's graph of the known map, which §4.2 does with
+the global plan, is not part of that time.
 """
 from __future__ import annotations
 
+import time
 from collections import deque
 
 import numpy as np
@@ -50,6 +59,8 @@ _LADDER_EXTRA = (0.1, 0.05, 0.025)
 PRESET_DEFAULTS = {**{p.local_preset: (p.subgoals, p.on_blocked) for p in PAPERS.values() if p.local_preset},
                    **LOCAL_GUIDANCE}
 ON_BLOCKED = ("switch", "replan", "ignore")
+# who re-plans: exact graph search, or the run's own global planner with its options
+REPLANNERS = ("exact", "global")
 
 
 def preset_defaults(local_name: str) -> tuple[str, str]:
@@ -83,15 +94,21 @@ class Navigator:
         subgoal_options: keyword arguments of the strategy (``switch_radius``, ...).
         sweep_detour: longest route round learnt mover sweeps, as a multiple of the rest of
             the path (:meth:`on_sweeps`); ``None`` keeps crossing them.
+        replanner: who re-plans a blocked path: ``"exact"`` (graph search) or ``"global"``
+            (``global_planner`` with ``global_options``, exact search when it finds no valid
+            path).
     """
 
     def __init__(self, world, robot, start, goal, global_planner: str = "astar", refine: str | None = None,
                  seed=0, subgoals: str | SubgoalStrategy = "key_points", on_blocked: str = "replan",
                  stuck_time: float = 10.0, stuck_distance: float = 0.3, max_replans: int = 5,
                  global_options: dict | None = None, subgoal_options: dict | None = None,
-                 sweep_detour: float | None = 1.5):
+                 sweep_detour: float | None = 1.5, replanner: str = "exact"):
         if on_blocked not in ON_BLOCKED:
             raise ParameterError(f"on_blocked must be one of {', '.join(ON_BLOCKED)}, got {on_blocked!r}")
+        if replanner not in REPLANNERS:
+            raise ParameterError(f"replanner must be one of {', '.join(REPLANNERS)}, got {replanner!r}")
+        self.replanner = replanner
         self.world = world
         self.robot = robot
         self.start = np.asarray(start, float)
@@ -123,6 +140,7 @@ class Navigator:
         self._n_sweeps = 0
         self._went_round = False
         self.switches = 0
+        self.reroute_times: list[float] = []   # wall time of each answer to a blocked global path, seconds
         self.messages: list[str] = []
         self.plan_result: PlanResult | None = None
         self.path = np.zeros((0, 2))
@@ -217,17 +235,28 @@ class Navigator:
         if not self.path_blocked(believed_world, position):
             return False
         if self.on_blocked == "switch":
-            if self._switch(believed_world, position):
-                return True
-            self.messages.append(f"t={t:.1f}s: path switch found no route; re-planning")
-        return self.replan(believed_world, position, t, why="global path blocked")
+            # the graph of the known map, which §4.2 builds with the global plan: not part of the answer's time
+            self._switch_graph()
+        t0 = time.perf_counter()
+        try:
+            if self.on_blocked == "switch":
+                if self._switch(believed_world, position):
+                    return True
+                self.messages.append(f"t={t:.1f}s: path switch found no route; re-planning")
+            return self.replan(believed_world, position, t, why="global path blocked", replanner=self.replanner)
+        finally:
+            self.reroute_times.append(time.perf_counter() - t0)
 
-    def _switch(self, believed_world, position) -> bool:
+    def _switch_graph(self):
+        """The virtual-point graph of the known map (yuan2021 §4.2), built once."""
         from .path_switch import VirtualPointGraph
 
         if self._graph is None:
             self._graph = VirtualPointGraph(self.world, self.start, self.goal, self.robot.radius)
-        self._graph.update(believed_world)
+        return self._graph
+
+    def _switch(self, believed_world, position) -> bool:
+        self._switch_graph().update(believed_world)
         route = self._graph.route(believed_world, position)
         if route is None:
             return False
@@ -333,10 +362,18 @@ class Navigator:
         """Every stuck re-plan has been used."""
         return self.stuck_replans >= self.max_replans
 
-    def replan(self, believed_world, position, t: float, why: str) -> bool:
-        """Plan again from ``position`` on ``believed_world`` with exact graph search."""
+    @property
+    def reroute_s(self) -> float | None:
+        """Mean wall time of one answer to a blocked global path (switch or re-plan), seconds;
+        ``None`` when no path was blocked."""
+        return float(np.mean(self.reroute_times)) if self.reroute_times else None
+
+    def replan(self, believed_world, position, t: float, why: str, replanner: str = "exact") -> bool:
+        """Plan again from ``position`` on ``believed_world`` (exact graph search, or with
+        ``replanner="global"`` the run's global planner; stuck recovery always re-plans exactly:
+        a stuck robot needs a way out now)."""
         wanted = float(self.global_options.get("clearance", self.robot.radius))
-        res = self._plan_from(believed_world, position, self.clearance_ladder(wanted))
+        res = self._plan_from(believed_world, position, self.clearance_ladder(wanted), replanner)
         self.replans += 1  # a failed attempt counts too, so a hopeless situation ends
         if res is None:
             self.messages.append(f"t={t:.1f}s: re-planning failed ({why})")
@@ -345,10 +382,21 @@ class Navigator:
         self._adopt(self._with_ends(res.path, np.asarray(position, float)), believed_world)
         return True
 
-    def _plan_from(self, world, position, clearances) -> PlanResult | None:
+    def _plan_from(self, world, position, clearances, replanner: str = "exact") -> PlanResult | None:
         """The first valid path from ``position`` to the goal on ``world`` with one of
-        ``clearances`` (exact graph search), or ``None``."""
+        ``clearances`` (``replanner``'s, then exact graph search), or ``None``."""
         method = "astar" if self.is_grid else "visibility"
+        if replanner == "global" and self.global_planner != method:
+            opts = {k: v for k, v in self.global_options.items() if k != "clearance"}
+            for clearance in clearances:
+                try:
+                    res = plan(world, np.asarray(position, float), self.goal, algorithm=self.global_planner,
+                               seed=self.seed, clearance=clearance, **opts)
+                except OptplanError:
+                    continue
+                if res.feasible:
+                    return res
+            self.messages.append(f"{self.global_planner} found no valid path from here; exact search re-plans")
         for clearance in clearances:
             try:
                 res = plan(world, np.asarray(position, float), self.goal, algorithm=method, clearance=clearance)

@@ -43,7 +43,7 @@ from ..worldgen.scenarios import realize
 from .environment import SimEnvironment
 from .kinematics import step_pose
 
-OPTIONS = ("subgoals", "on_blocked", "stuck_time", "stuck_distance", "max_replans", "sweep_detour", "stop_on_collision",
+OPTIONS = ("subgoals", "on_blocked", "replanner", "stuck_time", "stuck_distance", "max_replans", "sweep_detour", "stop_on_collision",
            "actuator_limits", "planner_params", "global_options", "subgoal_options", "progress", "time_limit", "global_plan",
            "mover_motion", "local_program")
 
@@ -126,6 +126,8 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
             subgoals: strategy name (``goal``, ``key_points``, ``turning_points``,
                 ``navigation_points``); default: the local preset's paper default.
             on_blocked: ``switch`` / ``replan`` / ``ignore``; default per preset.
+            replanner: ``exact`` (default: graph search, milliseconds) or ``global`` (the run's
+                global planner with its options, e.g. IBA again as yuan2021 §4.2 re-plans).
             stuck_time (10 s), stuck_distance (0.3 m), max_replans (5): stuck recovery (re-plans
                 for a blocked path are not limited).
             sweep_detour (1.5): re-plan round the mover sweeps the local planner has learnt
@@ -180,7 +182,8 @@ def simulate(scenario: Scenario | str, global_planner: str = "astar", local_plan
                     on_blocked=options.get("on_blocked", default_blocked),
                     stuck_time=options.get("stuck_time", 10.0), stuck_distance=options.get("stuck_distance", 0.3),
                     max_replans=options.get("max_replans", 5), global_options=global_options or None,
-                    subgoal_options=options.get("subgoal_options"), sweep_detour=options.get("sweep_detour", 1.5))
+                    subgoal_options=options.get("subgoal_options"), sweep_detour=options.get("sweep_detour", 1.5),
+                    replanner=options.get("replanner", "exact"))
     params = {}   # the scenario file's parameters of this planner, under the caller's
     if isinstance(local_planner, str):
         from ..local import algorithm_names
@@ -346,4 +349,5 @@ def _result(sc: Scenario, traj: np.ndarray, vys: np.ndarray, step_ms, collisions
                      status=status, message=msg, global_planner=nav.global_planner, local_planner=str(local_name),
                      refine=None if refine in (None, "none") else refine, global_path=nav.path,
                      seed=int(seed) if isinstance(seed, (int, np.integer)) else None, replans=nav.replans,
-                     max_abs_jerk=float(jerk.max()) if len(jerk) else 0.0, path_switches=int(nav.switches))
+                     max_abs_jerk=float(jerk.max()) if len(jerk) else 0.0, path_switches=int(nav.switches),
+                     reroute_s=nav.reroute_s)
