@@ -98,7 +98,13 @@ def test_the_coverage_table_adds_up():
     text = inv.coverage_markdown()
     total = text.splitlines()[-1].split("|")
     assert total[1].strip() == "all" and int(total[2]) == len(STATEMENTS)
-    assert int(total[3]) == sum(s.judged for s in STATEMENTS) and int(total[6]) == len(CLAIMS)
+    assert int(total[3]) == sum(s.judged for s in STATEMENTS) and int(total[8]) == len(CLAIMS)
+    # the quantitative statements (not a qualitative wording) and those of them judged
+    quantitative = [s for s in STATEMENTS if s.quantitative]
+    assert total[6].split("(")[0].strip() == f"{sum(s.judged for s in quantitative)} / {len(quantitative)}"
+    # a qualitative wording judged on our reading says what it was read as, and is judged
+    read = [s for s in STATEMENTS if s.reading]
+    assert int(total[7]) == len(read) >= 3 and all(s.judged and not s.quantitative for s in read)
 
 
 def test_chen2025_table7_reads_as_its_own_tally():

@@ -118,14 +118,15 @@ def test_the_printed_values_have_a_table_of_their_own_with_a_tally():
     spec = StubSpec("chen2025_functions_unshifted", [StubTarget("F5")], "optimize")
     rng = np.random.default_rng(2)
     # GWO on F5 as printed (27.017), the others far off; every other function is not in this run
-    data = {a: {"f": (27.0 if a == "gwo" else 1000.0) + 0.3 * rng.standard_normal(10)} for a in ALGORITHMS}
+    data = {a: {"f": (27.0 if a == "gwo" else 1000.0) + 0.3 * rng.standard_normal(10)}
+            for a in (*ALGORITHMS, "dbo-original")}
     res = _Results(spec, data)
     table = printed_table(res)
-    assert len(table.rows) == 144
+    assert len(table.rows) == 144 + 18   # DBO's values also against the original's rules (dbo-original)
     f5 = {r[2]: r[5] for r in table.rows if r[1] == "F5"}
     assert f5["gwo"] == "holds" and f5["msiar-gwo"] == "reversed"
     assert {r[5] for r in table.rows if r[1] != "F5"} == {"not run"}
-    assert any(n.startswith("verdicts: ") and "reversed (ours higher) 7" in n for n in table.notes)
+    assert any(n.startswith("verdicts: ") and "reversed (ours higher) 8" in n for n in table.notes)
     # the claims table of the same spec leaves them out; the report prints both under their headings
     assert not any(r[3].startswith("printed mean") for r in claims_table(res).rows)
     text = render_claims(res)
@@ -138,4 +139,19 @@ def test_tables_4_to_6_values_are_judged_statements():
     kinds = {c.id: c.kind for c in CLAIMS}
     for t, n in ((4, 7), (5, 6), (6, 5)):
         s = by_id[f"chen2025.t{t}.values"]
-        assert s.judged and {kinds[c] for c in s.claims} == {"printed"} and len(s.claims) == 8 * n
+        assert s.judged and {kinds[c] for c in s.claims} == {"printed"} and len(s.claims) == 9 * n
+
+
+def test_the_original_dbo_rules_pull_to_the_origin():
+    """``origin_pull=True`` (the original DBO's scaled regions and deflection) is what reaches
+    Table 4's DBO values on F1 as printed; optplan's origin-free DBO does not."""
+    from optplan.solvers.metaheuristics import optimize
+
+    F = get_function("F1", dim=10)
+    pulled = [optimize(F, F.bounds, algorithm="dbo", pop=20, iters=150, seed=s, origin_pull=True).f for s in range(3)]
+    free = [optimize(F, F.bounds, algorithm="dbo", pop=20, iters=150, seed=s).f for s in range(3)]
+    assert max(pulled) < 1e-20 < min(free)
+    # on the shifted function no rule gets the pull for free: both are far from 0
+    S = get_function("F1", shifted=True, dim=10)
+    assert min(optimize(S, S.bounds, algorithm="dbo", pop=20, iters=150, seed=0, origin_pull=True).f,
+               optimize(S, S.bounds, algorithm="dbo", pop=20, iters=150, seed=0).f) > 1e-3

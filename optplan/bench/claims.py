@@ -1455,6 +1455,9 @@ def _added_claims() -> tuple[Claim, ...]:
                      (5, ("F12", "F13"), "in F12 and F13 MSIAR-GWO's standard deviation is the smallest too"),
                      (6, ("F18",), "in F18 MSIAR-GWO's standard deviation is clearly the smallest"))
     return (
+        # hou2024 §4.3.2 (end), "MISSA is very stable": read as its lengths varying less (Tables 2-3 give no spread)
+        *(Claim("hou2024_global", "§4.3.2 (end)", f"MISSA's lengths vary less than {o.upper()}'s", env, "less_spread",
+                "missa", o) for env in ("hou2024_env1", "hou2024_env2") for o in ("aco", "iaco", "ssa")),
         # hou2024 §4.4, Table 4 / Fig 8: the fusion reaches the target with 0-3 random unknown obstacles
         *(Claim("hou2024_local_table4", "§4.4, Table 4, Fig 8", "MISSA-DWA passes the random obstacles and reaches "
                 "the target", m, "rate", "missa/missa-dwa", claimed=1.0)
@@ -1686,6 +1689,14 @@ LI2023_MAPS = ("li2023_30", "li2023_60", "li2023_90")
 _ONE_ASTAR_RUN = "A* runs once per map (deterministic): its mean is exact, the interval comes from IGA's runs alone"
 
 
+# chen2025 §4.3.2: the reductions of the mean length by MSIAR-GWO against each baseline on the 20x20,
+# 30x30 and 40x40 maps (percent), as the text gives them
+CHEN2025_MAPS = ("chen2025_20", "chen2025_30", "chen2025_40")
+CHEN2025_MEAN_REDUCTIONS = {"gwo": (4.33, 17.77, 22.88), "aro": (0.73, 4.27, 4.47), "dbo": (4.18, 11.99, 7.10),
+                            "woa": (11.54, 14.52, 8.32), "igwo": (0.58, 6.09, 19.40), "agwo": (6.54, 15.02, 22.65),
+                            "rsmgwo": (3.57, 14.59, 21.97)}
+
+
 def _lead_trend_claims() -> tuple[Claim, ...]:
     """li2023's statements that IGA's gains grow with the map size (kind ``lead_trend``; issue 44,
     "across targets"). ``claimed``: the change of the paper's reduction from the first map to the last."""
@@ -1712,6 +1723,15 @@ def _lead_trend_claims() -> tuple[Claim, ...]:
         lead_trend_claim("li2023_global", "§6.3, Table 2", "IGA's key-point lead over A* shrinks slightly with the map "
                          "size (30.0 % -> 45.5 % -> 22.7 %)", LI2023_MAPS[::-1], "iga", "astar", "n_turns",
                          0.300 - 0.227, _ONE_ASTAR_RUN),
+        # chen2025 §4.3.2: the more complex the map, the weaker the others' search and the stronger MSIAR-GWO's; read
+        # as its mean-length lead over each baseline growing from 20x20 to 40x40 (the text's own reductions)
+        *(lead_trend_claim("chen2025_paths", "§4.3.2, Tables 9-11", f"MSIAR-GWO's mean-length lead over {o.upper()} "
+                           f"grows with the map's complexity ({a} % -> {b} % -> {c} %)", CHEN2025_MAPS, "msiar-gwo", o,
+                           "length", (c - a) / 100,
+                           "; ".join(n for n in (_AGWO_NOTE if o in _CHEN2025_IDENTIFIED else "",
+                                                 f"the text's reductions have this lead shrinking ({a} % -> {c} %): "
+                                                 "judged as the text's summary says" if c < a else "") if n))
+          for o, (a, b, c) in CHEN2025_MEAN_REDUCTIONS.items()),
     )
 
 
@@ -1776,6 +1796,27 @@ def _summary_claims(known: Iterable[Claim]) -> tuple[Claim, ...]:
                                     f"in {wins})", parts, "F1-F18", note),
                      combined_claim("net", "§4.2, Table 7", f"MSIAR-GWO wins more of F1-F18 than it loses against "
                                     f"{o.upper()} (Table 7: {wins}/{ties}/{losses})", parts, "F1-F18", note)]
+    # qualitative wordings judged on a stated reading (claim_inventory: Statement.reading)
+    hou += [combined_claim("all", "§4.3.2 (end)", "MISSA is very stable and gives smooth paths",
+                           [part("hou2024_global", env, "less_spread", "missa", o, "length") for env in hou_envs
+                            for o in ("aco", "iaco", "ssa")]
+                           + [part("hou2024_global", env, "less", "missa", o, "turn_angle_deg") for env in hou_envs
+                              for o in ("aco", "iaco", "ssa")], "hou2024_env1+hou2024_env2 (spread, rotation)",
+                           note="read as: MISSA's lengths vary less over the runs (standard deviation, Levene's test) "
+                                "and its paths turn less (mean total rotation) than ACO's, IACO's and SSA's on both "
+                                "maps")]
+    chen += [combined_claim("most", "§4.1, Fig 8", "MSIAR-GWO searches the fixed-dimension functions more stably",
+                            [part(spec, f, "less_spread", "msiar-gwo", o, "f",
+                                  f"MSIAR-GWO's values vary less than {o.upper()}'s in {f}")
+                             for f in ("F14", "F15", "F16", "F17", "F18") for o in _CHEN2025_IMPLEMENTED],
+                            "F14-F18", note="read as: MSIAR-GWO's standard deviation below the baseline's (Levene's "
+                                            "test) in most of the 35 pairs of F14-F18 and the seven baselines")
+             for spec in _CHEN2025_FUNCTION_SPECS]
+    chen += [combined_claim("most", "§4.3.2", "MSIAR-GWO's global search is stronger in complex maps",
+                            [by_id[lead_trend_claim("chen2025_paths", "", "", CHEN2025_MAPS, "msiar-gwo", o,
+                                                    "length").id] for o in CHEN2025_MEAN_REDUCTIONS],
+                            "chen2025_20-40", note="read as: its mean-length lead over most baselines grows from "
+                                                    "the 20x20 map to the 40x40 one (the lead trends above)")]
     return (*hou, *yuan, *yang, *li, *chen)
 
 
@@ -1805,11 +1846,18 @@ def _printed_value_claims() -> tuple[Claim, ...]:
         n = int(f[1:])
         table = 4 if n <= 7 else 5 if n <= 13 else 6
         printed = Printed(row["mean"], float(row["sd"]), CHEN2025_PRINTED_RUNS, get_function(f).f_opt)
-        out.append(Claim("chen2025_functions_unshifted", f"Table {table}", f"{a.upper()}'s mean in {f} is "
-                         f"{row['mean']}", f, "printed", a, metric="f",
-                         note=_function_note(f, a) if a == "msiar-gwo" else _function_note("", a),
-                         printed=printed))
+        # DBO's values against optplan's origin-free DBO and against the original's rules (the paper's)
+        for label in (a, "dbo-original") if a == "dbo" else (a,):
+            out.append(Claim("chen2025_functions_unshifted", f"Table {table}", f"{a.upper()}'s mean in {f} is "
+                             f"{row['mean']}", f, "printed", label, metric="f",
+                             note=_function_note(f, a) if a == "msiar-gwo" else
+                             _DBO_ORIGINAL_NOTE if label == "dbo-original" else _function_note("", a),
+                             printed=printed))
     return tuple(out)
+
+
+_DBO_ORIGINAL_NOTE = ("dbo-original: DBO with the original's rules that scale with the coordinates (origin_pull=True, "
+                      "optplan/solvers/metaheuristics/dbo.py), which the paper ran; optplan's dbo drops them")
 
 
 ADDED_CLAIMS = _added_claims() + _lead_trend_claims() + _printed_value_claims()

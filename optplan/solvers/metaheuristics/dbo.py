@@ -12,6 +12,14 @@ boxes around their centre whose half-width shrinks with ``R = 1 - t / T``:
 ``[c - R (ub - lb) / 2, c + R (ub - lb) / 2]`` clipped to the bounds (the
 original multiplies the centre's coordinates by ``1 -/+ R``, which makes the
 region depend on where the origin is).
+
+``origin_pull=True`` runs the original's rules instead, for reproducing results
+on functions whose optimum is the origin (chen2025 Tables 4-6): the regions
+``[c (1 - R), c (1 + R)]`` clipped to the bounds, a brood ball clipped to its
+region as the original clips (lower bound first, so a region that the product
+turned upside down for negative coordinates still gives a point), and the
+rollers deflected by ``k x(t-1)``, the previous position itself. Both shrink
+towards 0 as ``R`` does, which pulls the search to the origin.
 """
 from __future__ import annotations
 
@@ -30,13 +38,22 @@ class DBO(Algorithm):
     b_light = 0.3
     p_dance = 0.9
     s_steal = 0.5
+    origin_pull = False
 
     def setup(self, state: State) -> None:
         self.X_prev = state.X.copy()
 
     def region(self, state: State, centre: np.ndarray, R: float) -> tuple[np.ndarray, np.ndarray]:
+        if self.origin_pull:   # the original's: the centre's coordinates scaled by 1 -/+ R
+            return np.maximum(centre * (1 - R), state.lower), np.minimum(centre * (1 + R), state.upper)
         half = R * (state.upper - state.lower) / 2
         return np.maximum(centre - half, state.lower), np.minimum(centre + half, state.upper)
+
+    @staticmethod
+    def clip(x: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+        """``x`` inside ``[lo, hi]``, the lower bound applied first (the original's order: with
+        ``lo > hi`` the upper one wins)."""
+        return np.where(x > hi, hi, np.where(x < lo, lo, x))
 
     def step(self, state: State) -> None:
         rng = state.rng
@@ -58,7 +75,9 @@ class DBO(Algorithm):
         k = len(roll)
         dance = rng.random(k) > self.p_dance
         alpha = np.where(rng.random((k, 1)) > 0.5, 1.0, -1.0)
-        rolling = X[roll] + alpha * self.k_deflect * (X[roll] - self.X_prev[roll]) + self.b_light * np.abs(X[roll] - worst)
+        # the deflection: the step since the last iteration (origin-free) or the original's previous position
+        deflect = self.X_prev[roll] if self.origin_pull else X[roll] - self.X_prev[roll]
+        rolling = X[roll] + alpha * self.k_deflect * deflect + self.b_light * np.abs(X[roll] - worst)
         theta = rng.uniform(0, np.pi, (k, 1))
         theta = np.where(np.isclose(theta, np.pi / 2), 0.0, theta)
         dancing = X[roll] + np.tan(theta) * np.abs(X[roll] - self.X_prev[roll])
@@ -66,7 +85,7 @@ class DBO(Algorithm):
         # brood balls inside the breeding region around the current best
         lo, hi = self.region(state, best_now, R)
         b1, b2 = rng.random((2, len(brood), d))
-        new[brood] = np.clip(best_now + b1 * (X[brood] - lo) + b2 * (X[brood] - hi), lo, hi)
+        new[brood] = self.clip(best_now + b1 * (X[brood] - lo) + b2 * (X[brood] - hi), lo, hi)
         # small beetles forage in the region around the best ever
         lo2, hi2 = self.region(state, best_ever, R)
         c1 = rng.normal(size=(len(small), 1))
