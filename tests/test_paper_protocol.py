@@ -132,7 +132,7 @@ def test_every_claim_names_a_shipped_spec_and_a_known_kind():
                     check(p)
                 return
             assert c.kind in ("less", "less_spread", "less_best", "less_worst", "tie", "tie_best", "rate", "fails",
-                              "reaches", "trend", "lead_trend", "printed")
+                              "reaches", "misses", "trend", "lead_trend", "printed")
             assert c.target in targets, (c.quote, c.target)
             # a trend names every target it runs along; each must be one of the spec's
             assert bool(c.targets) == (c.kind in ("trend", "lead_trend")) and set(c.targets) <= targets, \

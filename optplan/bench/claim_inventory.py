@@ -530,9 +530,11 @@ def _chen2025() -> list[Statement]:
                 [c for f in ("F1", "F2", "F3", "F4") for c in _fclaims(f, others=("rsmgwo",), metric="opt_iter")],
                 f"{both}; opt_iter: the first iteration within 1e-8 of the optimum (censored at the budget); 'within "
                 "150' is read off the paper's mean curve: the claims compare the iterations, not a bound on them"),
-        _not(p, f"{p}.t4.f1-4.gwo-igwo", "§4.1, Table 4", "GWO and IGWO stay clearly off the optimum of F1-F4",
-             "target value", "Table 4's GWO and IGWO values in F1-F2 are 1e-29 to 1e-16, 'off' only against an exact "
-             "0; MSIAR-GWO's lead over them is judged by Table 7's + entries"),
+        _judged(p, f"{p}.t4.f1-4.gwo-igwo", "§4.1, Table 4", "GWO and IGWO stay clearly off the optimum of F1-F4",
+                [cid(spec, f, "misses", a) for spec in ("chen2025_functions", "chen2025_functions_unshifted")
+                 for f in ("F1", "F2", "F3", "F4") for a in ("gwo", "igwo")],
+                "kind misses: no run within 1e-8 of the optimum (the CEC tolerance); Table 4's own values for F1-F2 "
+                "(1e-28 to 1e-17) are within it, so 'off' there holds only against an exact 0"),
         _judged(p, f"{p}.t4.f5-7.mean", "§4.1, Table 4", "MSIAR-GWO's mean is first in F5-F7 (against GWO, ARO, "
                 "DBO, WOA, IGWO)", [c for f in ("F5", "F6", "F7") for c in _fclaims(f)], both),
         _judged(p, f"{p}.t4.f5-7.std", "§4.1, Table 4", "MSIAR-GWO's standard deviation is first in F5-F7 (against "
