@@ -34,8 +34,8 @@ valid path; stuck recovery always re-plans exactly.
 
 The wall time spent answering a blocked global path (the switch, or the re-plan, and a
 switch's fallback re-plan) is recorded per answer (:attr:`Navigator.reroute_s`: their
-mean, ``None`` while no path was blocked); building the switch's graph of the known map, which §4.2 does with
-the global plan, is not part of that time.
+mean, ``None`` while no path was blocked); building the switch's graph of the known map,
+which §4.2 does with the global plan, is not part of that time.
 """
 from __future__ import annotations
 
