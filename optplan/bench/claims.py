@@ -1070,6 +1070,32 @@ def printed_table(res) -> Table | None:
     return table
 
 
+def as_printed_table(ours, printed) -> Table | None:
+    """The claims judged on two specs that differ in a setting we changed (``ours``: the results of the
+    spec with our change; ``printed``: those of its ``as_printed`` spec, the paper's setting), listed
+    where their verdicts differ, with how many were compared: one row per claim of ``ours`` whose
+    twin (the same claim on the other spec) both runs give a verdict."""
+    twins = {c.id.split(":", 1)[1]: c for c in claims_of(printed.spec.name)}
+    pairs = [(c, twins[c.id.split(":", 1)[1]]) for c in claims_of(ours.spec.name)
+             if c.id.split(":", 1)[1] in twins]
+    if not pairs:
+        return None
+    table = Table(["source", "claim", "target", "compared", f"as printed ({printed.spec.name})",
+                   f"with our change ({ours.spec.name})"],
+                  caption=f"verdicts that differ between {printed.spec.name} and {ours.spec.name}")
+    judged = 0
+    for c, t in pairs:
+        mine, theirs = judge(c, ours)[1], judge(t, printed)[1]
+        if mine in NO_VERDICT or theirs in NO_VERDICT:
+            continue
+        judged += 1
+        if mine != theirs:
+            table.rows.append([c.source, c.quote, target_text(c), _compared_text(c, c), theirs, mine])
+    table.notes.append(f"{len(table.rows)} of the {judged} claims judged on both specs differ ({len(pairs)} claims "
+                       "on both; the others have no verdict on one side)")
+    return table
+
+
 def render_claims(res, fmt: str = "markdown") -> str:
     """The claims table and the printed values' table as text, with their headings, or ``""``."""
     out = ""

@@ -55,6 +55,22 @@ def _tables(spec, store, args, layout: str | None = None) -> str:
     return render_report(load_results(spec, store), fmt=args.format, plots_dir=plots, layout=layout)
 
 
+def _as_printed_section(spec, specs, store, args) -> str:
+    """The table of the claims whose verdicts differ between ``spec`` and its ``as_printed`` spec, when
+    this command ran both (``""`` otherwise)."""
+    twin = next((s for s in specs if s.name == spec.as_printed), None)
+    if twin is None:
+        return ""
+    from .claims import as_printed_table
+    from .summary import load_results
+
+    table = as_printed_table(load_results(spec, store), load_results(twin, store))
+    if table is None:
+        return ""
+    return (f"\n## Verdicts that differ as printed ({twin.name}) and with our change ({spec.name})\n\n"
+            f"{table.render(args.format)}\n")
+
+
 def _export_ompl(store, args, keys) -> None:
     if getattr(args, "export_ompl", None):
         from .ompl import export_ompl
@@ -143,6 +159,11 @@ def run_reproduce(args) -> int:
             keys += [r.key for r in spec.expand()]
             printed[spec.name] = _tables(spec, store, args)
             print(printed[spec.name], flush=True)
+        for spec in specs:   # a spec with a twin at the paper's setting: the verdicts that differ
+            text = _as_printed_section(spec, specs, store, args)
+            if text:
+                printed[spec.name] += text
+                print(text, flush=True)
         if args.csv:
             n = store.to_csv(args.csv, keys)
             log.info(f"wrote {n} rows to {args.csv}")
@@ -212,8 +233,14 @@ def command_reports(command: str, spec_names, workers: int | None = 1) -> dict[s
     for name in dict.fromkeys(spec_names):
         store = ResultStore(":memory:")
         try:
-            run_spec(specs[name], store, args, label=name)
-            out[name] = (_tables(specs[name], store, args), specs[name].seeds)
+            spec = specs[name]
+            run_spec(spec, store, args, label=name)
+            text = _tables(spec, store, args)
+            twin = specs.get(spec.as_printed) if spec.as_printed else None
+            if twin is not None:   # the command also prints the verdicts that differ from its twin's
+                run_spec(twin, store, args, label=twin.name)
+                text += _as_printed_section(spec, [twin], store, args)
+            out[name] = (text, spec.seeds)
         finally:
             store.close()
     return out

@@ -55,7 +55,7 @@ SPECS_DIR = Path(__file__).resolve().parent.parent / "data" / "specs"
 KINDS = tuple(RUN_KINDS)   # the registered run kinds (optplan/bench/kinds)
 TOP_KEYS = {"name", "title", "paper", "part", "report", "kind", "maps", "scenarios", "functions", "shifted", "dim",
             "algorithms", "params", "refine", "local_planners", "runs", "seed", "seeds", "reference", "metric",
-            "alpha", "quick", "notes", "order", *{k for kind in RUN_KINDS.values() for k in kind.own_keys}}
+            "alpha", "quick", "notes", "order", "as_printed", *{k for kind in RUN_KINDS.values() for k in kind.own_keys}}
 QUICK_KEYS = {"runs", "params", "maps", "scenarios", "functions", "algorithms", "refine", "local_planners", "seeds",
               "title", "reference", "args"}
 
@@ -131,7 +131,9 @@ class RunRecord:
 
 @dataclass
 class ExperimentSpec:
-    """A checked experiment spec (see the module docstring for the YAML keys)."""
+    """A checked experiment spec (see the module docstring for the YAML keys). ``as_printed``
+    names the spec that runs the paper's setting of what this one changes (``optplan reproduce``
+    then lists the claims whose verdicts differ between the two)."""
 
     name: str
     kind: str
@@ -152,6 +154,7 @@ class ExperimentSpec:
     source: Path | None = None
     order: int = 0
     program: Mapping[str, Any] = field(default_factory=dict)
+    as_printed: str | None = None
 
     @property
     def runs(self) -> int:
@@ -328,7 +331,17 @@ def _parse(raw: dict, path: Path | None, where: str) -> ExperimentSpec:
         reference=reference, metric=metric, alpha=float(alpha), title=str(raw.get("title") or ""),
         paper=raw.get("paper"), part=raw.get("part"), report=str(raw.get("report") or "summary"),
         notes=str(raw.get("notes") or ""), params=dict(shared), source=path, order=_order(raw.get("order", 0), where),
-        program=program)
+        program=program, as_printed=_as_printed(raw.get("as_printed"), name, where))
+
+
+def _as_printed(value, name: str, where: str) -> str | None:
+    """``as_printed:``: the name of the spec that runs the paper's setting of what this one changes."""
+    if value is None:
+        return None
+    if not isinstance(value, str) or not value.strip() or value == name:
+        raise ScenarioError(f"{where}: as_printed names the spec that runs the paper's setting (another spec's name), "
+                            f"got {value!r}")
+    return value
 
 
 def _check_title(title, allowed: set, where: str) -> None:
