@@ -27,7 +27,10 @@ saves the time a re-plan costs. Per seed (--runs, default 10): the IBA global pa
 yuan2021_path_switch, its 3x3 block dropped on it, the robot 2 m (along the path) before the
 block with the block known; the wall time of the switch (graph update and Dijkstra) against
 that of re-planning with IBA at the paper's budget (50 bats, 100 iterations) from there. The
-graph's construction is part of the global planning and is timed apart.
+graph's construction is part of the global planning and is timed apart. The claim itself is
+judged in the closed loop by `optplan reproduce yuan2021 --part switch-time` (spec
+yuan2021_switch_time: the same drive answered by the switch or by IBA again); this part times
+the two answers outside the loop, from one point, with both routes' lengths.
 
     python examples/yuan2021_iba_dwa.py --part switch-time [--runs 10]
 """
