@@ -1055,8 +1055,8 @@ def printed_table(res) -> Table | None:
     for c in claims:
         figure, verdict = judge(c, res)
         table.rows.append([c.source, c.target, c.better, _claimed_text(c), figure, verdict])
-        key = verdict + (" (ours lower)" if figure.endswith("ours lower") and verdict == "reversed" else
-                         " (ours higher)" if figure.endswith("ours higher") and verdict == "reversed" else "")
+        side = figure.rsplit(", ", 1)[-1] if verdict == "reversed" else ""   # "ours lower" / "ours higher"
+        key = f"{verdict} ({side})" if side else verdict
         tally[key] = tally.get(key, 0) + 1
         if c.note and c.note not in notes:
             notes.append(c.note)
@@ -1075,9 +1075,11 @@ def as_printed_table(ours, printed) -> Table | None:
     spec with our change; ``printed``: those of its ``as_printed`` spec, the paper's setting), listed
     where their verdicts differ, with how many were compared: one row per claim of ``ours`` whose
     twin (the same claim on the other spec) both runs give a verdict."""
-    twins = {c.id.split(":", 1)[1]: c for c in claims_of(printed.spec.name)}
-    pairs = [(c, twins[c.id.split(":", 1)[1]]) for c in claims_of(ours.spec.name)
-             if c.id.split(":", 1)[1] in twins]
+    def unspecced(c: Claim) -> str:   # the id without its spec: the same claim on either spec
+        return c.id.split(":", 1)[1]
+
+    twins = {unspecced(c): c for c in claims_of(printed.spec.name)}
+    pairs = [(c, twins[unspecced(c)]) for c in claims_of(ours.spec.name) if unspecced(c) in twins]
     if not pairs:
         return None
     table = Table(["source", "claim", "target", "compared", f"as printed ({printed.spec.name})",

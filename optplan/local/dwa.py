@@ -382,7 +382,7 @@ class DWAPlanner(MoverSweepSource):
                 total -= weight * np.asarray(term.batched(Z, U, sit, self.program), float)
         total[~cand] = -np.inf
         best = int(np.argmax(total))
-        broken = (not step.admissible[best]) + (not step.mover_free[best]) + (not legal[best])
+        broken = samples.broken()[best]
         return best, {"mode": mode, "index": best, "score": float(total[best]), "cost": -float(total[best]),
                       "violation": float(broken), "n_candidates": int(cand.sum()),
                       "free_distance": float(step.free_distance[best])}

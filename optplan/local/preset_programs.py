@@ -50,6 +50,13 @@ class SampleSet:
     candidates: np.ndarray
     legal: np.ndarray
 
+    def broken(self) -> np.ndarray:
+        """``(S,)`` how many of Fox's admissibility rules, as the preset judges them, each sample
+        breaks: stopping before the first static collision, meeting no predicted mover, passing
+        the preset's filters and critics (0: admissible)."""
+        return ((~self.step.admissible).astype(float) + (~self.step.mover_free).astype(float)
+                + (~self.legal).astype(float))
+
 
 def normalised(values: np.ndarray, cand: np.ndarray, how: str) -> np.ndarray:
     """A critic's values scaled over the candidate samples: ``"sum"`` (the papers' sigma: each
@@ -105,9 +112,7 @@ class SampledAdmissibility(LocalConstraint):
     name = "admissible"
 
     def batched(self, Z, U, sit, prog):
-        s = _samples_of(sit, "Fox's admissibility")
-        return ((~s.step.admissible).astype(float) + (~s.step.mover_free).astype(float)
-                + (~s.legal).astype(float))
+        return _samples_of(sit, "Fox's admissibility").broken()
 
     def symbolic(self, Z, U, ps, prog):
         raise ParameterError("Fox's admissibility is judged on the sampled rollouts; it has no symbolic view")

@@ -385,25 +385,22 @@ class Navigator:
     def _plan_from(self, world, position, clearances, replanner: str = "exact") -> PlanResult | None:
         """The first valid path from ``position`` to the goal on ``world`` with one of
         ``clearances`` (``replanner``'s, then exact graph search), or ``None``."""
-        method = "astar" if self.is_grid else "visibility"
-        if replanner == "global" and self.global_planner != method:
-            opts = {k: v for k, v in self.global_options.items() if k != "clearance"}
+        exact = "astar" if self.is_grid else "visibility"
+        tries = [(exact, {})]
+        if replanner == "global" and self.global_planner != exact:
+            tries.insert(0, (self.global_planner, {"seed": self.seed, **{k: v for k, v in self.global_options.items()
+                                                                          if k != "clearance"}}))
+        for k, (method, opts) in enumerate(tries):
             for clearance in clearances:
                 try:
-                    res = plan(world, np.asarray(position, float), self.goal, algorithm=self.global_planner,
-                               seed=self.seed, clearance=clearance, **opts)
+                    res = plan(world, np.asarray(position, float), self.goal, algorithm=method, clearance=clearance,
+                               **opts)
                 except OptplanError:
                     continue
                 if res.feasible:
                     return res
-            self.messages.append(f"{self.global_planner} found no valid path from here; exact search re-plans")
-        for clearance in clearances:
-            try:
-                res = plan(world, np.asarray(position, float), self.goal, algorithm=method, clearance=clearance)
-            except OptplanError:
-                continue
-            if res.feasible:
-                return res
+            if k + 1 < len(tries):
+                self.messages.append(f"{method} found no valid path from here; exact search re-plans")
         return None
 
     def check_stuck(self, position, t: float, dt: float) -> bool:
